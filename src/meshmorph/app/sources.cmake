@@ -1,0 +1,1 @@
+# app: sources are listed here by the module's owner.

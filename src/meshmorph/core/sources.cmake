@@ -1,0 +1,7 @@
+# core: types, mesh container, addressing, errors, logging, progress.
+meshmorph_add_component(core
+    SOURCES
+        meshmorph/core/poly_mesh.cpp
+        meshmorph/core/log.cpp
+        meshmorph/core/progress.cpp
+    DEPENDS Eigen3::Eigen OpenMP::OpenMP_CXX)

@@ -1,0 +1,1 @@
+# deform: sources are listed here by the module's owner.

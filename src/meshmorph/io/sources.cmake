@@ -1,0 +1,1 @@
+# io: sources are listed here by the module's owner.

@@ -1,0 +1,1 @@
+# quality: sources are listed here by the module's owner.
