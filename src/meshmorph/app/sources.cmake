@@ -1,1 +1,8 @@
-# app: sources are listed here by the module's owner.
+# app: option table, banner, case/time helpers, morph set-up (boundary constraints from
+# morphDict), the deformation factory. Depends on every other module.
+set(MESHMORPH_APP_SOURCES
+)
+meshmorph_add_component(app
+    SOURCES ${MESHMORPH_APP_SOURCES}
+    DEPENDS meshmorph::core meshmorph::io meshmorph::quality meshmorph::deform
+            nlohmann_json::nlohmann_json)

@@ -4,4 +4,5 @@ meshmorph_add_component(core
         meshmorph/core/poly_mesh.cpp
         meshmorph/core/log.cpp
         meshmorph/core/progress.cpp
+        # (one file per line)
     DEPENDS Eigen3::Eigen OpenMP::OpenMP_CXX)

@@ -1,1 +1,21 @@
-# io: sources are listed here by the module's owner.
+# io: OpenFOAM tokenizer, dictionaries, polyMesh/field readers and writers, VTK export.
+# Owners add their files to the lists below (one per line); nothing else in this file changes.
+set(MESHMORPH_IO_SOURCES
+)
+set(MESHMORPH_IO_VTK_SOURCES
+)
+set(meshmorph_io_private_deps ZLIB::ZLIB)
+if(MESHMORPH_WITH_VTK)
+    list(APPEND MESHMORPH_IO_SOURCES ${MESHMORPH_IO_VTK_SOURCES})
+    list(APPEND meshmorph_io_private_deps ${VTK_LIBRARIES})
+endif()
+meshmorph_add_component(io
+    SOURCES ${MESHMORPH_IO_SOURCES}
+    DEPENDS meshmorph::core
+    PRIVATE_DEPENDS ${meshmorph_io_private_deps})
+if(MESHMORPH_WITH_VTK AND TARGET meshmorph_io AND MESHMORPH_IO_VTK_SOURCES)
+    get_target_property(meshmorph_io_type meshmorph_io TYPE)
+    if(NOT meshmorph_io_type STREQUAL "INTERFACE_LIBRARY")
+        vtk_module_autoinit(TARGETS meshmorph_io MODULES ${VTK_LIBRARIES})
+    endif()
+endif()

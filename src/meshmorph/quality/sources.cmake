@@ -1,1 +1,11 @@
-# quality: sources are listed here by the module's owner.
+# quality: checkMesh-equivalent metrics and report; the paper's metrics (scaled Jacobian,
+# mean curvature). Owners add their files to the list (one per line).
+set(MESHMORPH_QUALITY_SOURCES
+)
+meshmorph_add_component(quality
+    SOURCES ${MESHMORPH_QUALITY_SOURCES}
+    DEPENDS meshmorph::core)
+if(MESHMORPH_QUALITY_SOURCES)
+    # Bit-level agreement with OpenFOAM's checkMesh: never contract a*b+c into an FMA.
+    target_compile_options(meshmorph_quality PRIVATE -ffp-contract=off)
+endif()
