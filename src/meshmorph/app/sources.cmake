@@ -1,6 +1,8 @@
 # app: option table, banner, case/time helpers, morph set-up (boundary constraints from
 # morphDict), the deformation factory. Depends on every other module.
 set(MESHMORPH_APP_SOURCES
+    meshmorph/app/options.cpp
+    meshmorph/app/banner.cpp
 )
 meshmorph_add_component(app
     SOURCES ${MESHMORPH_APP_SOURCES}
