@@ -3,6 +3,7 @@
 set(MESHMORPH_APP_SOURCES
     meshmorph/app/options.cpp
     meshmorph/app/banner.cpp
+    meshmorph/app/morph_setup.cpp
 )
 meshmorph_add_component(app
     SOURCES ${MESHMORPH_APP_SOURCES}
