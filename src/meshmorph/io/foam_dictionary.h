@@ -153,8 +153,10 @@ public:
     const std::string& scope() const { return scope_; }
     //! Scope for messages: scope(), or the file name's last component for the top level.
     std::string scope_name() const;
-    //! Line of the opening `{` (0 for the top level).
+    //! Line of the opening `{` (for the top level: the first line of the file, 1).
     std::size_t line() const { return line_; }
+    //! Line of the closing `}` (for the top level: the last line of the file).
+    std::size_t end_line() const { return end_line_; }
     //! The `FoamFile` header, when the text had one.
     const std::optional<FoamHeader>& header() const { return header_; }
     void set_header(FoamHeader header) { header_ = std::move(header); }
@@ -164,7 +166,7 @@ public:
     const FoamEntry* find(const std::string& key) const;
     FoamEntry* find(const std::string& key);
     //! \brief Like find(). \throw ParseError "path:line: keyword 'k' is undefined in
-    //! dictionary 's'" (line: the dictionary's `{`).
+    //! dictionary 's'" (line: the dictionary's `{`, or 1 for the top level).
     const FoamEntry& entry(const std::string& key) const;
     bool found(const std::string& key) const { return find(key) != nullptr; }
     //! Whether `key` exists and is a sub-dictionary.
@@ -213,6 +215,7 @@ private:
     std::string path_;
     std::string scope_;
     std::size_t line_ = 0;
+    std::size_t end_line_ = 0;
     std::optional<FoamHeader> header_;
     std::vector<FoamEntry> entries_;
 };

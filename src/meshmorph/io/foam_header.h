@@ -36,10 +36,12 @@ struct FoamHeader
 
 //! \brief Read the optional banner comments and the `FoamFile { ... }` block, leaving the
 //! tokenizer just after its closing `}`. Unknown header keys are ignored.
+//! \param require_format_and_class false for dictionaries (format defaults to ascii,
+//! class may be absent); data files keep the default true.
 //! \throw ParseError naming path and line when `FoamFile` is missing, when `format` or
-//! `class` is missing, when `format` is neither ascii nor binary, or when `arch` says `MSB`
-//! or has a label/scalar size other than 32/64.
-FoamHeader parse_header(FoamTokenizer& tokenizer);
+//! `class` is missing (if required), when `format` is neither ascii nor binary, or when
+//! `arch` says `MSB` or has a label/scalar size other than 32/64.
+FoamHeader parse_header(FoamTokenizer& tokenizer, bool require_format_and_class = true);
 
 //! \brief Whether the next token of `tokenizer` is the word `FoamFile` (nothing consumed).
 bool has_header(FoamTokenizer& tokenizer);

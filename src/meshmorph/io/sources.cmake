@@ -1,6 +1,10 @@
 # io: OpenFOAM tokenizer, dictionaries, polyMesh/field readers and writers, VTK export.
 # Owners add their files to the lists below (one per line); nothing else in this file changes.
 set(MESHMORPH_IO_SOURCES
+    meshmorph/io/foam_tokenizer.cpp
+    meshmorph/io/foam_header.cpp
+    meshmorph/io/foam_dictionary.cpp
+    meshmorph/io/boundary_io.cpp
 )
 set(MESHMORPH_IO_VTK_SOURCES
 )

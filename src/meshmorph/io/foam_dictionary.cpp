@@ -1,0 +1,1420 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// OpenFOAM dictionaries: parsing (directives, substitution, compounds) and typed getters.
+#include "meshmorph/io/foam_dictionary.h"
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <limits>
+
+#include <zlib.h>
+
+#include "meshmorph/core/log.h"
+
+namespace fs = std::filesystem;
+
+namespace meshmorph::io
+{
+
+namespace
+{
+
+// Reads `path`, or `path.gz` when only that exists. gzread passes plain files through, so
+// one code path serves both.
+std::optional<std::string> read_file_plain_or_gz(const fs::path& path)
+{
+    std::error_code ec;
+    fs::path actual = path;
+    if (!fs::is_regular_file(actual, ec))
+    {
+        actual += ".gz";
+        if (!fs::is_regular_file(actual, ec))
+            return std::nullopt;
+    }
+    gzFile file = gzopen(actual.c_str(), "rb");
+    if (!file)
+        throw IoError("cannot open '" + actual.string() + "': " + std::strerror(errno));
+    gzbuffer(file, 1 << 17);
+    std::string out;
+    const std::uintmax_t size = fs::file_size(actual, ec);
+    if (!ec)
+        out.reserve(static_cast<std::size_t>(size));
+    constexpr unsigned chunk = 1u << 20;
+    std::size_t used = 0;
+    for (;;)
+    {
+        out.resize(used + chunk);
+        const int n = gzread(file, out.data() + used, chunk);
+        if (n < 0)
+        {
+            int err = 0;
+            const std::string msg = gzerror(file, &err);
+            gzclose(file);
+            throw IoError("error reading '" + actual.string() + "': " + msg);
+        }
+        used += static_cast<std::size_t>(n);
+        if (n == 0)
+            break;
+    }
+    out.resize(used);
+    gzclose(file);
+    return out;
+}
+
+bool is_number_name(const std::string& s)
+{
+    if (s.empty())
+        return false;
+    char* end = nullptr;
+    std::strtod(s.c_str(), &end);
+    return end == s.c_str() + s.size();
+}
+
+// The case directory of a file: parent of its system/, constant/, <time>/ directory.
+fs::path derive_case_dir(const fs::path& file)
+{
+    fs::path dir = file.parent_path();
+    const std::string name = dir.filename().string();
+    if (name == "polyMesh")
+        return dir.parent_path().parent_path();
+    if (name == "system" || name == "constant" || is_number_name(name))
+        return dir.parent_path();
+    return dir;
+}
+
+std::string display_scope(const std::string& scope, const std::string& path)
+{
+    if (!scope.empty())
+        return scope;
+    const std::string name = fs::path(path).filename().string();
+    return name.empty() ? path : name;
+}
+
+std::string child_scope(const std::string& scope, const std::string& key)
+{
+    return scope.empty() ? key : scope + "." + key;
+}
+
+bool is_code_directive(const std::string& w)
+{
+    return w == "#calc" || w == "#codeStream" || w == "#eval";
+}
+
+[[noreturn]] void throw_code_directive(const FoamTokenizer& tok, std::size_t line,
+                                       const std::string& w)
+{
+    throw tok.error_at(line, "'" + w +
+                                 "' is not supported: it needs a C++ compiler or an expression "
+                                 "engine; write the value out instead");
+}
+
+FoamCompound::Kind compound_kind(std::string_view word, bool& ok)
+{
+    ok = true;
+    if (word == "List<label>")
+        return FoamCompound::Kind::label;
+    if (word == "List<scalar>")
+        return FoamCompound::Kind::scalar;
+    if (word == "List<vector>")
+        return FoamCompound::Kind::vector;
+    if (word == "List<bool>")
+        return FoamCompound::Kind::boolean;
+    if (word == "List<word>")
+        return FoamCompound::Kind::word;
+    ok = false;
+    return FoamCompound::Kind::label;
+}
+
+template <class T> T load_le(const char* p)
+{
+    T v;
+    std::memcpy(&v, p, sizeof(T));
+    return v;
+}
+
+void rescope(FoamDictionary& dict, const std::string& scope);
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------
+// FoamCompound, FoamEntry
+
+std::size_t FoamCompound::size() const
+{
+    switch (kind)
+    {
+    case Kind::label:
+    case Kind::boolean:
+        return labels.size();
+    case Kind::scalar:
+        return scalars.size();
+    case Kind::vector:
+        return scalars.size() / 3;
+    case Kind::word:
+        return words.size();
+    }
+    return 0;
+}
+
+FoamEntry::FoamEntry(const FoamEntry& other)
+    : keyword_(other.keyword_), regex_(other.regex_),
+      dict_(other.dict_ ? std::make_unique<FoamDictionary>(*other.dict_) : nullptr),
+      tokens_(other.tokens_), source_(other.source_), path_(other.path_), line_(other.line_),
+      scope_(other.scope_)
+{
+}
+
+FoamEntry& FoamEntry::operator=(const FoamEntry& other)
+{
+    if (this != &other)
+    {
+        FoamEntry copy(other);
+        *this = std::move(copy);
+    }
+    return *this;
+}
+
+FoamEntry::~FoamEntry() = default;
+
+bool FoamEntry::matches(const std::string& name) const
+{
+    if (regex_)
+        return std::regex_match(name, *regex_);
+    return keyword_ == name;
+}
+
+ParseError FoamEntry::error(const std::string& msg) const
+{
+    return ParseError(path_, line_,
+                      "keyword '" + keyword_ + "' in dictionary '" +
+                          display_scope(scope_, path_) + "': " + msg);
+}
+
+// ---------------------------------------------------------------------------------------
+// FoamDictionary
+
+FoamDictionary::FoamDictionary(std::string path, std::string scope, std::size_t line)
+    : path_(std::move(path)), scope_(std::move(scope)), line_(line), end_line_(line)
+{
+}
+
+std::string FoamDictionary::scope_name() const { return display_scope(scope_, path_); }
+
+const FoamEntry* FoamDictionary::find(const std::string& key) const
+{
+    for (const FoamEntry& e : entries_)
+        if (!e.is_regex() && e.keyword_ == key)
+            return &e;
+    for (auto it = entries_.rbegin(); it != entries_.rend(); ++it)
+        if (it->is_regex() && std::regex_match(key, *it->regex_))
+            return &*it;
+    return nullptr;
+}
+
+FoamEntry* FoamDictionary::find(const std::string& key)
+{
+    return const_cast<FoamEntry*>(static_cast<const FoamDictionary*>(this)->find(key));
+}
+
+const FoamEntry& FoamDictionary::entry(const std::string& key) const
+{
+    const FoamEntry* e = find(key);
+    if (!e)
+        throw ParseError(path_, line_ == 0 ? 1 : line_,
+                         "keyword '" + key + "' is undefined in dictionary '" + scope_name() +
+                             "'");
+    return *e;
+}
+
+bool FoamDictionary::is_dict(const std::string& key) const
+{
+    const FoamEntry* e = find(key);
+    return e && e->is_dict();
+}
+
+const FoamDictionary& FoamDictionary::sub_dict(const std::string& key) const
+{
+    const FoamEntry& e = entry(key);
+    if (!e.is_dict())
+        throw e.error("expected a sub-dictionary '{ ... }' but found a value");
+    return e.dict();
+}
+
+const FoamDictionary* FoamDictionary::find_dict(const std::string& key) const
+{
+    const FoamEntry* e = find(key);
+    return (e && e->is_dict()) ? &e->dict() : nullptr;
+}
+
+std::vector<std::string> FoamDictionary::keys() const
+{
+    std::vector<std::string> out;
+    out.reserve(entries_.size());
+    for (const FoamEntry& e : entries_)
+        out.push_back(e.keyword_);
+    return out;
+}
+
+ParseError FoamDictionary::error(const std::string& msg) const
+{
+    return ParseError(path_, line_ == 0 ? 1 : line_, msg);
+}
+
+bool FoamDictionary::remove(const std::string& keyword)
+{
+    for (auto it = entries_.begin(); it != entries_.end(); ++it)
+        if (it->keyword_ == keyword)
+        {
+            entries_.erase(it);
+            return true;
+        }
+    return false;
+}
+
+namespace
+{
+
+void rescope(FoamDictionary& dict, const std::string& scope);
+
+} // namespace
+
+//! Parser state and private access to FoamDictionary / FoamEntry internals.
+struct detail_dictionary_access
+{
+    enum class InputMode
+    {
+        merge,
+        overwrite,
+        protect,
+        warn,
+        error
+    };
+
+    ParseOptions options;
+    fs::path case_dir;
+    std::vector<FoamDictionary*> scopes;
+    InputMode mode = InputMode::merge;
+    int include_depth = 0;
+    std::deque<FoamEntry> env_entries; // owners of entries made from environment variables
+
+    static void set_scope(FoamDictionary& d, const std::string& s) { d.scope_ = s; }
+    static std::vector<FoamEntry>& entries(FoamDictionary& d) { return d.entries_; }
+    static void set_entry_scope(FoamEntry& e, const std::string& s) { e.scope_ = s; }
+    static void set_lines(FoamDictionary& d, std::size_t begin, std::size_t end)
+    {
+        d.line_ = begin;
+        d.end_line_ = end;
+    }
+    static void set_end_line(FoamDictionary& d, std::size_t end) { d.end_line_ = end; }
+
+    // Adds `e` to `dict` under the given input mode (docs/polymesh-format.md §2).
+    static void insert(FoamDictionary& dict, FoamEntry&& e, InputMode mode)
+    {
+        FoamEntry* existing = nullptr;
+        for (FoamEntry& old : dict.entries_)
+            if (old.keyword_ == e.keyword_ && old.is_regex() == e.is_regex())
+            {
+                existing = &old;
+                break;
+            }
+        if (!existing)
+        {
+            dict.entries_.push_back(std::move(e));
+            return;
+        }
+        switch (mode)
+        {
+        case InputMode::merge:
+            if (existing->is_dict() && e.is_dict())
+            {
+                for (FoamEntry& sub : e.dict_->entries_)
+                    insert(*existing->dict_, std::move(sub), InputMode::merge);
+                return;
+            }
+            *existing = std::move(e);
+            return;
+        case InputMode::overwrite:
+            *existing = std::move(e);
+            return;
+        case InputMode::protect:
+            return;
+        case InputMode::warn:
+            log::warning() << e.path_ << ":" << e.line_ << ": duplicate keyword '" << e.keyword_
+                           << "' in dictionary '" << dict.scope_name()
+                           << "' ignored (#inputMode warn; first defined at line "
+                           << existing->line_ << ")";
+            return;
+        case InputMode::error:
+            throw ParseError(e.path_, e.line_,
+                             "duplicate keyword '" + e.keyword_ + "' in dictionary '" +
+                                 dict.scope_name() + "' (#inputMode error; first defined at " +
+                                 existing->path_ + ":" + std::to_string(existing->line_) + ")");
+        }
+    }
+
+    // ---- scoped lookup for $var -------------------------------------------------------
+
+    // `name` in dict, where `name` may continue into sub-dictionaries with '.' (a keyword
+    // containing dots, such as `motorBike.obj`, is tried whole first).
+    static const FoamEntry* find_path(const FoamDictionary& dict, const std::string& name)
+    {
+        if (const FoamEntry* e = dict.find(name))
+            return e;
+        for (std::size_t dot = name.find('.'); dot != std::string::npos;
+             dot = name.find('.', dot + 1))
+        {
+            const FoamEntry* head = dict.find(name.substr(0, dot));
+            if (head && head->is_dict())
+                if (const FoamEntry* e = find_path(head->dict(), name.substr(dot + 1)))
+                    return e;
+        }
+        return nullptr;
+    }
+
+    const FoamEntry* lookup(std::string name) const
+    {
+        if (scopes.empty())
+            return nullptr;
+        if (name[0] == ':')
+            return find_path(*scopes.front(), name.substr(1));
+        if (name[0] == '.')
+        {
+            std::size_t dots = 0;
+            while (dots < name.size() && name[dots] == '.')
+                ++dots;
+            if (dots - 1 >= scopes.size())
+                return nullptr;
+            const FoamDictionary& d = *scopes[scopes.size() - dots];
+            return find_path(d, name.substr(dots));
+        }
+        for (std::size_t level = scopes.size(); level-- > 0;)
+            if (const FoamEntry* e = find_path(*scopes[level], name))
+                return e;
+        return nullptr;
+    }
+
+    const FoamEntry& resolve(const FoamTokenizer& tok, const FoamToken& var)
+    {
+        std::string name = var.text.substr(1);
+        if (name.size() >= 2 && name.front() == '{' && name.back() == '}')
+            name = name.substr(1, name.size() - 2);
+        if (name.empty())
+            throw tok.error_at(var.line, "empty variable name '" + var.text + "'");
+        if (const FoamEntry* e = lookup(name))
+            return *e;
+        // Like OpenFOAM, fall back to an environment variable of that name.
+        if (const char* env = std::getenv(name.c_str()))
+        {
+            FoamEntry e;
+            e.keyword_ = name;
+            e.source_ = env;
+            e.path_ = tok.path();
+            e.line_ = var.line;
+            FoamTokenizer sub(e.source_, tok.path(), var.line);
+            for (FoamToken t = sub.next(); !t.is_end(); t = sub.next())
+            {
+                FoamValueToken vt;
+                static_cast<FoamToken&>(vt) = std::move(t);
+                vt.line = var.line;
+                e.tokens_.push_back(std::move(vt));
+            }
+            env_entries.push_back(std::move(e));
+            return env_entries.back();
+        }
+        throw tok.error_at(var.line, "undefined variable '" + var.text +
+                                         "' (no such entry in scope, nor environment variable)");
+    }
+
+    // ---- #include ---------------------------------------------------------------------
+
+    fs::path expand_include(const FoamTokenizer& tok, std::size_t line, std::string s) const
+    {
+        const auto replace_prefix = [&](const std::string& prefix, const fs::path& base) {
+            if (s.rfind(prefix, 0) == 0)
+            {
+                s = (base / s.substr(prefix.size())).string();
+                return true;
+            }
+            return false;
+        };
+        if (!replace_prefix("<case>/", case_dir) &&
+            !replace_prefix("<system>/", case_dir / "system"))
+            replace_prefix("<constant>/", case_dir / "constant");
+        if (s.rfind("~/", 0) == 0)
+            if (const char* home = std::getenv("HOME"))
+                s = std::string(home) + s.substr(1);
+        std::string out;
+        for (std::size_t i = 0; i < s.size();)
+        {
+            if (s[i] != '$')
+            {
+                out += s[i++];
+                continue;
+            }
+            std::size_t j = i + 1;
+            std::string var;
+            if (j < s.size() && s[j] == '{')
+            {
+                const std::size_t close = s.find('}', j);
+                if (close == std::string::npos)
+                    throw tok.error_at(line, "unterminated '${' in include path '" + s + "'");
+                var = s.substr(j + 1, close - j - 1);
+                j = close + 1;
+            }
+            else
+            {
+                while (j < s.size() && (std::isalnum(static_cast<unsigned char>(s[j])) ||
+                                        s[j] == '_'))
+                    ++j;
+                var = s.substr(i + 1, j - i - 1);
+            }
+            const char* value = std::getenv(var.c_str());
+            if (value)
+                out += value;
+            else if (var == "FOAM_CASE")
+                out += case_dir.string();
+            else
+                throw tok.error_at(line, "undefined environment variable '$" + var +
+                                             "' in include path '" + s + "'");
+            i = j;
+        }
+        fs::path p(out);
+        if (p.is_relative())
+            p = fs::path(tok.path()).parent_path() / p;
+        return p;
+    }
+
+    void include(FoamTokenizer& tok, FoamDictionary& dict, const FoamToken& directive)
+    {
+        const FoamToken arg = tok.next();
+        if (!arg.is_string() && !arg.is_word())
+            throw tok.error_at(directive.line, "expected a file name after '" +
+                                                   directive.text + "' but found " +
+                                                   arg.describe());
+        const bool optional = directive.text != "#include";
+        const fs::path file = expand_include(tok, directive.line, arg.text);
+        if (include_depth >= options.max_include_depth)
+            throw tok.error_at(directive.line, "#include nesting deeper than " +
+                                                   std::to_string(options.max_include_depth) +
+                                                   " (include cycle?) at '" + file.string() +
+                                                   "'");
+        std::optional<std::string> text =
+            options.read_file ? options.read_file(file) : read_file_plain_or_gz(file);
+        if (!text)
+        {
+            if (optional)
+                return;
+            throw tok.error_at(directive.line, "cannot find include file '" + file.string() +
+                                                   "' (" + directive.text + " \"" + arg.text +
+                                                   "\")");
+        }
+        FoamTokenizer sub(*text, file.string());
+        if (has_header(sub))
+            parse_header(sub, false); // an included file's own header is not an entry
+        const InputMode saved = mode;
+        ++include_depth;
+        parse_entries(sub, dict, false, true);
+        --include_depth;
+        mode = saved;
+    }
+
+    // ---- directives -------------------------------------------------------------------
+
+    void directive(FoamTokenizer& tok, FoamDictionary& dict, const FoamToken& d)
+    {
+        const std::string& w = d.text;
+        if (w == "#include" || w == "#sinclude" || w == "#includeIfPresent")
+            include(tok, dict, d);
+        else if (w == "#includeEtc")
+            throw tok.error_at(d.line, "'#includeEtc' (files of the OpenFOAM installation) is not "
+                                       "supported: copy the entries into the dictionary");
+        else if (w == "#includeFunc" || w == "#includeModel")
+            throw tok.error_at(d.line, "'" + w + "' (OpenFOAM function objects/models) is not "
+                                                 "supported");
+        else if (is_code_directive(w))
+            throw_code_directive(tok, d.line, w);
+        else if (w == "#inputMode")
+        {
+            const FoamToken m = tok.next();
+            if (m.is_word("merge") || m.is_word("default"))
+                mode = InputMode::merge;
+            else if (m.is_word("overwrite"))
+                mode = InputMode::overwrite;
+            else if (m.is_word("protect"))
+                mode = InputMode::protect;
+            else if (m.is_word("warn"))
+                mode = InputMode::warn;
+            else if (m.is_word("error"))
+                mode = InputMode::error;
+            else
+                throw tok.error_at(m.line, "unknown #inputMode " + m.describe() +
+                                               " (expected merge, overwrite, protect, warn, "
+                                               "error or default)");
+        }
+        else if (w == "#remove")
+        {
+            std::vector<FoamToken> keys;
+            FoamToken t = tok.next();
+            if (t.is_punct('('))
+            {
+                for (t = tok.next(); !t.is_punct(')'); t = tok.next())
+                {
+                    if (t.is_end())
+                        throw tok.error_at(d.line, "unterminated key list after '#remove'");
+                    keys.push_back(t);
+                }
+            }
+            else
+                keys.push_back(t);
+            for (const FoamToken& k : keys)
+            {
+                if (!k.is_word() && !k.is_string())
+                    throw tok.error_at(k.line, "expected a keyword after '#remove' but found " +
+                                                   k.describe());
+                auto& es = dict.entries_;
+                if (k.is_string())
+                {
+                    std::regex re;
+                    try
+                    {
+                        re = std::regex(k.text, std::regex::ECMAScript);
+                    }
+                    catch (const std::regex_error& ex)
+                    {
+                        throw tok.error_at(k.line, "invalid regular expression \"" + k.text +
+                                                       "\" after '#remove': " + ex.what());
+                    }
+                    std::erase_if(es, [&](const FoamEntry& e) {
+                        return std::regex_match(e.keyword_, re) || e.keyword_ == k.text;
+                    });
+                }
+                else
+                    std::erase_if(es, [&](const FoamEntry& e) { return e.keyword_ == k.text; });
+            }
+        }
+        else
+            throw tok.error_at(d.line, "unknown directive '" + w + "'");
+    }
+
+    // ---- entries ----------------------------------------------------------------------
+
+    void parse_entries(FoamTokenizer& tok, FoamDictionary& dict, bool nested,
+                       bool is_include = false)
+    {
+        for (;;)
+        {
+            FoamToken key = tok.next();
+            if (key.is_end())
+            {
+                if (nested)
+                    throw tok.error_at(dict.line_, "unterminated dictionary '" +
+                                                       dict.scope_name() +
+                                                       "' (no closing '}' before end of file)");
+                if (!is_include)
+                    dict.end_line_ = tok.line();
+                return;
+            }
+            if (key.is_punct('}'))
+            {
+                if (!nested)
+                    throw tok.error_at(key.line, "unexpected '}' (no open dictionary)");
+                dict.end_line_ = key.line;
+                return;
+            }
+            if (key.is_punct(';'))
+                continue; // a stray ';' is harmless
+            if (key.is_word() && key.text.size() > 1 && key.text[0] == '#')
+            {
+                directive(tok, dict, key);
+                continue;
+            }
+            if (key.is_word() && key.text.size() > 1 && key.text[0] == '$')
+            {
+                // `$dict` at keyword position: merge a copy of that dictionary's entries.
+                const FoamEntry& src = resolve(tok, key);
+                if (!src.is_dict())
+                    throw tok.error_at(key.line, "'" + key.text +
+                                                     "' at keyword position must name a "
+                                                     "dictionary, but it is a value");
+                const FoamDictionary copy = src.dict();
+                for (const FoamEntry& e : copy.entries_)
+                {
+                    FoamEntry c = e;
+                    c.scope_ = dict.scope_;
+                    if (c.dict_)
+                        rescope(*c.dict_, child_scope(dict.scope_, c.keyword_));
+                    insert(dict, std::move(c), mode);
+                }
+                tok.accept(';');
+                continue;
+            }
+            if (key.type == TokenType::punctuation)
+                throw tok.error_at(key.line, "expected a keyword but found " + key.describe());
+
+            FoamEntry e;
+            e.keyword_ = key.text;
+            e.line_ = key.line;
+            e.path_ = tok.path();
+            e.scope_ = dict.scope_;
+            if (key.is_string())
+            {
+                try
+                {
+                    e.regex_ = std::make_shared<const std::regex>(key.text, std::regex::ECMAScript);
+                }
+                catch (const std::regex_error& ex)
+                {
+                    throw tok.error_at(key.line, "invalid regular expression keyword \"" +
+                                                     key.text + "\": " + ex.what());
+                }
+            }
+            const FoamToken& ahead = tok.peek();
+            if (ahead.is_punct('{'))
+            {
+                const std::size_t open_offset = ahead.offset;
+                const std::size_t open_line = ahead.line;
+                tok.next();
+                auto sub = std::make_unique<FoamDictionary>(
+                    tok.path(), child_scope(dict.scope_, key.text), open_line);
+                scopes.push_back(sub.get());
+                try
+                {
+                    parse_entries(tok, *sub, true);
+                }
+                catch (...)
+                {
+                    scopes.pop_back();
+                    throw;
+                }
+                scopes.pop_back();
+                e.source_ = std::string(tok.slice(open_offset, tok.offset()));
+                e.dict_ = std::move(sub);
+            }
+            else if (ahead.is_word() && is_code_directive(ahead.text))
+                throw_code_directive(tok, ahead.line, ahead.text);
+            else
+                parse_value(tok, e);
+            insert(dict, std::move(e), mode);
+        }
+    }
+
+    void parse_value(FoamTokenizer& tok, FoamEntry& e)
+    {
+        std::size_t first = std::string::npos;
+        std::size_t last = 0;
+        int depth = 0;
+        std::vector<std::size_t> open_lines;
+        for (;;)
+        {
+            FoamToken t = tok.next();
+            if (t.is_end())
+            {
+                if (!open_lines.empty())
+                    throw tok.error_at(open_lines.back(),
+                                       "unterminated list in entry '" + e.keyword_ +
+                                           "' (bracket opened here is never closed)");
+                throw tok.error_at(e.line_, "unexpected end of file in entry '" + e.keyword_ +
+                                                "' (missing ';')");
+            }
+            if (depth == 0 && t.is_punct(';'))
+                break;
+            if (depth == 0 && t.is_punct('}'))
+                throw tok.error_at(t.line, "expected ';' after the value of '" + e.keyword_ +
+                                               "' but found '}'");
+            if (first == std::string::npos)
+                first = t.offset;
+            last = t.end;
+            if (t.type == TokenType::punctuation)
+            {
+                if (t.punct == '(' || t.punct == '[' || t.punct == '{')
+                {
+                    ++depth;
+                    open_lines.push_back(t.line);
+                }
+                else if (t.punct == ')' || t.punct == ']' || t.punct == '}')
+                {
+                    if (depth == 0)
+                        throw tok.error_at(t.line, "unbalanced " + t.describe() + " in entry '" +
+                                                       e.keyword_ + "'");
+                    --depth;
+                    open_lines.pop_back();
+                }
+            }
+            else if (t.is_word())
+            {
+                if (is_compound_type(t.text))
+                {
+                    const FoamToken& n = tok.peek();
+                    if (n.is_label() || n.is_punct('('))
+                    {
+                        FoamValueToken vt;
+                        static_cast<FoamToken&>(vt) = t;
+                        vt.compound =
+                            std::make_shared<const FoamCompound>(read_compound(tok, t.text, options));
+                        last = tok.offset();
+                        e.tokens_.push_back(std::move(vt));
+                        continue;
+                    }
+                }
+                else if (is_code_directive(t.text))
+                    throw_code_directive(tok, t.line, t.text);
+                else if (t.text.size() > 1 && t.text[0] == '$')
+                {
+                    const FoamEntry& src = resolve(tok, t);
+                    if (src.is_dict())
+                    {
+                        // `key $dict;` copies the whole dictionary.
+                        if (!e.tokens_.empty() || !tok.peek().is_punct(';'))
+                            throw tok.error_at(t.line, "'" + t.text +
+                                                           "' names a dictionary and cannot be "
+                                                           "part of a value");
+                        tok.next();
+                        e.dict_ = std::make_unique<FoamDictionary>(src.dict());
+                        rescope(*e.dict_, child_scope(e.scope_, e.keyword_));
+                        e.source_ = t.text;
+                        return;
+                    }
+                    for (const FoamValueToken& s : src.tokens_)
+                        e.tokens_.push_back(s);
+                    continue;
+                }
+            }
+            FoamValueToken vt;
+            static_cast<FoamToken&>(vt) = std::move(t);
+            e.tokens_.push_back(std::move(vt));
+        }
+        if (first != std::string::npos)
+            e.source_ = std::string(tok.slice(first, last));
+    }
+};
+
+namespace
+{
+
+void rescope(FoamDictionary& dict, const std::string& scope)
+{
+    detail_dictionary_access::set_scope(dict, scope);
+    for (FoamEntry& e : detail_dictionary_access::entries(dict))
+    {
+        detail_dictionary_access::set_entry_scope(e, scope);
+        if (e.is_dict())
+            rescope(e.dict(), child_scope(scope, e.keyword()));
+    }
+}
+
+} // namespace
+
+void FoamDictionary::add(FoamEntry entry, bool merge)
+{
+    detail_dictionary_access::insert(*this, std::move(entry),
+                                     merge ? detail_dictionary_access::InputMode::merge
+                                           : detail_dictionary_access::InputMode::overwrite);
+}
+
+// ---------------------------------------------------------------------------------------
+// Compounds
+
+bool is_compound_type(std::string_view word)
+{
+    bool ok = false;
+    compound_kind(word, ok);
+    return ok;
+}
+
+FoamCompound read_compound(FoamTokenizer& tok, const std::string& type_word,
+                           const ParseOptions& options)
+{
+    bool ok = false;
+    FoamCompound c;
+    c.kind = compound_kind(type_word, ok);
+    c.type_word = type_word;
+    if (!ok)
+        throw tok.error("unknown compound list type '" + type_word + "'");
+    using Kind = FoamCompound::Kind;
+    const std::string what = "the size of a " + type_word;
+
+    if (options.binary && c.kind != Kind::word)
+    {
+        if (options.label_bytes != 4 && options.label_bytes != 8)
+            throw tok.error("unsupported binary label size " + std::to_string(options.label_bytes));
+        if (options.scalar_bytes != 4 && options.scalar_bytes != 8)
+            throw tok.error("unsupported binary scalar size " +
+                            std::to_string(options.scalar_bytes));
+        if constexpr (std::endian::native != std::endian::little)
+            throw tok.error("binary OpenFOAM data can only be read on a little-endian machine");
+        tok.skip_whitespace_and_comments();
+        const std::size_t size_line = tok.line();
+        const std::int64_t n = tok.expect_size(what);
+        if (n == 0)
+        {
+            // OpenFOAM writes an empty binary list as a bare `0`; accept `0()` too.
+            if (tok.accept('('))
+                tok.expect(')');
+            return c;
+        }
+        std::size_t elem = 1;
+        switch (c.kind)
+        {
+        case Kind::label:
+            elem = static_cast<std::size_t>(options.label_bytes);
+            break;
+        case Kind::scalar:
+            elem = static_cast<std::size_t>(options.scalar_bytes);
+            break;
+        case Kind::vector:
+            elem = 3 * static_cast<std::size_t>(options.scalar_bytes);
+            break;
+        case Kind::boolean:
+        case Kind::word:
+            elem = 1;
+            break;
+        }
+        tok.expect('(');
+        const std::size_t remaining = tok.buffer().size() - tok.offset();
+        if (static_cast<std::uint64_t>(n) > remaining / elem)
+            throw tok.error_at(size_line, "binary " + type_word + " of " + std::to_string(n) +
+                                              " elements needs " + std::to_string(n * elem) +
+                                              " bytes but only " + std::to_string(remaining) +
+                                              " remain (truncated file?)");
+        const std::size_t count = static_cast<std::size_t>(n);
+        const std::string_view raw = tok.read_raw(count * elem);
+        const char* p = raw.data();
+        switch (c.kind)
+        {
+        case Kind::label:
+            c.labels.resize(count);
+            for (std::size_t i = 0; i < count; ++i)
+                c.labels[i] = options.label_bytes == 4
+                                  ? load_le<std::int32_t>(p + 4 * i)
+                                  : load_le<std::int64_t>(p + 8 * i);
+            break;
+        case Kind::boolean:
+            c.labels.resize(count);
+            for (std::size_t i = 0; i < count; ++i)
+                c.labels[i] = p[i] != 0 ? 1 : 0;
+            break;
+        case Kind::scalar:
+        case Kind::vector:
+        {
+            const std::size_t m = count * (c.kind == Kind::vector ? 3 : 1);
+            c.scalars.resize(m);
+            if (options.scalar_bytes == 8)
+                std::memcpy(c.scalars.data(), p, m * 8);
+            else
+                for (std::size_t i = 0; i < m; ++i)
+                    c.scalars[i] = load_le<float>(p + 4 * i);
+            break;
+        }
+        case Kind::word:
+            break;
+        }
+        tok.expect(')');
+        return c;
+    }
+
+    // ASCII: `N(...)`, `N{v}` or `(...)`.
+    const std::size_t start_line = tok.peek().line;
+    std::int64_t n = -1;
+    if (tok.peek().is_label())
+        n = tok.expect_size(what);
+    const FoamToken open = tok.next();
+    const bool uniform = open.is_punct('{');
+    if (!open.is_punct('(') && !(uniform && n >= 0))
+        throw tok.error_at(open.line, "expected '(' " + std::string(n >= 0 ? "or '{' " : "") +
+                                          "to start the " + type_word + " but found " +
+                                          open.describe());
+    const auto fail = [&](std::size_t index) -> ParseError {
+        const FoamToken t = tok.next();
+        return tok.error_at(t.line, "bad element " + std::to_string(index) + " of " + type_word +
+                                        ": found " + t.describe());
+    };
+    const auto read_one = [&](std::size_t index) {
+        switch (c.kind)
+        {
+        case Kind::label:
+        {
+            std::int64_t v = 0;
+            if (!tok.read_label(v))
+                throw fail(index);
+            c.labels.push_back(v);
+            break;
+        }
+        case Kind::boolean:
+        {
+            std::int64_t v = 0;
+            if (tok.read_label(v))
+            {
+                if (v != 0 && v != 1)
+                    throw tok.error("bad element " + std::to_string(index) + " of " + type_word +
+                                    ": " + std::to_string(v) + " is not a bool (0 or 1)");
+                c.labels.push_back(v);
+                break;
+            }
+            const FoamToken t = tok.next();
+            if (t.is_word("true") || t.is_word("on") || t.is_word("yes"))
+                c.labels.push_back(1);
+            else if (t.is_word("false") || t.is_word("off") || t.is_word("no"))
+                c.labels.push_back(0);
+            else
+                throw tok.error_at(t.line, "bad element " + std::to_string(index) + " of " +
+                                               type_word + ": found " + t.describe());
+            break;
+        }
+        case Kind::scalar:
+        {
+            double v = 0;
+            if (!tok.read_scalar(v))
+                throw fail(index);
+            c.scalars.push_back(v);
+            break;
+        }
+        case Kind::vector:
+        {
+            double xyz[3];
+            tok.read_vector(xyz);
+            c.scalars.insert(c.scalars.end(), xyz, xyz + 3);
+            break;
+        }
+        case Kind::word:
+        {
+            FoamToken t = tok.next();
+            if (!t.is_word() && !t.is_string())
+                throw tok.error_at(t.line, "bad element " + std::to_string(index) + " of " +
+                                               type_word + ": found " + t.describe());
+            c.words.push_back(std::move(t.text));
+            break;
+        }
+        }
+    };
+    const auto reserve = [&](std::size_t count) {
+        // Never trust a size for allocation beyond what the remaining text could hold.
+        count = std::min<std::size_t>(count, tok.buffer().size() - tok.offset());
+        if (c.kind == Kind::label || c.kind == Kind::boolean)
+            c.labels.reserve(count);
+        else if (c.kind == Kind::scalar)
+            c.scalars.reserve(count);
+        else if (c.kind == Kind::vector)
+            c.scalars.reserve(3 * count);
+    };
+    if (uniform)
+    {
+        read_one(0);
+        tok.expect('}');
+        const std::size_t count = static_cast<std::size_t>(n);
+        if (c.kind == Kind::word)
+            c.words.assign(count, c.words.front());
+        else if (c.kind == Kind::vector)
+        {
+            const double x = c.scalars[0], y = c.scalars[1], z = c.scalars[2];
+            c.scalars.clear();
+            c.scalars.reserve(3 * count);
+            for (std::size_t i = 0; i < count; ++i)
+                c.scalars.insert(c.scalars.end(), {x, y, z});
+        }
+        else if (c.kind == Kind::scalar)
+            c.scalars.assign(count, c.scalars.front());
+        else
+            c.labels.assign(count, c.labels.front());
+        return c;
+    }
+    if (n >= 0)
+    {
+        reserve(static_cast<std::size_t>(n));
+        for (std::int64_t i = 0; i < n; ++i)
+        {
+            if (tok.peek().is_punct(')') || tok.peek().is_end())
+                throw tok.error_at(start_line, type_word + " declares " + std::to_string(n) +
+                                                   " elements but has only " +
+                                                   std::to_string(i));
+            read_one(static_cast<std::size_t>(i));
+        }
+        const FoamToken close = tok.next();
+        if (!close.is_punct(')'))
+            throw tok.error_at(close.line, type_word + " declares " + std::to_string(n) +
+                                               " elements but has more (found " +
+                                               close.describe() + " where ')' was expected)");
+        return c;
+    }
+    for (std::size_t i = 0;; ++i)
+    {
+        const FoamToken& t = tok.peek();
+        if (t.is_punct(')'))
+        {
+            tok.next();
+            return c;
+        }
+        if (t.is_end())
+            throw tok.error_at(open.line, "unterminated " + type_word + " (no closing ')')");
+        read_one(i);
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Entry points
+
+namespace
+{
+
+FoamDictionary parse_with(FoamTokenizer& tok, ParseOptions options, bool read_header)
+{
+    FoamDictionary dict(tok.path(), "", 1);
+    if (read_header && has_header(tok))
+    {
+        FoamHeader h = parse_header(tok, false);
+        options.binary = h.is_binary();
+        options.label_bytes = h.label_bytes;
+        options.scalar_bytes = h.scalar_bytes;
+        dict.set_header(std::move(h));
+    }
+    detail_dictionary_access parser;
+    parser.options = std::move(options);
+    parser.case_dir = parser.options.case_dir.empty() ? derive_case_dir(fs::path(tok.path()))
+                                                      : parser.options.case_dir;
+    parser.scopes.push_back(&dict);
+    parser.parse_entries(tok, dict, false);
+    return dict;
+}
+
+} // namespace
+
+FoamDictionary parse_dictionary(std::string_view text, const std::string& path,
+                                const ParseOptions& options)
+{
+    FoamTokenizer tok(text, path);
+    return parse_with(tok, options, true);
+}
+
+FoamDictionary parse_dictionary_body(FoamTokenizer& tokenizer, const ParseOptions& options)
+{
+    return parse_with(tokenizer, options, false);
+}
+
+FoamDictionary parse_dictionary_block(FoamTokenizer& tokenizer, const std::string& scope,
+                                      const ParseOptions& options)
+{
+    const FoamToken open = tokenizer.next();
+    if (!open.is_punct('{'))
+        throw tokenizer.error_at(open.line, "expected '{' to start dictionary '" + scope +
+                                                "' but found " + open.describe());
+    FoamDictionary dict(tokenizer.path(), scope, open.line);
+    detail_dictionary_access parser;
+    parser.options = options;
+    parser.case_dir = options.case_dir.empty() ? derive_case_dir(fs::path(tokenizer.path()))
+                                               : options.case_dir;
+    parser.scopes.push_back(&dict);
+    parser.parse_entries(tokenizer, dict, true);
+    return dict;
+}
+
+FoamDictionary read_dictionary(const std::filesystem::path& path, ParseOptions options)
+{
+    std::optional<std::string> text =
+        options.read_file ? options.read_file(path) : read_file_plain_or_gz(path);
+    if (!text)
+        throw IoError("cannot open dictionary '" + path.string() + "' (nor '" + path.string() +
+                      ".gz'): no such file");
+    return parse_dictionary(*text, path.string(), options);
+}
+
+// ---------------------------------------------------------------------------------------
+// Typed conversion of entry values
+
+namespace
+{
+
+class Cursor
+{
+public:
+    Cursor(const FoamEntry& e, std::size_t first) : e_(e), t_(e.tokens()), i_(first)
+    {
+        if (e.is_dict())
+            throw e.error("expected a value but found a sub-dictionary");
+    }
+    const FoamValueToken* peek() const { return i_ < t_.size() ? &t_[i_] : nullptr; }
+    const FoamValueToken& take(const std::string& expected)
+    {
+        if (i_ >= t_.size())
+            fail(expected);
+        return t_[i_++];
+    }
+    [[noreturn]] void fail(const std::string& expected) const
+    {
+        const std::string found =
+            i_ < t_.size() ? t_[i_].describe() : std::string("end of value");
+        throw e_.error("expected " + expected + " but found " + found);
+    }
+    void expect_punct(char c, const std::string& context)
+    {
+        const FoamValueToken* t = peek();
+        if (!t || !t->is_punct(c))
+            fail(std::string("'") + c + "' " + context);
+        ++i_;
+    }
+    void finish(const std::string& what) const
+    {
+        if (i_ != t_.size())
+            throw e_.error("unexpected " + t_[i_].describe() + " after " + what);
+    }
+    const FoamEntry& entry() const { return e_; }
+
+private:
+    const FoamEntry& e_;
+    const std::vector<FoamValueToken>& t_;
+    std::size_t i_;
+};
+
+double take_scalar(Cursor& c)
+{
+    const FoamValueToken& t = c.take("a number");
+    if (t.is_number())
+        return t.scalar;
+    if (t.is_word())
+    {
+        if (t.text == "inf" || t.text == "Inf" || t.text == "INF")
+            return std::numeric_limits<double>::infinity();
+        if (t.text == "-inf" || t.text == "-Inf" || t.text == "-INF")
+            return -std::numeric_limits<double>::infinity();
+        if (t.text == "nan" || t.text == "NaN" || t.text == "NAN")
+            return std::numeric_limits<double>::quiet_NaN();
+    }
+    throw c.entry().error("expected a number but found " + t.describe());
+}
+
+std::int64_t take_label(Cursor& c)
+{
+    const FoamValueToken& t = c.take("an integer");
+    if (!t.is_label())
+        throw c.entry().error("expected an integer but found " + t.describe());
+    return t.label;
+}
+
+std::string take_string(Cursor& c)
+{
+    const FoamValueToken& t = c.take("a word or string");
+    if (!(t.is_word() && !t.is_compound()) && !t.is_string())
+        throw c.entry().error("expected a word or string but found " + t.describe());
+    return t.text;
+}
+
+bool take_bool(Cursor& c)
+{
+    const FoamValueToken& t = c.take("a switch (yes/no, on/off, true/false)");
+    if (t.is_label() && (t.label == 0 || t.label == 1))
+        return t.label == 1;
+    if (t.is_word())
+    {
+        const std::string& w = t.text;
+        if (w == "yes" || w == "on" || w == "true" || w == "y" || w == "t")
+            return true;
+        if (w == "no" || w == "off" || w == "false" || w == "n" || w == "f" || w == "none")
+            return false;
+    }
+    throw c.entry().error("expected a switch (yes/no, on/off, true/false) but found " +
+                          t.describe());
+}
+
+Vector3 take_vector(Cursor& c)
+{
+    c.expect_punct('(', "starting a vector (x y z)");
+    Vector3 v;
+    for (int k = 0; k < 3; ++k)
+        v[k] = take_scalar(c);
+    c.expect_punct(')', "closing a 3-component vector (x y z)");
+    return v;
+}
+
+// A list in any of its spellings. `from_compound` fills `out` from a compound token and
+// returns false if the compound's kind does not fit.
+template <class T, class ReadOne, class FromCompound>
+std::vector<T> take_list(Cursor& c, const std::string& what, ReadOne read_one,
+                         FromCompound from_compound)
+{
+    std::vector<T> out;
+    const FoamValueToken* t = c.peek();
+    if (!t)
+        c.fail("a list of " + what);
+    if (t->is_compound())
+    {
+        if (!from_compound(*t->compound, out))
+            throw c.entry().error("expected a list of " + what + " but found a " +
+                                  t->compound->type_word);
+        c.take(what);
+        return out;
+    }
+    std::int64_t n = -1;
+    if (t->is_label())
+    {
+        n = t->label;
+        if (n < 0)
+            throw c.entry().error("negative list size " + std::to_string(n));
+        c.take(what);
+        const FoamValueToken* u = c.peek();
+        if (u && u->is_punct('{'))
+        {
+            c.take(what);
+            const T v = read_one(c);
+            c.expect_punct('}', "closing a uniform list N{value}");
+            out.assign(static_cast<std::size_t>(n), v);
+            return out;
+        }
+    }
+    c.expect_punct('(', n >= 0 ? "after the list size" : "starting a list");
+    for (;;)
+    {
+        const FoamValueToken* u = c.peek();
+        if (u && u->is_punct(')'))
+        {
+            c.take(")");
+            break;
+        }
+        out.push_back(read_one(c));
+    }
+    if (n >= 0 && out.size() != static_cast<std::size_t>(n))
+        throw c.entry().error("list declares " + std::to_string(n) + " elements but has " +
+                              std::to_string(out.size()));
+    return out;
+}
+
+std::vector<std::int64_t> take_label_list(Cursor& c)
+{
+    return take_list<std::int64_t>(c, "integers", take_label,
+                                   [](const FoamCompound& k, std::vector<std::int64_t>& out) {
+                                       if (k.kind != FoamCompound::Kind::label &&
+                                           k.kind != FoamCompound::Kind::boolean)
+                                           return false;
+                                       out = k.labels;
+                                       return true;
+                                   });
+}
+
+std::int32_t narrow(const FoamEntry& e, std::int64_t v)
+{
+    if (v < std::numeric_limits<std::int32_t>::min() || v > std::numeric_limits<std::int32_t>::max())
+        throw e.error("integer " + std::to_string(v) + " does not fit in 32 bits");
+    return static_cast<std::int32_t>(v);
+}
+
+} // namespace
+
+template <> double FoamEntry::get<double>(std::size_t first) const
+{
+    Cursor c(*this, first);
+    const double v = take_scalar(c);
+    c.finish("the number");
+    return v;
+}
+
+template <> float FoamEntry::get<float>(std::size_t first) const
+{
+    return static_cast<float>(get<double>(first));
+}
+
+template <> std::int64_t FoamEntry::get<std::int64_t>(std::size_t first) const
+{
+    Cursor c(*this, first);
+    const std::int64_t v = take_label(c);
+    c.finish("the integer");
+    return v;
+}
+
+template <> std::int32_t FoamEntry::get<std::int32_t>(std::size_t first) const
+{
+    return narrow(*this, get<std::int64_t>(first));
+}
+
+template <> bool FoamEntry::get<bool>(std::size_t first) const
+{
+    Cursor c(*this, first);
+    const bool v = take_bool(c);
+    c.finish("the switch");
+    return v;
+}
+
+template <> std::string FoamEntry::get<std::string>(std::size_t first) const
+{
+    Cursor c(*this, first);
+    std::string v = take_string(c);
+    c.finish("the word");
+    return v;
+}
+
+template <> Vector3 FoamEntry::get<Vector3>(std::size_t first) const
+{
+    Cursor c(*this, first);
+    const Vector3 v = take_vector(c);
+    c.finish("the vector");
+    return v;
+}
+
+template <> std::vector<double> FoamEntry::get<std::vector<double>>(std::size_t first) const
+{
+    Cursor c(*this, first);
+    std::vector<double> v = take_list<double>(
+        c, "numbers", take_scalar, [](const FoamCompound& k, std::vector<double>& out) {
+            if (k.kind == FoamCompound::Kind::scalar)
+                out = k.scalars;
+            else if (k.kind == FoamCompound::Kind::label)
+                out.assign(k.labels.begin(), k.labels.end());
+            else
+                return false;
+            return true;
+        });
+    c.finish("the list");
+    return v;
+}
+
+template <>
+std::vector<std::int64_t> FoamEntry::get<std::vector<std::int64_t>>(std::size_t first) const
+{
+    Cursor c(*this, first);
+    std::vector<std::int64_t> v = take_label_list(c);
+    c.finish("the list");
+    return v;
+}
+
+template <>
+std::vector<std::int32_t> FoamEntry::get<std::vector<std::int32_t>>(std::size_t first) const
+{
+    const std::vector<std::int64_t> wide = get<std::vector<std::int64_t>>(first);
+    std::vector<std::int32_t> out(wide.size());
+    for (std::size_t i = 0; i < wide.size(); ++i)
+        out[i] = narrow(*this, wide[i]);
+    return out;
+}
+
+template <>
+std::vector<std::string> FoamEntry::get<std::vector<std::string>>(std::size_t first) const
+{
+    Cursor c(*this, first);
+    std::vector<std::string> v = take_list<std::string>(
+        c, "words", take_string, [](const FoamCompound& k, std::vector<std::string>& out) {
+            if (k.kind != FoamCompound::Kind::word)
+                return false;
+            out = k.words;
+            return true;
+        });
+    c.finish("the list");
+    return v;
+}
+
+template <> std::vector<Vector3> FoamEntry::get<std::vector<Vector3>>(std::size_t first) const
+{
+    Cursor c(*this, first);
+    std::vector<Vector3> v = take_list<Vector3>(
+        c, "vectors", take_vector, [](const FoamCompound& k, std::vector<Vector3>& out) {
+            if (k.kind != FoamCompound::Kind::vector)
+                return false;
+            out.resize(k.size());
+            for (std::size_t i = 0; i < out.size(); ++i)
+                out[i] = Vector3(k.scalars[3 * i], k.scalars[3 * i + 1], k.scalars[3 * i + 2]);
+            return true;
+        });
+    c.finish("the list");
+    return v;
+}
+
+} // namespace meshmorph::io
