@@ -1,7 +1,13 @@
 # deform: space deformations on point arrays (RBF, FFD, DM-FFD, greedy, handle basis).
 # Sees Eigen arrays only: no mesh, no files.
 set(MESHMORPH_DEFORM_SOURCES
+    meshmorph/deform/space_deformation.cpp
+    meshmorph/deform/rbf_evaluator.cpp
+    meshmorph/deform/rbf_deformation.cpp
 )
+# sqrt in the blocked RBF evaluator vectorises only without errno semantics.
+set_source_files_properties(meshmorph/deform/rbf_evaluator.cpp
+    PROPERTIES COMPILE_OPTIONS "-fno-math-errno")
 meshmorph_add_component(deform
     SOURCES ${MESHMORPH_DEFORM_SOURCES}
     DEPENDS meshmorph::core

@@ -1,0 +1,527 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// RBF deformation: null-space reduction of Eq. 8 and blocked Cholesky (dpotrf).
+#include "meshmorph/deform/rbf_deformation.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
+#include "meshmorph/deform/lapack.h"
+#include "meshmorph/deform/rbf_evaluator.h"
+#include "meshmorph/deform/rbf_setup.h"
+
+namespace meshmorph
+{
+
+std::string to_string(RbfKernel kernel)
+{
+    switch (kernel)
+    {
+    case RbfKernel::triharmonic: return "triharmonic";
+    case RbfKernel::biharmonic: return "biharmonic";
+    case RbfKernel::polyharmonic: return "polyharmonic";
+    case RbfKernel::gaussian: return "gaussian";
+    case RbfKernel::multiquadric: return "multiquadric";
+    case RbfKernel::inverse_multiquadric: return "inverseMultiquadric";
+    case RbfKernel::wendland_c2: return "wendlandC2";
+    }
+    return "unknown";
+}
+
+RbfKernel rbf_kernel_from_string(const std::string& name)
+{
+    std::string key;
+    for (char c : name)
+        if (c != '_')
+            key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (RbfKernel k : {RbfKernel::triharmonic, RbfKernel::biharmonic, RbfKernel::polyharmonic,
+                        RbfKernel::gaussian, RbfKernel::multiquadric,
+                        RbfKernel::inverse_multiquadric, RbfKernel::wendland_c2})
+    {
+        std::string n;
+        for (char c : to_string(k))
+            n += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (n == key)
+            return k;
+    }
+    throw InvalidInput("unknown RBF kernel '" + name +
+                       "' (expected triharmonic, biharmonic, polyharmonic, gaussian, "
+                       "multiquadric, inverseMultiquadric or wendlandC2)");
+}
+
+namespace detail
+{
+
+RbfKernelSetup rbf_kernel_setup(const RbfSettings& s)
+{
+    RbfKernelSetup k;
+    const auto need_polynomial = [&](const char* why) {
+        if (!s.polynomial)
+            throw InvalidInput("RBF kernel " + to_string(s.kernel) +
+                               " needs the polynomial term (" + why + ")");
+    };
+    const auto positive = [](double v, const char* what) {
+        if (!(v > 0.0) || !std::isfinite(v))
+        {
+            std::ostringstream m;
+            m << "RBF " << what << " must be a finite number > 0 (got " << v << ")";
+            throw InvalidInput(m.str());
+        }
+    };
+    int order = 0;
+    switch (s.kernel)
+    {
+    case RbfKernel::triharmonic: order = 3; break;
+    case RbfKernel::biharmonic: order = 2; break;
+    case RbfKernel::polyharmonic:
+        order = s.polyharmonic_order;
+        if (order < 2)
+            throw InvalidInput("RBF polyharmonic order k must be >= 2 (phi = r^(2k-3); got k = " +
+                               std::to_string(order) + ")");
+        if (order > 6)
+            throw InvalidInput("RBF polyharmonic order k must be <= 6 (got k = " +
+                               std::to_string(order) + ")");
+        break;
+    case RbfKernel::gaussian:
+    case RbfKernel::inverse_multiquadric:
+        positive(s.shape_parameter, "shape parameter");
+        k.params.type = s.kernel == RbfKernel::gaussian ? KernelType::gaussian
+                                                         : KernelType::inverse_multiquadric;
+        k.params.eps = s.shape_parameter;
+        k.degree = s.polynomial ? 1 : -1;
+        break;
+    case RbfKernel::multiquadric:
+        positive(s.shape_parameter, "shape parameter");
+        need_polynomial("conditionally positive definite of order 1");
+        k.params.type = KernelType::multiquadric;
+        k.params.eps = s.shape_parameter;
+        k.degree = 1;
+        k.sign = -1.0;
+        break;
+    case RbfKernel::wendland_c2:
+        positive(s.support_radius, "support radius (Wendland C2)");
+        k.params.type = KernelType::wendland_c2;
+        k.params.support = s.support_radius;
+        k.degree = s.polynomial ? 1 : -1;
+        break;
+    }
+    if (order > 0)
+    {
+        need_polynomial("polyharmonic splines are only conditionally positive definite");
+        k.params.type = KernelType::polyharmonic;
+        k.params.power = 2 * order - 3;
+        // r^(2k-3) is conditionally definite of order k-1 with sign (-1)^(k-1): the
+        // null-space matrix is positive definite for r^3 and negative definite for r, r^5.
+        k.degree = std::max(1, order - 2);
+        k.sign = (order - 1) % 2 == 0 ? 1.0 : -1.0;
+    }
+    if (!(s.duplicate_tolerance >= 0.0))
+        throw InvalidInput("RBF duplicate tolerance must be >= 0");
+    if (!(s.polynomial_rank_tolerance > 0.0 && s.polynomial_rank_tolerance < 1.0))
+        throw InvalidInput("RBF polynomial rank tolerance must be in (0, 1)");
+    return k;
+}
+
+Normalisation normalisation_of(const Eigen::Ref<const Points>& x)
+{
+    Normalisation n;
+    const Vector3 lo = x.colwise().minCoeff().transpose();
+    const Vector3 hi = x.colwise().maxCoeff().transpose();
+    n.centre = 0.5 * (lo + hi);
+    n.scale = (hi - lo).maxCoeff();
+    if (!(n.scale > 0.0))
+        n.scale = std::max(1.0, n.centre.cwiseAbs().maxCoeff());
+    return n;
+}
+
+namespace
+{
+std::string point_text(const Eigen::Ref<const Points>& p, Eigen::Index i)
+{
+    std::ostringstream s;
+    s.precision(17);
+    s << '(' << p(i, 0) << ' ' << p(i, 1) << ' ' << p(i, 2) << ')';
+    return s.str();
+}
+} // namespace
+
+MergedHandles merge_duplicates(const Eigen::Ref<const Points>& handles,
+                               const Eigen::Ref<const Points>& normalised,
+                               const Eigen::Ref<const Points>& displacements, double tolerance)
+{
+    MergedHandles out;
+    const Eigen::Index m = handles.rows();
+    out.representative.assign(std::size_t(m), -1);
+    double max_disp = 0.0;
+    for (Eigen::Index i = 0; i < m; ++i)
+        max_disp = std::max(max_disp, displacements.row(i).norm());
+    const double disp_tol = tolerance * max_disp;
+    const UniformGrid grid(normalised, std::max(tolerance, 1e-14));
+    std::vector<Eigen::Index> kept;
+    for (Eigen::Index i = 0; i < m; ++i)
+    {
+        Eigen::Index dup = -1;
+        grid.for_each_near(normalised(i, 0), normalised(i, 1), normalised(i, 2),
+                           [&](Eigen::Index j) {
+                               if (j < i && dup < 0 &&
+                                   (normalised.row(i) - normalised.row(j)).norm() <= tolerance)
+                                   dup = j;
+                           });
+        if (dup < 0)
+        {
+            out.representative[std::size_t(i)] = Index(kept.size());
+            out.first.push_back(Index(i));
+            kept.push_back(i);
+            continue;
+        }
+        if ((displacements.row(i) - displacements.row(dup)).norm() > disp_tol)
+            throw InvalidInput("handles " + std::to_string(dup) + " " + point_text(handles, dup) +
+                               " and " + std::to_string(i) + " " + point_text(handles, i) +
+                               " coincide but have different displacements " +
+                               point_text(displacements, dup) + " and " +
+                               point_text(displacements, i));
+        out.representative[std::size_t(i)] = out.representative[std::size_t(dup)];
+    }
+    out.centres.resize(Eigen::Index(kept.size()), 3);
+    out.displacements.resize(Eigen::Index(kept.size()), 3);
+    for (std::size_t k = 0; k < kept.size(); ++k)
+    {
+        out.centres.row(Eigen::Index(k)) = normalised.row(kept[k]);
+        out.displacements.row(Eigen::Index(k)) = displacements.row(kept[k]);
+    }
+    return out;
+}
+
+void choose_polynomial(RbfModel& model, int degree, const Eigen::Ref<const Points>& centres,
+                       double rank_tolerance)
+{
+    model.exponents.clear();
+    model.rotation.setIdentity();
+    if (degree < 0)
+        return;
+    const Eigen::Index m = centres.rows();
+    // Principal frame: a degenerate (coplanar / collinear) handle set has a coordinate that
+    // is ~0 there, so the pivoted QR drops exactly the monomials that involve it.
+    const Eigen::RowVector3d mean = centres.colwise().mean();
+    const Eigen::MatrixXd d = centres.rowwise() - mean;
+    const Eigen::Matrix3d cov = d.transpose() * d;
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    Eigen::Matrix3d R = eig.eigenvectors().rowwise().reverse(); // largest extent first
+    if (R.determinant() < 0)
+        R.col(2) = -R.col(2);
+    model.rotation = R;
+    const std::vector<std::array<int, 3>> all = monomials(degree);
+    model.exponents = all;
+    const Eigen::MatrixXd P = model.polynomial_matrix(centres) / std::sqrt(double(m));
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(P);
+    qr.setThreshold(rank_tolerance);
+    const Eigen::Index rank = qr.rank();
+    std::vector<Eigen::Index> keep;
+    for (Eigen::Index k = 0; k < rank; ++k)
+        keep.push_back(qr.colsPermutation().indices()[k]);
+    std::sort(keep.begin(), keep.end());
+    model.exponents.clear();
+    for (Eigen::Index k : keep)
+        model.exponents.push_back(all[std::size_t(k)]);
+    if (rank < Eigen::Index(all.size()))
+        log::info() << "RBF: handles do not determine all " << all.size()
+                    << " polynomial terms (coplanar, collinear or too few); keeping " << rank;
+}
+
+} // namespace detail
+
+struct RbfDeformation::Impl
+{
+    RbfSettings settings;
+    detail::RbfKernelSetup setup;
+    detail::RbfModel model;
+    FitReport report;
+    bool fitted = false;
+    Points handles;          // as given to fit (for residual reports)
+    detail::MergedHandles merged;
+    Eigen::MatrixXd P;       // m x p polynomial matrix at the centres
+    // dense
+    Eigen::MatrixXd A;       // Q^T A Q, lower trailing block holds the Cholesky factor
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr;
+    // sparse (Wendland)
+    bool sparse = false;
+    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
+    Eigen::MatrixXd U;       // A^-1 P
+    Eigen::LLT<Eigen::MatrixXd> schur;
+
+    void factor_dense();
+    void factor_sparse();
+    void solve(const Eigen::MatrixXd& H, Eigen::MatrixXd& W, Eigen::MatrixXd& Q) const;
+    void set_displacements(const Eigen::MatrixXd& H);
+};
+
+void RbfDeformation::Impl::factor_dense()
+{
+    const Eigen::Index m = model.num_centres;
+    const Eigen::Index p = P.cols();
+    const Eigen::Index r = m - p;
+    A = model.kernel_matrix(merged.centres);
+    if (p > 0)
+    {
+        qr.compute(P);
+        A.applyOnTheLeft(qr.householderQ().adjoint());
+        A.applyOnTheRight(qr.householderQ());
+    }
+    report.solver = p > 0 ? "null-space QR + LAPACK dpotrf" : "LAPACK dpotrf";
+    report.condition_estimate = 1.0;
+    if (r == 0)
+        return;
+    const int n = detail::lapack_int(r);
+    const int lda = detail::lapack_int(m);
+    double* B = A.data() + p * m + p;
+    if (setup.sign < 0)
+    {
+#pragma omp parallel for schedule(static)
+        for (Eigen::Index j = 0; j < r; ++j)
+            for (Eigen::Index i = j; i < r; ++i)
+                B[i + j * m] = -B[i + j * m];
+    }
+    std::vector<double> work(static_cast<std::size_t>(3 * r));
+    std::vector<int> iwork(static_cast<std::size_t>(r));
+    const double anorm = dlansy_("1", "L", &n, B, &lda, work.data());
+    int info = 0;
+    dpotrf_("L", &n, B, &lda, &info);
+    if (info != 0)
+    {
+        std::ostringstream s;
+        s << "RBF (" << to_string(settings.kernel) << "): the reduced " << r << " x " << r
+          << " system is not " << (setup.sign < 0 ? "negative" : "positive")
+          << " definite (Cholesky failed at column " << info
+          << "): the handles nearly coincide or the kernel is numerically singular"
+          << " (check the shape parameter / support radius)";
+        throw SolverError(s.str());
+    }
+    double rcond = 0.0;
+    dpocon_("L", &n, B, &lda, &anorm, &rcond, work.data(), iwork.data(), &info);
+    report.condition_estimate =
+        rcond > 0.0 ? 1.0 / rcond : std::numeric_limits<double>::infinity();
+}
+
+void RbfDeformation::Impl::factor_sparse()
+{
+    const Eigen::Index m = model.num_centres;
+    const double rho = model.kernel.support;
+    std::vector<Eigen::Triplet<double>> triplets;
+    const Points& c = merged.centres;
+    for (Eigen::Index i = 0; i < m; ++i)
+        model.grid.for_each_near(c(i, 0), c(i, 1), c(i, 2), [&](Eigen::Index j) {
+            const double r2 = (c.row(i) - c.row(j)).squaredNorm();
+            if (r2 < rho * rho)
+                triplets.emplace_back(i, j, model.kernel.value(r2));
+        });
+    Eigen::SparseMatrix<double> K(m, m);
+    K.setFromTriplets(triplets.begin(), triplets.end());
+    llt.compute(K);
+    if (llt.info() != Eigen::Success)
+        throw SolverError("RBF (wendlandC2): sparse Cholesky failed: the matrix is not "
+                          "numerically positive definite (handles nearly coincide?)");
+    const Eigen::SparseMatrix<double> L = llt.matrixL();
+    const Eigen::VectorXd d = L.diagonal().cwiseAbs2();
+    report.condition_estimate = d.maxCoeff() / d.minCoeff();
+    report.solver = "sparse SimplicialLLT (" + std::to_string(K.nonZeros()) + " nonzeros)";
+    if (P.cols() > 0)
+    {
+        U = llt.solve(P);
+        schur.compute(P.transpose() * U);
+        if (schur.info() != Eigen::Success)
+            throw SolverError("RBF (wendlandC2): polynomial Schur complement is singular");
+        report.solver += " + Schur complement for the polynomial";
+    }
+}
+
+void RbfDeformation::Impl::solve(const Eigen::MatrixXd& H, Eigen::MatrixXd& W,
+                                 Eigen::MatrixXd& Qc) const
+{
+    const Eigen::Index m = model.num_centres;
+    const Eigen::Index p = P.cols();
+    if (sparse)
+    {
+        const Eigen::MatrixXd a = llt.solve(H);
+        if (p > 0)
+        {
+            Qc = schur.solve(P.transpose() * a);
+            W = a - U * Qc;
+        }
+        else
+        {
+            Qc.resize(0, H.cols());
+            W = a;
+        }
+        return;
+    }
+    const Eigen::Index r = m - p;
+    Eigen::MatrixXd G = H;
+    if (p > 0)
+        G.applyOnTheLeft(qr.householderQ().adjoint());
+    Eigen::MatrixXd Y = setup.sign * G.bottomRows(r);
+    if (r > 0)
+    {
+        const int n = detail::lapack_int(r);
+        const int lda = detail::lapack_int(m);
+        const int nrhs = detail::lapack_int(Y.cols());
+        int info = 0;
+        dpotrs_("L", &n, &nrhs, A.data() + p * m + p, &lda, Y.data(), &n, &info);
+        if (info != 0)
+            throw SolverError("RBF: dpotrs failed (info " + std::to_string(info) + ")");
+    }
+    W.resize(m, H.cols());
+    W.topRows(p).setZero();
+    W.bottomRows(r) = Y;
+    if (p > 0)
+    {
+        W.applyOnTheLeft(qr.householderQ());
+        const Eigen::MatrixXd rhs = G.topRows(p) - A.block(0, p, p, r) * Y;
+        Qc = qr.matrixQR().topLeftCorner(p, p).triangularView<Eigen::Upper>().solve(rhs);
+    }
+    else
+    {
+        Qc.resize(0, H.cols());
+    }
+}
+
+void RbfDeformation::Impl::set_displacements(const Eigen::MatrixXd& H)
+{
+    Eigen::MatrixXd W, Qc;
+    solve(H, W, Qc);
+    model.set_coefficients(W, Qc);
+}
+
+RbfDeformation::RbfDeformation(const RbfSettings& settings) : impl_(std::make_unique<Impl>())
+{
+    impl_->settings = settings;
+    impl_->setup = detail::rbf_kernel_setup(settings);
+}
+
+RbfDeformation::~RbfDeformation() = default;
+RbfDeformation::RbfDeformation(RbfDeformation&&) noexcept = default;
+RbfDeformation& RbfDeformation::operator=(RbfDeformation&&) noexcept = default;
+
+void RbfDeformation::fit(const Eigen::Ref<const Points>& handles,
+                         const Eigen::Ref<const Points>& displacements)
+{
+    detail::check_fit_arguments(handles, displacements);
+    Impl& d = *impl_;
+    d.fitted = false;
+    d.report = FitReport{};
+    d.report.method = "rbf";
+    d.model = detail::RbfModel{};
+    d.model.kernel = d.setup.params;
+    const detail::Normalisation nrm = detail::normalisation_of(handles);
+    d.model.centre = nrm.centre;
+    d.model.scale = nrm.scale;
+    d.model.kernel.eps = d.setup.params.eps * nrm.scale;
+    d.model.kernel.support = d.setup.params.support / nrm.scale;
+    const Points normalised = d.model.normalise(handles);
+    d.merged = detail::merge_duplicates(handles, normalised, displacements,
+                                        d.settings.duplicate_tolerance);
+    d.handles = handles;
+    detail::choose_polynomial(d.model, d.setup.degree, d.merged.centres,
+                              d.settings.polynomial_rank_tolerance);
+    d.P = d.model.polynomial_matrix(d.merged.centres);
+    d.model.set_centres(d.merged.centres);
+    d.sparse = d.setup.params.type == detail::KernelType::wendland_c2;
+    if (d.sparse)
+        d.factor_sparse();
+    else
+        d.factor_dense();
+    d.set_displacements(d.merged.displacements);
+    d.fitted = true;
+    d.report.num_handles = static_cast<Index>(d.merged.centres.rows());
+    d.report.num_merged_duplicates = static_cast<Index>(handles.rows() - d.merged.centres.rows());
+    d.report.num_centres = d.report.num_handles;
+    d.report.polynomial_terms = static_cast<Index>(d.P.cols());
+    if (d.report.condition_estimate > d.settings.condition_warning)
+        log::warning() << "RBF (" << to_string(d.settings.kernel) << "): condition estimate "
+                       << d.report.condition_estimate << " exceeds "
+                       << d.settings.condition_warning
+                       << "; the interpolation may be inaccurate";
+    detail::residual_report(*this, handles, displacements, d.report);
+}
+
+void RbfDeformation::refit(const Eigen::Ref<const Points>& displacements)
+{
+    Impl& d = *impl_;
+    if (!d.fitted)
+        throw InvalidInput("RBF: refit() called before fit()");
+    if (displacements.rows() != d.handles.rows())
+        throw InvalidInput("RBF refit: " + std::to_string(displacements.rows()) +
+                           " displacements for " + std::to_string(d.handles.rows()) + " handles");
+    detail::require_finite(displacements, "RBF refit: displacement");
+    Eigen::MatrixXd H(d.merged.centres.rows(), 3);
+    for (Eigen::Index i = 0; i < d.handles.rows(); ++i)
+        H.row(d.merged.representative[std::size_t(i)]) = displacements.row(i);
+    // Merged duplicates must still agree.
+    double max_disp = 0.0;
+    for (Eigen::Index i = 0; i < displacements.rows(); ++i)
+        max_disp = std::max(max_disp, displacements.row(i).norm());
+    for (Eigen::Index i = 0; i < d.handles.rows(); ++i)
+        if ((H.row(d.merged.representative[std::size_t(i)]) - displacements.row(i)).norm() >
+            d.settings.duplicate_tolerance * max_disp)
+            throw InvalidInput("RBF refit: merged duplicate handle " + std::to_string(i) +
+                               " has a displacement different from its twin");
+    d.merged.displacements = H;
+    d.set_displacements(H);
+    detail::residual_report(*this, d.handles, displacements, d.report);
+}
+
+void RbfDeformation::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const
+{
+    detail::check_evaluate_arguments(impl_->fitted, points, out, "RBF");
+    impl_->model.evaluate(points, out);
+}
+
+const FitReport& RbfDeformation::report() const { return impl_->report; }
+bool RbfDeformation::is_fitted() const { return impl_->fitted; }
+const RbfSettings& RbfDeformation::settings() const { return impl_->settings; }
+
+Points RbfDeformation::centres() const
+{
+    const Impl& d = *impl_;
+    Points c = d.merged.centres * d.model.scale;
+    c.rowwise() += d.model.centre.transpose();
+    return c;
+}
+
+Eigen::MatrixXd RbfDeformation::handle_basis(const Eigen::Ref<const Points>& points) const
+{
+    const Impl& d = *impl_;
+    if (!d.fitted)
+        throw InvalidInput("RBF: handle_basis() called before fit()");
+    detail::require_finite(points, "RBF handle basis: point");
+    const Eigen::Index mc = d.model.num_centres;
+    Eigen::MatrixXd W, Qc;
+    d.solve(Eigen::MatrixXd::Identity(mc, mc), W, Qc);
+    const Eigen::Index k = points.rows();
+    Eigen::MatrixXd Bc(k, mc);
+    const Eigen::Index chunk = 4096;
+    for (Eigen::Index i0 = 0; i0 < k; i0 += chunk)
+    {
+        const Eigen::Index rows = std::min(chunk, k - i0);
+        const Points xn = d.model.normalise(points.middleRows(i0, rows));
+        Bc.middleRows(i0, rows).noalias() = d.model.kernel_matrix(xn) * W;
+        if (Qc.rows() > 0)
+            Bc.middleRows(i0, rows).noalias() += d.model.polynomial_matrix(xn) * Qc;
+    }
+    const Eigen::Index m = d.handles.rows();
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(k, m);
+    for (Eigen::Index c = 0; c < mc; ++c)
+        B.col(d.merged.first[std::size_t(c)]) = Bc.col(c);
+    return B;
+}
+
+} // namespace meshmorph

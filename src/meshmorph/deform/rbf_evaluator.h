@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Internal: a fitted RBF expansion (Eq. 6) in normalised coordinates and its blocked,
+//! vectorised, thread-count-independent evaluation. Never stores an n x m matrix.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "meshmorph/core/types.h"
+#include "meshmorph/deform/uniform_grid.h"
+
+namespace meshmorph::detail
+{
+
+enum class KernelType
+{
+    polyharmonic, // r^power, power odd
+    gaussian,     // exp(-(eps r)^2)
+    multiquadric, // sqrt(1 + (eps r)^2)
+    inverse_multiquadric,
+    wendland_c2 // (1 - r/rho)^4_+ (4 r/rho + 1)
+};
+
+//! Kernel parameters in normalised coordinates.
+struct KernelParams
+{
+    KernelType type = KernelType::polyharmonic;
+    int power = 3;          //!< polyharmonic exponent (odd)
+    double eps = 1.0;       //!< shape parameter (normalised units)
+    double support = 1.0;   //!< Wendland support radius (normalised units)
+    double value(double r2) const; //!< phi as a function of r^2 (scalar reference)
+};
+
+//! d(x) = sum_j w_j phi(|x^ - c^_j|) + sum_k q_k pi_k(R^T x^), x^ = (x - centre) / scale.
+struct RbfModel
+{
+    KernelParams kernel;
+    Vector3 centre = Vector3::Zero();
+    double scale = 1.0;
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity(); //!< polynomial frame (columns)
+    std::vector<std::array<int, 3>> exponents;             //!< kept monomials
+    Index num_centres = 0;
+    //! Centres and weights as structure of arrays, padded to a multiple of the block with
+    //! zero-weight copies of the last centre.
+    std::vector<double> cx, cy, cz, wx, wy, wz;
+    Eigen::Matrix<double, Eigen::Dynamic, 3> q; //!< polynomial coefficients (p x 3)
+    UniformGrid grid;                           //!< Wendland only: centres by cell
+
+    //! Normalised coordinates of physical points.
+    Points normalise(const Eigen::Ref<const Points>& x) const;
+    //! Sets centres (normalised, m x 3); weights are zeroed. Builds the grid for Wendland.
+    void set_centres(const Eigen::Ref<const Points>& normalised_centres);
+    //! Sets weights (m x 3) and polynomial coefficients (p x 3).
+    void set_coefficients(const Eigen::Ref<const Eigen::MatrixXd>& w,
+                          const Eigen::Ref<const Eigen::MatrixXd>& coefficients);
+    //! Polynomial matrix (k x p) at normalised points.
+    Eigen::MatrixXd polynomial_matrix(const Eigen::Ref<const Points>& normalised) const;
+    //! Kernel matrix (k x m, column-major) between normalised points and the centres.
+    Eigen::MatrixXd kernel_matrix(const Eigen::Ref<const Points>& normalised) const;
+    //! d at physical points into out (n x 3). OpenMP over point blocks; deterministic.
+    void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const;
+};
+
+//! Monomials of total degree <= degree in 3 variables (1, x, y, z, x^2, xy, ...).
+std::vector<std::array<int, 3>> monomials(int degree);
+
+} // namespace meshmorph::detail

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The space-deformation interface: apply(), argument checks shared by the methods.
+#include "meshmorph/deform/space_deformation.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/deform/lapack.h"
+
+namespace meshmorph
+{
+
+Points displacements(const SpaceDeformation& deformation, const Eigen::Ref<const Points>& points)
+{
+    Points out(points.rows(), 3);
+    deformation.evaluate(points, out);
+    return out;
+}
+
+Points apply(const SpaceDeformation& deformation, const Eigen::Ref<const Points>& points)
+{
+    Points out(points.rows(), 3);
+    deformation.evaluate(points, out);
+    out += points;
+    return out;
+}
+
+namespace detail
+{
+
+int lapack_int(long long n)
+{
+    if (n < 0 || n > std::numeric_limits<int>::max())
+        throw InvalidInput("matrix dimension " + std::to_string(n) +
+                           " exceeds LAPACK's 32-bit integer range");
+    return static_cast<int>(n);
+}
+
+void require_finite(const Eigen::Ref<const Points>& p, const char* what)
+{
+    for (Eigen::Index i = 0; i < p.rows(); ++i)
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite(p(i, c)))
+            {
+                std::ostringstream s;
+                s << what << " row " << i << " is not finite: (" << p(i, 0) << ' ' << p(i, 1)
+                  << ' ' << p(i, 2) << ')';
+                throw InvalidInput(s.str());
+            }
+}
+
+void check_fit_arguments(const Eigen::Ref<const Points>& handles,
+                         const Eigen::Ref<const Points>& displacements)
+{
+    if (handles.rows() == 0)
+        throw InvalidInput("fit: no handles given (m == 0)");
+    if (displacements.rows() != handles.rows())
+        throw InvalidInput("fit: " + std::to_string(handles.rows()) + " handles but " +
+                           std::to_string(displacements.rows()) + " displacements");
+    require_finite(handles, "fit: handle");
+    require_finite(displacements, "fit: displacement");
+}
+
+void check_evaluate_arguments(bool is_fitted, const Eigen::Ref<const Points>& points,
+                              const Eigen::Ref<Points>& out, const char* method)
+{
+    if (!is_fitted)
+        throw InvalidInput(std::string(method) + ": evaluate() called before fit()");
+    if (out.rows() != points.rows())
+        throw InvalidInput(std::string(method) + ": evaluate() output has " +
+                           std::to_string(out.rows()) + " rows for " +
+                           std::to_string(points.rows()) + " points");
+}
+
+void residual_report(const SpaceDeformation& d, const Eigen::Ref<const Points>& handles,
+                     const Eigen::Ref<const Points>& displacements, FitReport& report)
+{
+    Points got(handles.rows(), 3);
+    d.evaluate(handles, got);
+    double max_r = 0.0, sum_r2 = 0.0, max_d = 0.0;
+    for (Eigen::Index i = 0; i < handles.rows(); ++i)
+    {
+        const double r = (got.row(i) - displacements.row(i)).norm();
+        max_r = std::max(max_r, r);
+        sum_r2 += r * r;
+        max_d = std::max(max_d, displacements.row(i).norm());
+    }
+    report.max_residual = max_r;
+    report.rms_residual = handles.rows() > 0 ? std::sqrt(sum_r2 / double(handles.rows())) : 0.0;
+    report.max_displacement = max_d;
+}
+
+} // namespace detail
+} // namespace meshmorph

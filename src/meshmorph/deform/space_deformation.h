@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file The space-deformation interface d: R^3 -> R^3 shared by RBF, FFD and DM-FFD, its fit
+//! report, and apply() (x' = x + d(x), Fig. 1 of the paper).
+#pragma once
+
+#include <string>
+
+#include "meshmorph/core/types.h"
+
+namespace meshmorph
+{
+
+//! What a fit did; retrievable with SpaceDeformation::report() after fit().
+struct FitReport
+{
+    std::string method;            //!< "rbf", "ffd", "dmffd", "greedy-rbf", ...
+    std::string solver;            //!< factorisation used, e.g. "null-space + dpotrf"
+    Index num_handles = 0;         //!< constraints after merging duplicates
+    Index num_merged_duplicates = 0;
+    Index num_centres = 0;         //!< RBF centres or FFD/DM-FFD control points (DoFs / 3)
+    Index polynomial_terms = 0;    //!< polynomial terms kept after the rank test (RBF)
+    Index rank = 0;                //!< numerical rank after clamping (DM-FFD), else 0
+    Index iterations = 0;          //!< refinement iterations (greedy), else 0
+    //! 1-norm condition-number estimate of the factored matrix (dpocon). 0: not estimated.
+    //! For the sparse Wendland solve it is max(L_ii^2)/min(L_ii^2), a lower bound.
+    //! For DM-FFD: sigma_max / smallest kept sigma.
+    double condition_estimate = 0.0;
+    double max_displacement = 0.0; //!< max |displacement| over the handles
+    double max_residual = 0.0;     //!< max_i |d(h_i) - dh_i| (Euclidean), absolute
+    double rms_residual = 0.0;     //!< sqrt(mean_i |d(h_i) - dh_i|^2), absolute
+};
+
+//! A map d: R^3 -> R^3 fitted to prescribed handle displacements.
+class SpaceDeformation
+{
+public:
+    virtual ~SpaceDeformation() = default;
+    //! \brief Fit d so that d(handles.row(i)) = displacements.row(i) (exactly for RBF, in the
+    //! least-squares / least-norm sense for DM-FFD).
+    //! \param handles m x 3 handle positions. \param displacements m x 3.
+    //! \throw InvalidInput on size mismatch, m == 0 or non-finite input. \throw SolverError.
+    virtual void fit(const Eigen::Ref<const Points>& handles,
+                     const Eigen::Ref<const Points>& displacements) = 0;
+    //! \brief Write d(x) for every row of points into out (n x 3). Thread-safe, deterministic
+    //! (bit-identical for any number of OpenMP threads).
+    //! \pre fit() was called. \throw InvalidInput if not fitted or sizes differ.
+    virtual void evaluate(const Eigen::Ref<const Points>& points,
+                          Eigen::Ref<Points> out) const = 0;
+    //! The report of the last fit().
+    virtual const FitReport& report() const = 0;
+    //! True once fit() succeeded.
+    virtual bool is_fitted() const = 0;
+};
+
+//! \brief d(x) for every row of points (n x 3), returned by value.
+Points displacements(const SpaceDeformation& deformation, const Eigen::Ref<const Points>& points);
+
+//! \brief x' = x + d(x) for every row of points (n x 3), returned by value.
+Points apply(const SpaceDeformation& deformation, const Eigen::Ref<const Points>& points);
+
+namespace detail
+{
+//! Throws InvalidInput naming `what` if any entry is NaN or infinite.
+void require_finite(const Eigen::Ref<const Points>& p, const char* what);
+//! Common fit() argument checks: m > 0, equal sizes, finite.
+void check_fit_arguments(const Eigen::Ref<const Points>& handles,
+                         const Eigen::Ref<const Points>& displacements);
+//! Common evaluate() argument checks.
+void check_evaluate_arguments(bool is_fitted, const Eigen::Ref<const Points>& points,
+                              const Eigen::Ref<Points>& out, const char* method);
+//! Fills max/rms residual and max displacement of report from d(handles) - displacements.
+void residual_report(const SpaceDeformation& d, const Eigen::Ref<const Points>& handles,
+                     const Eigen::Ref<const Points>& displacements, FitReport& report);
+} // namespace detail
+
+} // namespace meshmorph

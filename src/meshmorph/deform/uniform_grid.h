@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file A uniform-grid neighbour search (sorted cell keys; no dense cell array, so tiny cells
+//! over a large box are fine). Used for duplicate detection and the compact Wendland kernel.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "meshmorph/core/types.h"
+
+namespace meshmorph::detail
+{
+
+class UniformGrid
+{
+public:
+    UniformGrid() = default;
+    //! \param points n x 3 \param cell cell edge length (> 0).
+    UniformGrid(const Eigen::Ref<const Points>& points, double cell) : cell_(cell)
+    {
+        entries_.resize(static_cast<std::size_t>(points.rows()));
+        for (Eigen::Index i = 0; i < points.rows(); ++i)
+            entries_[std::size_t(i)] = {key(points(i, 0), points(i, 1), points(i, 2)),
+                                        static_cast<std::int64_t>(i)};
+        std::sort(entries_.begin(), entries_.end());
+    }
+
+    //! Calls f(index) for every point in the 27 cells around x (a superset of the points
+    //! within `cell` of x), in a fixed order: cells by offset, points by index.
+    template <class F> void for_each_near(double x, double y, double z, F&& f) const
+    {
+        const Key c = key(x, y, z);
+        for (std::int64_t dz = -1; dz <= 1; ++dz)
+            for (std::int64_t dy = -1; dy <= 1; ++dy)
+                for (std::int64_t dx = -1; dx <= 1; ++dx)
+                {
+                    const Key k{c[0] + dx, c[1] + dy, c[2] + dz};
+                    auto it = std::lower_bound(entries_.begin(), entries_.end(),
+                                               Entry{k, std::int64_t(-1)});
+                    for (; it != entries_.end() && it->first == k; ++it)
+                        f(static_cast<Eigen::Index>(it->second));
+                }
+    }
+
+private:
+    using Key = std::array<std::int64_t, 3>;
+    using Entry = std::pair<Key, std::int64_t>;
+    Key key(double x, double y, double z) const
+    {
+        return {static_cast<std::int64_t>(std::floor(x / cell_)),
+                static_cast<std::int64_t>(std::floor(y / cell_)),
+                static_cast<std::int64_t>(std::floor(z / cell_))};
+    }
+    double cell_ = 1.0;
+    std::vector<Entry> entries_;
+};
+
+} // namespace meshmorph::detail
