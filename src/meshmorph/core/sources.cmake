@@ -4,5 +4,6 @@ meshmorph_add_component(core
         meshmorph/core/poly_mesh.cpp
         meshmorph/core/log.cpp
         meshmorph/core/progress.cpp
+        meshmorph/core/cell_shapes.cpp
         # (one file per line)
     DEPENDS Eigen3::Eigen OpenMP::OpenMP_CXX)
