@@ -1,0 +1,169 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Base geometry in OpenFOAM's operation order (primitiveMeshFaceCentresAndAreas,
+// primitiveMeshCellCentresAndVols of v1912).
+#include "meshmorph/quality/mesh_geometry.h"
+
+#include "meshmorph/quality/foam_vector.h"
+
+namespace meshmorph
+{
+
+using detail::FoamVector;
+using detail::row;
+using detail::set_row;
+
+void face_centres_and_areas(const PolyMesh& mesh, Points& centres, Points& areas)
+{
+    const Index n_faces = mesh.n_faces();
+    centres.resize(n_faces, 3);
+    areas.resize(n_faces, 3);
+    const Points& p = mesh.points;
+#pragma omp parallel for schedule(static)
+    for (Index f = 0; f < n_faces; ++f)
+    {
+        const std::span<const Index> face = mesh.faces[f];
+        const std::size_t n = face.size();
+        if (n == 3)
+        {
+            const FoamVector p0 = row(p, face[0]), p1 = row(p, face[1]), p2 = row(p, face[2]);
+            set_row(centres, f, (1.0 / 3.0) * (p0 + p1 + p2));
+            set_row(areas, f, 0.5 * detail::cross(p1 - p0, p2 - p0));
+            continue;
+        }
+        if (n == 0)
+        {
+            set_row(centres, f, {});
+            set_row(areas, f, {});
+            continue;
+        }
+        FoamVector mean = row(p, face[0]);
+        for (std::size_t i = 1; i < n; ++i)
+            mean += row(p, face[i]);
+        mean /= static_cast<double>(n);
+        FoamVector sum_n, sum_ac;
+        double sum_a = 0.0;
+        for (std::size_t i = 0; i < n; ++i)
+        {
+            const FoamVector pi = row(p, face[i]);
+            const FoamVector pj = row(p, face[(i + 1) % n]);
+            const FoamVector c = pi + pj + mean;
+            const FoamVector t = detail::cross(pj - pi, mean - pi);
+            const double a = detail::mag(t);
+            sum_n += t;
+            sum_a += a;
+            sum_ac += a * c;
+        }
+        if (sum_a < constants::rootvsmall)
+        {
+            set_row(centres, f, mean);
+            set_row(areas, f, {});
+        }
+        else
+        {
+            set_row(centres, f, ((1.0 / 3.0) * sum_ac) / sum_a);
+            set_row(areas, f, 0.5 * sum_n);
+        }
+    }
+}
+
+void cell_centres_and_volumes(const PolyMesh& mesh, const CompactList& cell_faces,
+                              const Points& face_centres, const Points& face_areas,
+                              Points& cell_centres, Eigen::VectorXd& cell_volumes)
+{
+    const Index n_cells = cell_faces.size();
+    cell_centres.resize(n_cells, 3);
+    cell_volumes.resize(n_cells);
+    // One cell at a time, faces in cell_faces order: owned faces ascending, then neighboured
+    // faces ascending -- the same per-cell accumulation order as OpenFOAM's owner pass
+    // followed by its neighbour pass, so results are bit-identical and thread-independent.
+#pragma omp parallel for schedule(static)
+    for (Index c = 0; c < n_cells; ++c)
+    {
+        const std::span<const Index> faces = cell_faces[c];
+        FoamVector estimate;
+        for (Index f : faces)
+            estimate += row(face_centres, f);
+        if (!faces.empty())
+            estimate /= static_cast<double>(faces.size());
+        FoamVector sum_vc;
+        double sum_v = 0.0;
+        for (Index f : faces)
+        {
+            const FoamVector cf = row(face_centres, f);
+            const FoamVector af = row(face_areas, f);
+            const double pyr3 = mesh.owner[f] == c ? detail::dot(af, cf - estimate)
+                                                   : detail::dot(af, estimate - cf);
+            const FoamVector pc = (3.0 / 4.0) * cf + (1.0 / 4.0) * estimate;
+            sum_vc += pyr3 * pc;
+            sum_v += pyr3;
+        }
+        if (std::abs(sum_v) > constants::vsmall)
+            set_row(cell_centres, c, sum_vc / sum_v);
+        else
+            set_row(cell_centres, c, estimate);
+        cell_volumes[c] = sum_v * (1.0 / 3.0);
+    }
+}
+
+MeshGeometry compute_geometry(const PolyMesh& mesh, const CompactList& cell_faces)
+{
+    MeshGeometry g;
+    face_centres_and_areas(mesh, g.face_centres, g.face_areas);
+    cell_centres_and_volumes(mesh, cell_faces, g.face_centres, g.face_areas, g.cell_centres,
+                             g.cell_volumes);
+    return g;
+}
+
+MeshGeometry compute_geometry(const PolyMesh& mesh)
+{
+    return compute_geometry(mesh, cell_faces(mesh));
+}
+
+MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas)
+{
+    MeshDirections d;
+    FoamVector empty_sum;
+    bool has_empty = false;
+    FoamVector wedge_sum;
+    for (const Patch& patch : mesh.patches)
+    {
+        if (patch.type == "empty" && patch.n_faces > 0)
+        {
+            has_empty = true;
+            for (Index f = patch.start_face; f < patch.start_face + patch.n_faces; ++f)
+                empty_sum += detail::cmpt_mag(row(face_areas, f));
+        }
+        else if (patch.type == "wedge" && patch.n_faces > 0)
+        {
+            d.has_wedges = true;
+            // The wedge's centre normal: the area-weighted mean unit normal of its faces.
+            FoamVector sum;
+            double sum_mag = 0;
+            for (Index f = patch.start_face; f < patch.start_face + patch.n_faces; ++f)
+            {
+                sum += row(face_areas, f);
+                sum_mag += detail::mag(row(face_areas, f));
+            }
+            wedge_sum += detail::cmpt_mag(sum / (sum_mag + constants::vsmall));
+        }
+    }
+    if (has_empty)
+    {
+        const double m = detail::mag(empty_sum);
+        const FoamVector unit = m > constants::vsmall ? empty_sum / m : FoamVector{};
+        for (int k = 0; k < 3; ++k)
+            if (unit[k] > 1e-6)
+                d.solution[k] = -1;
+    }
+    d.geometric = d.solution;
+    if (d.has_wedges)
+    {
+        const double m = detail::mag(wedge_sum);
+        const FoamVector unit = m > constants::vsmall ? wedge_sum / m : FoamVector{};
+        for (int k = 0; k < 3; ++k)
+            d.geometric[k] = unit[k] > 1e-6 ? -1 : 1;
+    }
+    return d;
+}
+
+} // namespace meshmorph
