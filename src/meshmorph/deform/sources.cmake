@@ -4,6 +4,9 @@ set(MESHMORPH_DEFORM_SOURCES
     meshmorph/deform/space_deformation.cpp
     meshmorph/deform/rbf_evaluator.cpp
     meshmorph/deform/rbf_deformation.cpp
+    meshmorph/deform/bspline_basis.cpp
+    meshmorph/deform/ffd_deformation.cpp
+    meshmorph/deform/dmffd_deformation.cpp
 )
 # sqrt in the blocked RBF evaluator vectorises only without errno semantics.
 set_source_files_properties(meshmorph/deform/rbf_evaluator.cpp

@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Uniform cubic B-spline lattices for FFD and DM-FFD (paper Sec. 2.1, Eq. 1-2).
+//!
+//! A lattice of n_a >= 4 control points per axis over a parallelepiped box
+//! (origin + 3 edge vectors) has n_a - 3 uniform knot spans per axis, and the box is exactly
+//! the valid parameter domain [t_3, t_n] of the uniform cubic B-spline. The control points
+//! sit at the Greville abscissae, one knot spacing h outside the box on each side
+//! (origin - h, origin, ..., origin + edge + h), so that the undeformed lattice reproduces
+//! the identity (linear precision) and points ON the box boundary are inside the domain and
+//! deform with full weight (the PyGeM issue 272 failure mode cannot occur).
+#pragma once
+
+#include <array>
+
+#include "meshmorph/core/types.h"
+
+namespace meshmorph
+{
+
+//! What an FFD does with points outside the lattice box.
+enum class FfdOutside
+{
+    zero, //!< displacement 0 outside (classic FFD: the outside is untouched; the field is
+          //!< discontinuous at the box unless the outer control layers stay fixed)
+    clamp //!< use the displacement of the nearest point of the box (continuous, constant
+          //!< along the outward box directions)
+};
+
+//! Parallelepiped lattice box: x(u) = origin + axes * u, u in [0,1]^3.
+struct FfdBox
+{
+    Vector3 origin = Vector3::Zero();
+    Eigen::Matrix3d axes = Eigen::Matrix3d::Identity(); //!< columns: edge vectors
+};
+
+//! Uniform cubic B-spline control lattice.
+class FfdLattice
+{
+public:
+    //! \param box the valid parameter domain; \param counts control points per axis (>= 4).
+    //! \throw InvalidInput on counts < 4 or a degenerate (singular / non-finite) box.
+    FfdLattice(const FfdBox& box, const std::array<int, 3>& counts);
+    //! Axis-aligned lattice over the bounding box of points enlarged by margin * extent on
+    //! each side (an extent of 0 becomes 1e-3 of the largest extent, or 1).
+    //! \throw InvalidInput on empty or non-finite points, counts < 4, margin < 0.
+    static FfdLattice bounding(const Eigen::Ref<const Points>& points,
+                               const std::array<int, 3>& counts, double margin);
+
+    const FfdBox& box() const { return box_; }
+    const std::array<int, 3>& counts() const { return counts_; }
+    //! Number of control points nx * ny * nz.
+    Index size() const { return Index(counts_[0]) * counts_[1] * counts_[2]; }
+    //! Linear index of control point (i, j, k): i + nx (j + ny k).
+    Index index(int i, int j, int k) const { return i + counts_[0] * (j + counts_[1] * k); }
+    //! Undeformed control point positions (size() x 3).
+    const Points& control_points() const { return control_; }
+    bool is_axis_aligned() const { return axis_aligned_; }
+
+    //! \brief Lattice parameter t in [0, n_a - 3] per axis (knot-span units) of x: direct for
+    //! axis-aligned boxes, otherwise Newton iteration on x(t) = sum_p c_p N_p(t) started from
+    //! the affine inverse (converges in one step for an undeformed parallelepiped).
+    Vector3 local_coordinates(const Vector3& x) const;
+    //! \brief The 64 nonzero basis values N_p(u(x)) and control indices p at x. Returns 64, or
+    //! 0 for a point outside the box with FfdOutside::zero. Points within 1e-9 knot spans
+    //! of the box count as inside (round-off at the boundary).
+    int basis(const Vector3& x, FfdOutside outside, Index* index, double* weight) const;
+
+private:
+    FfdBox box_;
+    std::array<int, 3> counts_;
+    Eigen::Matrix3d inverse_axes_;
+    bool axis_aligned_ = true;
+    Points control_;
+};
+
+namespace detail
+{
+//! Uniform cubic B-spline values w[0..3] (and derivatives dw, may be null) at parameter t of
+//! a lattice with n control points; first = index of the control point of w[0].
+void cubic_bspline(double t, int n, int& first, double* w, double* dw);
+} // namespace detail
+
+} // namespace meshmorph
