@@ -7,6 +7,7 @@ set(MESHMORPH_IO_SOURCES
     meshmorph/io/boundary_io.cpp
 )
 set(MESHMORPH_IO_VTK_SOURCES
+    meshmorph/io/vtk_writer.cpp
 )
 set(meshmorph_io_private_deps ZLIB::ZLIB)
 if(MESHMORPH_WITH_VTK)
