@@ -5,6 +5,11 @@ set(MESHMORPH_IO_SOURCES
     meshmorph/io/foam_header.cpp
     meshmorph/io/foam_dictionary.cpp
     meshmorph/io/boundary_io.cpp
+    meshmorph/io/foam_file.cpp
+    meshmorph/io/foam_lists.cpp
+    meshmorph/io/case_instance.cpp
+    meshmorph/io/read_poly_mesh.cpp
+    meshmorph/io/write_poly_mesh.cpp
 )
 set(MESHMORPH_IO_VTK_SOURCES
     meshmorph/io/vtk_writer.cpp

@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Whole-file reads (plain or gzip, transparently) and atomic writes of OpenFOAM files.
+//!
+//! OpenFOAM opens a file `X` under its plain name if it exists and otherwise `X.gz`
+//! (docs/polymesh-format.md §7); these helpers follow the same rule and warn when both
+//! exist. Writes go to a temporary file in the target directory which is then renamed over
+//! the target, so a reader never sees a half-written file.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace meshmorph::io
+{
+
+//! The complete (decompressed) contents of one file.
+struct FileBuffer
+{
+    std::filesystem::path path; //!< the file actually read (`X` or `X.gz`)
+    std::string data;           //!< decompressed bytes
+    bool is_compressed = false; //!< whether `path` was gzip-compressed
+};
+
+//! \brief The file to open for the OpenFOAM name `path`: `path` if it exists, else `path.gz`
+//! if that exists, else nothing. Logs a warning when both exist (the plain one wins).
+//! A `path` that already ends in `.gz` is returned as is when it exists.
+std::optional<std::filesystem::path> resolve_foam_file(const std::filesystem::path& path);
+
+//! Whether `path` or `path.gz` exists as a regular file.
+bool foam_file_exists(const std::filesystem::path& path);
+
+//! \brief Read a whole file into memory, `path` or else `path.gz` (see resolve_foam_file).
+//! Gzip data is recognised by its magic bytes, so a compressed file without the `.gz`
+//! suffix is read too.
+//! \throw IoError naming the path if neither file exists, on read errors and on corrupt
+//! or truncated gzip data.
+FileBuffer read_foam_file(const std::filesystem::path& path);
+
+//! Options of write_file_atomic.
+struct WriteFileOptions
+{
+    bool compress = false; //!< gzip the data and write `path.gz` instead of `path`
+    int compression_level = 6; //!< zlib level 1..9 (OpenFOAM uses the zlib default, 6)
+};
+
+//! \brief Write `data` to `path` (or `path.gz` when compressing) atomically: the bytes go to
+//! a temporary file in the same directory, flushed, then renamed over the target. The
+//! other spelling (`path.gz` when writing `path`, and vice versa) is removed afterwards so
+//! both never coexist. The gzip header carries no time stamp, so equal data gives equal
+//! bytes. Returns the path written.
+//! \pre the parent directory exists.
+//! \throw IoError naming the path on any failure (the target is then left unchanged).
+std::filesystem::path write_file_atomic(const std::filesystem::path& path,
+                                        std::string_view data,
+                                        const WriteFileOptions& options = {});
+
+//! \brief Gzip-compress `data` (deterministic gzip header without time stamp).
+//! \throw IoError on a zlib failure (`what` names the operation).
+std::string gzip_compress(std::string_view data, int level = 6);
+
+//! \brief Decompress a complete gzip stream (concatenated members are accepted).
+//! \param name used in error messages (usually the file path).
+//! \throw IoError naming `name` on corrupt or truncated data.
+std::string gzip_decompress(std::string_view data, const std::string& name);
+
+//! Whether `data` starts with the gzip magic bytes 1f 8b.
+bool is_gzip(std::string_view data);
+
+} // namespace meshmorph::io

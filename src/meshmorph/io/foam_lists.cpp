@@ -1,0 +1,1190 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Fast list readers/writers. The hot loops use the tokenizer's in-place number readers;
+// large ASCII lists are split at line boundaries and parsed by OpenMP threads.
+#include "meshmorph/io/foam_lists.h"
+
+#include <algorithm>
+#include <array>
+#include <exception>
+#include <bit>
+#include <charconv>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <type_traits>
+
+#include <omp.h>
+
+namespace meshmorph::io
+{
+
+static_assert(std::endian::native == std::endian::little,
+              "binary OpenFOAM files are little-endian; big-endian hosts are not supported");
+
+namespace
+{
+
+// Smallest number of characters an ASCII element can take (with its separator), used to
+// reject declared sizes the remaining text cannot possibly hold.
+constexpr std::size_t min_chars_label = 2;  // "0 "
+constexpr std::size_t min_chars_vector = 7; // "(0 0 0)"
+constexpr std::size_t min_chars_face = 8;   // "3(0 1 2)"
+
+// Lists at least this long (in bytes of text) are parsed in parallel.
+constexpr std::size_t parallel_min_bytes = std::size_t(1) << 20;
+
+std::string size_text(std::size_t n) { return std::to_string(n); }
+
+std::size_t remaining(const FoamTokenizer& tok) { return tok.buffer().size() - tok.offset(); }
+
+ParseError binary_error(const FoamTokenizer& tok, std::size_t line, std::size_t byte_offset,
+                        const std::string& what, const std::string& msg)
+{
+    return tok.error_at(line, "binary list '" + what + "' at byte offset " +
+                                  std::to_string(byte_offset) + ": " + msg);
+}
+
+Index to_index(std::int64_t v, const FoamTokenizer& tok, const std::string& what)
+{
+    if constexpr (sizeof(Index) < sizeof(std::int64_t))
+    {
+        if (v < std::numeric_limits<Index>::min() || v > std::numeric_limits<Index>::max())
+            throw tok.error("label " + std::to_string(v) + " in '" + what +
+                            "' does not fit in a " + std::to_string(8 * sizeof(Index)) +
+                            "-bit label");
+    }
+    return static_cast<Index>(v);
+}
+
+// What starts a list: its declared size (or none for `( … )`), and the bracket.
+struct ListStart
+{
+    bool has_size = false;
+    std::size_t size = 0;
+    char open = '('; // '(' , '{' (uniform), or 0 for an empty binary list without brackets
+    std::size_t line = 0;
+};
+
+// Reads `N` and the opening bracket (ASCII or binary), validating N against the bytes left.
+ListStart read_list_start(FoamTokenizer& tok, const FoamHeader& header,
+                          const ListReadOptions& options, std::size_t ascii_min_chars,
+                          std::size_t binary_element_bytes)
+{
+    ListStart start;
+    tok.skip_whitespace_and_comments();
+    start.line = tok.line();
+    std::int64_t n = 0;
+    if (tok.read_label(n))
+    {
+        if (n < 0)
+            throw tok.error_at(start.line, "negative size " + std::to_string(n) + " of list '" +
+                                               options.what + "'");
+        start.has_size = true;
+        start.size = static_cast<std::size_t>(n);
+        if (options.expected_size && *options.expected_size != start.size)
+            throw tok.error_at(start.line, "list '" + options.what + "' has size " +
+                                               size_text(start.size) + ", expected " +
+                                               size_text(*options.expected_size));
+        if (header.is_binary() && binary_element_bytes > 0 && start.size == 0)
+        {
+            // OpenFOAM writes an empty binary list as `0` alone; accept `0()` too.
+            start.open = 0;
+            if (tok.peek().is_punct('('))
+            {
+                tok.expect('(');
+                tok.expect(')');
+            }
+            return start;
+        }
+    }
+    const FoamToken& t = tok.peek();
+    if (t.is_punct('('))
+        start.open = '(';
+    else if (t.is_punct('{') && start.has_size)
+        start.open = '{';
+    else
+        throw tok.error_at(t.line, std::string("expected ") +
+                                       (start.has_size ? "'(' or '{'" : "a list size or '('") +
+                                       " for list '" + options.what + "' but found " +
+                                       t.describe());
+    tok.expect(start.open);
+    if (!start.has_size && header.is_binary() && binary_element_bytes > 0)
+        throw tok.error_at(start.line, "binary list '" + options.what + "' has no size");
+
+    if (start.open == '{')
+    {
+        const std::size_t limit = options.expected_size ? *options.expected_size
+                                                        : options.max_uniform_size;
+        if (start.size > limit)
+            throw tok.error_at(start.line, "uniform list '" + options.what + "' of size " +
+                                               size_text(start.size) +
+                                               " exceeds the plausible size " + size_text(limit));
+        return start;
+    }
+    if (start.has_size)
+    {
+        const std::size_t left = remaining(tok);
+        if (header.is_binary() && binary_element_bytes > 0)
+        {
+            if (start.size > left / binary_element_bytes)
+                throw binary_error(tok, start.line, tok.offset(), options.what,
+                                   "declared size " + size_text(start.size) + " needs " +
+                                       (start.size > std::numeric_limits<std::size_t>::max() /
+                                                         binary_element_bytes
+                                            ? std::string("more")
+                                            : size_text(start.size * binary_element_bytes)) +
+                                       " bytes but only " + size_text(left) +
+                                       " remain (truncated file?)");
+        }
+        else if (start.size > left / ascii_min_chars + 1)
+            throw tok.error_at(start.line, "list '" + options.what + "' declares " +
+                                               size_text(start.size) +
+                                               " elements but the rest of the file is only " +
+                                               size_text(left) + " bytes");
+    }
+    return start;
+}
+
+// After a binary block: the closing bracket must follow immediately.
+void expect_binary_close(FoamTokenizer& tok, const ListStart& start, const std::string& what,
+                         std::size_t data_offset, char close = ')')
+{
+    const std::size_t at = tok.offset();
+    if (at < tok.buffer().size() && tok.buffer()[at] == close)
+    {
+        tok.expect(close);
+        return;
+    }
+    throw binary_error(tok, start.line, at, what,
+                       std::string("expected '") + close + "' after " + size_text(start.size) +
+                           " elements (" + size_text(at - data_offset) +
+                           " bytes) of binary data; the data may be ASCII under a binary "
+                           "header, use other sizes than the arch says, or be truncated");
+}
+
+template <class Int>
+void decode_labels_as(std::string_view raw, Index* out, std::size_t n, const FoamTokenizer& tok,
+                      const ListStart& start, std::size_t data_offset, const std::string& what)
+{
+    if constexpr (sizeof(Int) == sizeof(Index))
+    {
+        std::memcpy(out, raw.data(), n * sizeof(Index));
+    }
+    else
+    {
+        for (std::size_t i = 0; i < n; ++i)
+        {
+            Int v;
+            std::memcpy(&v, raw.data() + i * sizeof(Int), sizeof(Int));
+            if constexpr (sizeof(Int) > sizeof(Index))
+            {
+                if (v < std::numeric_limits<Index>::min() || v > std::numeric_limits<Index>::max())
+                    throw binary_error(tok, start.line, data_offset + i * sizeof(Int), what,
+                                       "label " + std::to_string(v) + " does not fit in a " +
+                                           std::to_string(8 * sizeof(Index)) + "-bit label");
+            }
+            out[i] = static_cast<Index>(v);
+        }
+    }
+}
+
+void decode_labels(std::string_view raw, int label_bytes, Index* out, std::size_t n,
+                   const FoamTokenizer& tok, const ListStart& start, std::size_t data_offset,
+                   const std::string& what)
+{
+    if (label_bytes == 4)
+        decode_labels_as<std::int32_t>(raw, out, n, tok, start, data_offset, what);
+    else
+        decode_labels_as<std::int64_t>(raw, out, n, tok, start, data_offset, what);
+}
+
+void decode_scalars(std::string_view raw, int scalar_bytes, double* out, std::size_t n)
+{
+    if (scalar_bytes == 8)
+        std::memcpy(out, raw.data(), n * sizeof(double));
+    else
+        for (std::size_t i = 0; i < n; ++i)
+        {
+            float v;
+            std::memcpy(&v, raw.data() + i * sizeof(float), sizeof(float));
+            out[i] = static_cast<double>(v);
+        }
+}
+
+// ---------------------------------------------------------------------------------------
+// ASCII element parsing (also used per chunk by the parallel path).
+
+[[noreturn]] void throw_short_list(FoamTokenizer& tok, const ListStart& start, std::size_t got,
+                                   const std::string& what, const char* kind)
+{
+    const FoamToken& t = tok.peek();
+    if (t.is_punct(start.open == '{' ? '}' : ')'))
+        throw tok.error_at(t.line, "list '" + what + "' ends after " + size_text(got) +
+                                       " elements but its size is " + size_text(start.size));
+    throw tok.error_at(t.line, std::string("expected ") + kind + " (element " +
+                                   size_text(got) + " of list '" + what + "') but found " +
+                                   t.describe());
+}
+
+void expect_close(FoamTokenizer& tok, const ListStart& start, const std::string& what,
+                  const char* kind)
+{
+    const char close = start.open == '{' ? '}' : ')';
+    tok.skip_whitespace_and_comments();
+    if (tok.offset() < tok.buffer().size() && tok.buffer()[tok.offset()] == close)
+    {
+        tok.expect(close);
+        return;
+    }
+    const FoamToken& t = tok.peek();
+    if (start.has_size && start.open == '(' && (t.is_number() || t.is_punct('(')))
+        throw tok.error_at(t.line, "list '" + what + "' has more elements than its size " +
+                                       size_text(start.size));
+    throw tok.error_at(t.line, std::string("expected '") + close + "' closing list '" + what +
+                                   "' of " + kind + "s but found " + t.describe());
+}
+
+inline void read_ascii_label(FoamTokenizer& tok, Index& out, const ListStart& start,
+                             std::size_t i, const std::string& what)
+{
+    std::int64_t v;
+    if (!tok.read_label(v))
+        throw_short_list(tok, start, i, what, "an integer");
+    out = to_index(v, tok, what);
+}
+
+inline void read_ascii_scalar(FoamTokenizer& tok, double& out, const ListStart& start,
+                              std::size_t i, const std::string& what)
+{
+    if (!tok.read_scalar(out))
+        throw_short_list(tok, start, i, what, "a number");
+}
+
+inline void read_ascii_vector(FoamTokenizer& tok, double* out, const ListStart& start,
+                              std::size_t i, const std::string& what)
+{
+    tok.skip_whitespace_and_comments();
+    if (tok.offset() >= tok.buffer().size() || tok.buffer()[tok.offset()] != '(')
+        throw_short_list(tok, start, i, what, "a vector '(x y z)'");
+    tok.read_vector(out);
+}
+
+// A chunk of an ASCII list body for parallel parsing: [begin, end) of the buffer, the
+// line at `begin`, and the index of its first element.
+struct Chunk
+{
+    std::size_t begin = 0;
+    std::size_t end = 0;
+    std::size_t line = 0;
+    std::size_t first = 0;
+    std::size_t count = 0;
+};
+
+// Whether parallel parsing is worth it and safe: big enough, more than one thread, and
+// no comment characters in the body (a chunk boundary could otherwise fall inside one).
+bool can_parallelize(std::string_view body, const ListReadOptions& options)
+{
+    if (!options.parallel || body.size() < parallel_min_bytes || omp_get_max_threads() < 2)
+        return false;
+    return std::memchr(body.data(), '/', body.size()) == nullptr;
+}
+
+// Find the end of a list body: the position of its matching ')' for a flat list of
+// numbers or of `(…)` elements nested one level, scanning raw characters. Returns npos if
+// not found. Only called when the body holds no comments.
+std::size_t find_list_end(std::string_view buf, std::size_t from, int element_depth)
+{
+    int depth = 0;
+    const char* p = buf.data() + from;
+    const char* const end = buf.data() + buf.size();
+    for (; p < end; ++p)
+    {
+        const char c = *p;
+        if (c == '(')
+        {
+            if (++depth > element_depth)
+                return std::string_view::npos;
+        }
+        else if (c == ')')
+        {
+            if (depth == 0)
+                return static_cast<std::size_t>(p - buf.data());
+            --depth;
+        }
+    }
+    return std::string_view::npos;
+}
+
+// Split [begin, end) into about `parts` chunks at newlines that start an element. For
+// element lists (vectors, faces) an element starts a line; for number lists any newline
+// separates tokens. Also counts the newlines before each chunk for line numbers.
+std::vector<Chunk> split_lines(std::string_view buf, std::size_t begin, std::size_t end,
+                               std::size_t first_line, int parts)
+{
+    std::vector<Chunk> chunks;
+    const std::size_t len = end - begin;
+    std::size_t pos = begin;
+    for (int k = 0; k < parts && pos < end; ++k)
+    {
+        std::size_t stop = k + 1 == parts ? end : begin + len * (k + 1) / parts;
+        if (stop < pos)
+            stop = pos;
+        if (stop < end)
+        {
+            const void* nl = std::memchr(buf.data() + stop, '\n', end - stop);
+            stop = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - buf.data()) + 1
+                      : end;
+        }
+        chunks.push_back({pos, stop, 0, 0, 0});
+        pos = stop;
+    }
+    std::vector<std::size_t> lines(chunks.size(), 0);
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
+    {
+        std::size_t n = 0;
+        const char* p = buf.data() + chunks[k].begin;
+        const char* const e = buf.data() + chunks[k].end;
+        while (p < e)
+        {
+            const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(e - p));
+            if (!nl)
+                break;
+            ++n;
+            p = static_cast<const char*>(nl) + 1;
+        }
+        lines[k] = n;
+    }
+    std::size_t line = first_line;
+    for (std::size_t k = 0; k < chunks.size(); ++k)
+    {
+        chunks[k].line = line;
+        line += lines[k];
+    }
+    return chunks;
+}
+
+// Count whitespace-separated tokens in a comment-free chunk of numbers.
+std::size_t count_tokens(std::string_view buf, const Chunk& c)
+{
+    std::size_t n = 0;
+    bool in_token = false;
+    for (std::size_t i = c.begin; i < c.end; ++i)
+    {
+        const char ch = buf[i];
+        const bool space = ch == ' ' || ch == '\n' || ch == '\t' || ch == '\r' || ch == '\f' ||
+                           ch == '\v';
+        if (!space && !in_token)
+            ++n;
+        in_token = !space;
+    }
+    return n;
+}
+
+std::size_t count_char(std::string_view buf, const Chunk& c, char ch)
+{
+    return static_cast<std::size_t>(
+        std::count(buf.data() + c.begin, buf.data() + c.end, ch));
+}
+
+// Runs body(k) for every chunk in parallel; the first ParseError (lowest chunk) is rethrown.
+template <class Body> void for_each_chunk(std::size_t n_chunks, Body body)
+{
+    std::vector<std::exception_ptr> errors(n_chunks);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(n_chunks); ++k)
+    {
+        try
+        {
+            body(static_cast<std::size_t>(k));
+        }
+        catch (...)
+        {
+            errors[k] = std::current_exception();
+        }
+    }
+    for (const std::exception_ptr& e : errors)
+        if (e)
+            std::rethrow_exception(e);
+}
+
+int chunk_count() { return std::max(1, omp_get_max_threads()) * 4; }
+
+// Parallel path for `N ( numbers )`: returns false (nothing consumed) if not applicable.
+template <class T, class ReadOne>
+bool parse_numbers_parallel(FoamTokenizer& tok, const ListStart& start, T* out,
+                            const ListReadOptions& options, ReadOne read_one, const char* kind)
+{
+    const std::string_view buf = tok.buffer();
+    const std::size_t body_begin = tok.offset();
+    const std::size_t body_end = find_list_end(buf, body_begin, 0);
+    if (body_end == std::string_view::npos)
+        return false;
+    if (!can_parallelize(buf.substr(body_begin, body_end - body_begin), options))
+        return false;
+    std::vector<Chunk> chunks = split_lines(buf, body_begin, body_end, tok.line(), chunk_count());
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
+        chunks[k].count = count_tokens(buf, chunks[k]);
+    std::size_t total = 0;
+    for (Chunk& c : chunks)
+    {
+        c.first = total;
+        total += c.count;
+    }
+    if (total != start.size)
+        return false; // let the serial path produce the precise message
+    for_each_chunk(chunks.size(), [&](std::size_t k) {
+        const Chunk& c = chunks[k];
+        FoamTokenizer local(buf.substr(c.begin, c.end - c.begin), tok.path(), c.line);
+        ListStart local_start = start;
+        for (std::size_t i = 0; i < c.count; ++i)
+            read_one(local, out[c.first + i], local_start, c.first + i, options.what);
+        if (!local.at_end())
+            throw local.error(std::string("unexpected ") + local.peek().describe() +
+                              " in list '" + options.what + "' of " + kind + "s");
+    });
+    // Advance the main tokenizer to the closing bracket.
+    tok.read_raw(body_end - body_begin);
+    expect_close(tok, start, options.what, kind);
+    return true;
+}
+
+template <class T, class ReadOne>
+std::vector<T> read_number_list(FoamTokenizer& tok, const FoamHeader& header,
+                                const ListReadOptions& options, int binary_bytes,
+                                ReadOne read_one, const char* kind,
+                                void (*decode)(std::string_view, int, T*, std::size_t,
+                                               const FoamTokenizer&, const ListStart&,
+                                               std::size_t, const std::string&))
+{
+    const ListStart start =
+        read_list_start(tok, header, options, min_chars_label, header.is_binary() ? binary_bytes : 0);
+    std::vector<T> values;
+    if (start.open == 0)
+        return values;
+    if (header.is_binary())
+    {
+        const std::size_t n = start.open == '{' ? 1 : start.size;
+        const std::size_t data_offset = tok.offset();
+        if (n * static_cast<std::size_t>(binary_bytes) > remaining(tok))
+            throw binary_error(tok, start.line, data_offset, options.what,
+                               "truncated: " + size_text(n * binary_bytes) +
+                                   " bytes of data expected, " + size_text(remaining(tok)) +
+                                   " remain");
+        const std::string_view raw = tok.read_raw(n * static_cast<std::size_t>(binary_bytes));
+        values.resize(n);
+        decode(raw, binary_bytes, values.data(), n, tok, start, data_offset, options.what);
+        expect_binary_close(tok, start, options.what, data_offset, start.open == '{' ? '}' : ')');
+        if (start.open == '{')
+            values.assign(start.size, values.empty() ? T{} : values[0]);
+        return values;
+    }
+    if (start.open == '{')
+    {
+        T v{};
+        read_one(tok, v, start, 0, options.what);
+        expect_close(tok, start, options.what, kind);
+        values.assign(start.size, v);
+        return values;
+    }
+    if (start.has_size)
+    {
+        values.resize(start.size);
+        if (parse_numbers_parallel(tok, start, values.data(), options, read_one, kind))
+            return values;
+        for (std::size_t i = 0; i < start.size; ++i)
+            read_one(tok, values[i], start, i, options.what);
+        expect_close(tok, start, options.what, kind);
+        return values;
+    }
+    // Unsized `( … )`.
+    for (;;)
+    {
+        tok.skip_whitespace_and_comments();
+        if (tok.offset() < tok.buffer().size() && tok.buffer()[tok.offset()] == ')')
+            break;
+        T v{};
+        read_one(tok, v, start, values.size(), options.what);
+        values.push_back(v);
+    }
+    tok.expect(')');
+    if (options.expected_size && values.size() != *options.expected_size)
+        throw tok.error_at(start.line, "list '" + options.what + "' has " +
+                                           size_text(values.size()) + " elements, expected " +
+                                           size_text(*options.expected_size));
+    return values;
+}
+
+void decode_label_adapter(std::string_view raw, int bytes, Index* out, std::size_t n,
+                          const FoamTokenizer& tok, const ListStart& start, std::size_t off,
+                          const std::string& what)
+{
+    decode_labels(raw, bytes, out, n, tok, start, off, what);
+}
+
+void decode_scalar_adapter(std::string_view raw, int bytes, double* out, std::size_t n,
+                           const FoamTokenizer&, const ListStart&, std::size_t, const std::string&)
+{
+    decode_scalars(raw, bytes, out, n);
+}
+
+// Faces: read one ASCII face `k(v0 … vk-1)` (or `k{v}`) appending to values.
+void read_ascii_face(FoamTokenizer& tok, std::vector<Index>& values, const ListStart& start,
+                     std::size_t i, const std::string& what)
+{
+    std::int64_t k;
+    if (!tok.read_label(k))
+        throw_short_list(tok, start, i, what, "a face 'n(v0 v1 ...)'");
+    const std::size_t line = tok.line();
+    if (k < 0)
+        throw tok.error_at(line, "face " + size_text(i) + " of '" + what +
+                                     "' has negative size " + std::to_string(k));
+    if (static_cast<std::size_t>(k) > remaining(tok) / min_chars_label + 1)
+        throw tok.error_at(line, "face " + size_text(i) + " of '" + what + "' declares " +
+                                     std::to_string(k) +
+                                     " vertices, more than the rest of the file can hold");
+    tok.skip_whitespace_and_comments();
+    const bool uniform = tok.offset() < tok.buffer().size() && tok.buffer()[tok.offset()] == '{';
+    tok.expect(uniform ? '{' : '(');
+    const std::size_t n = uniform ? 1 : static_cast<std::size_t>(k);
+    const std::size_t base = values.size();
+    for (std::size_t j = 0; j < n; ++j)
+    {
+        std::int64_t v;
+        if (!tok.read_label(v))
+        {
+            const FoamToken& t = tok.peek();
+            throw tok.error_at(t.line, "face " + size_text(i) + " of '" + what + "' of size " +
+                                           std::to_string(k) + ": expected a vertex label but found " +
+                                           t.describe());
+        }
+        values.push_back(to_index(v, tok, what));
+    }
+    if (uniform)
+        values.insert(values.end(), static_cast<std::size_t>(k) - 1, values[base]);
+    tok.skip_whitespace_and_comments();
+    const char close = uniform ? '}' : ')';
+    if (tok.offset() < tok.buffer().size() && tok.buffer()[tok.offset()] == close)
+    {
+        tok.expect(close);
+        return;
+    }
+    const FoamToken& t = tok.peek();
+    throw tok.error_at(t.line, "face " + size_text(i) + " of '" + what + "' has more than " +
+                                   std::to_string(k) + " vertices (found " + t.describe() + ")");
+}
+
+// Binary faceList: each face its own binary label block.
+void read_binary_face(FoamTokenizer& tok, const FoamHeader& header, std::vector<Index>& values,
+                      std::size_t i, const std::string& what)
+{
+    ListReadOptions face_options;
+    face_options.what = what + "[" + size_text(i) + "]";
+    face_options.max_uniform_size = 1u << 20;
+    const ListStart start = read_list_start(tok, header, face_options, min_chars_label,
+                                            static_cast<std::size_t>(header.label_bytes));
+    if (start.open == 0)
+        return;
+    const std::size_t n = start.open == '{' ? 1 : start.size;
+    const std::size_t data_offset = tok.offset();
+    const std::string_view raw = tok.read_raw(n * static_cast<std::size_t>(header.label_bytes));
+    const std::size_t base = values.size();
+    values.resize(base + n);
+    decode_labels(raw, header.label_bytes, values.data() + base, n, tok, start, data_offset,
+                  face_options.what);
+    expect_binary_close(tok, start, face_options.what, data_offset,
+                        start.open == '{' ? '}' : ')');
+    if (start.open == '{')
+        values.insert(values.end(), start.size - 1, values[base]);
+}
+
+// Parallel path for an ASCII faceList body: one `(` per face, no nesting deeper than 1.
+bool parse_faces_parallel(FoamTokenizer& tok, const ListStart& start, CompactList& faces,
+                          const ListReadOptions& options)
+{
+    const std::string_view buf = tok.buffer();
+    const std::size_t body_begin = tok.offset();
+    const std::size_t body_end = find_list_end(buf, body_begin, 1);
+    if (body_end == std::string_view::npos)
+        return false;
+    const std::string_view body = buf.substr(body_begin, body_end - body_begin);
+    if (!can_parallelize(body, options) || body.find('{') != std::string_view::npos)
+        return false;
+    // Split at newlines that are outside a face: a face longer than 10 vertices spans lines,
+    // so a chunk boundary must be where the bracket depth is 0. Compute depth at each
+    // candidate boundary from the counts of '(' and ')' before it (all faces are one level).
+    std::vector<Chunk> raw_chunks = split_lines(buf, body_begin, body_end, tok.line(), chunk_count());
+    std::vector<std::ptrdiff_t> depth_delta(raw_chunks.size());
+    std::vector<std::size_t> face_counts(raw_chunks.size());
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(raw_chunks.size()); ++k)
+    {
+        const std::size_t open = count_char(buf, raw_chunks[k], '(');
+        const std::size_t close = count_char(buf, raw_chunks[k], ')');
+        depth_delta[k] = static_cast<std::ptrdiff_t>(open) - static_cast<std::ptrdiff_t>(close);
+        face_counts[k] = open;
+    }
+    // Merge chunks whose start is inside a face into their predecessor.
+    std::vector<Chunk> chunks;
+    std::ptrdiff_t depth = 0;
+    for (std::size_t k = 0; k < raw_chunks.size(); ++k)
+    {
+        if (depth == 0 || chunks.empty())
+        {
+            chunks.push_back(raw_chunks[k]);
+            chunks.back().count = face_counts[k];
+        }
+        else
+        {
+            chunks.back().end = raw_chunks[k].end;
+            chunks.back().count += face_counts[k];
+        }
+        depth += depth_delta[k];
+        if (depth < 0 || depth > 1)
+            return false;
+    }
+    std::size_t total = 0;
+    for (Chunk& c : chunks)
+    {
+        c.first = total;
+        total += c.count;
+    }
+    if (total != start.size)
+        return false;
+    // Pass 1: face sizes only (the number before each '('), to place every chunk's
+    // vertices without a second buffer. Any surprise sends us to the serial parser, which
+    // produces the precise error message.
+    faces.offsets.assign(start.size + 1, 0);
+    std::vector<char> chunk_ok(chunks.size(), 1);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
+    {
+        const Chunk& c = chunks[k];
+        const char* p = buf.data() + c.begin;
+        const char* const e = buf.data() + c.end;
+        for (std::size_t i = 0; i < c.count; ++i)
+        {
+            while (p < e && (*p == ' ' || *p == '\n' || *p == '\t' || *p == '\r'))
+                ++p;
+            std::int64_t n = 0;
+            const std::from_chars_result r = std::from_chars(p, e, n);
+            const char* q = r.ptr;
+            while (q < e && (*q == ' ' || *q == '\n' || *q == '\t' || *q == '\r'))
+                ++q;
+            if (r.ec != std::errc() || q >= e || *q != '(' || n < 0 ||
+                n > std::numeric_limits<Index>::max())
+            {
+                chunk_ok[k] = 0;
+                break;
+            }
+            const void* close = std::memchr(q, ')', static_cast<std::size_t>(e - q));
+            if (close == nullptr)
+            {
+                chunk_ok[k] = 0;
+                break;
+            }
+            faces.offsets[c.first + i + 1] = static_cast<Index>(n);
+            p = static_cast<const char*>(close) + 1;
+        }
+    }
+    if (std::find(chunk_ok.begin(), chunk_ok.end(), 0) != chunk_ok.end())
+        return false;
+    std::size_t flat = 0;
+    for (std::size_t i = 0; i < start.size; ++i)
+    {
+        flat += static_cast<std::size_t>(faces.offsets[i + 1]);
+        if (flat > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
+            throw tok.error_at(start.line, "list '" + options.what +
+                                               "' has more vertex labels than a label can count");
+        faces.offsets[i + 1] = static_cast<Index>(flat);
+    }
+    faces.values.resize(flat);
+    // Pass 2: the labels, validated, straight into place.
+    for_each_chunk(chunks.size(), [&](std::size_t k) {
+        const Chunk& c = chunks[k];
+        FoamTokenizer local(buf.substr(c.begin, c.end - c.begin), tok.path(), c.line);
+        std::vector<Index> scratch;
+        for (std::size_t i = 0; i < c.count; ++i)
+        {
+            scratch.clear();
+            read_ascii_face(local, scratch, start, c.first + i, options.what);
+            // Pass 1 counted the declared sizes and read_ascii_face checks them.
+            std::copy(scratch.begin(), scratch.end(),
+                      faces.values.begin() + faces.offsets[c.first + i]);
+        }
+        if (!local.at_end())
+            throw local.error("unexpected " + local.peek().describe() + " in list '" +
+                              options.what + "'");
+    });
+    tok.read_raw(body_end - body_begin);
+    expect_close(tok, start, options.what, "face");
+    return true;
+}
+
+CompactList read_face_list_plain(FoamTokenizer& tok, const FoamHeader& header,
+                                 const ListReadOptions& options)
+{
+    const ListStart start = read_list_start(tok, header, options, min_chars_face, 0);
+    CompactList faces;
+    if (start.open == '{')
+    {
+        std::vector<Index> one;
+        if (header.is_binary())
+            read_binary_face(tok, header, one, 0, options.what);
+        else
+            read_ascii_face(tok, one, start, 0, options.what);
+        expect_close(tok, start, options.what, "face");
+        faces.offsets.reserve(start.size + 1);
+        faces.values.reserve(start.size * one.size());
+        for (std::size_t i = 0; i < start.size; ++i)
+            faces.push_back(std::span<const Index>(one));
+        return faces;
+    }
+    if (start.has_size && !header.is_binary() &&
+        parse_faces_parallel(tok, start, faces, options))
+        return faces;
+    if (start.has_size)
+    {
+        faces.offsets.reserve(start.size + 1);
+        faces.values.reserve(start.size * 4);
+    }
+    for (std::size_t i = 0; !start.has_size || i < start.size; ++i)
+    {
+        if (!start.has_size)
+        {
+            tok.skip_whitespace_and_comments();
+            if (tok.offset() < tok.buffer().size() && tok.buffer()[tok.offset()] == ')')
+                break;
+        }
+        if (header.is_binary())
+            read_binary_face(tok, header, faces.values, i, options.what);
+        else
+            read_ascii_face(tok, faces.values, start, i, options.what);
+        if (faces.values.size() > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
+            throw tok.error_at(start.line, "list '" + options.what +
+                                               "' has more vertex labels than a label can count");
+        faces.offsets.push_back(static_cast<Index>(faces.values.size()));
+    }
+    expect_close(tok, start, options.what, "face");
+    if (options.expected_size && static_cast<std::size_t>(faces.size()) != *options.expected_size)
+        throw tok.error_at(start.line, "list '" + options.what + "' has " +
+                                           size_text(faces.size()) + " faces, expected " +
+                                           size_text(*options.expected_size));
+    return faces;
+}
+
+// ---------------------------------------------------------------------------------------
+// Writing
+
+void append_label_text(std::string& out, std::int64_t v)
+{
+    char buf[24];
+    const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v);
+    out.append(buf, r.ptr);
+}
+
+template <class Int> void append_raw_labels(std::string& out, const std::vector<Index>& values)
+{
+    if constexpr (sizeof(Int) == sizeof(Index))
+    {
+        out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(Index));
+    }
+    else
+    {
+        const std::size_t base = out.size();
+        out.resize(base + values.size() * sizeof(Int));
+        for (std::size_t i = 0; i < values.size(); ++i)
+        {
+            const Int v = static_cast<Int>(values[i]);
+            std::memcpy(out.data() + base + i * sizeof(Int), &v, sizeof(Int));
+        }
+    }
+}
+
+void append_binary_labels(std::string& out, const std::vector<Index>& values, int label_bytes)
+{
+    // OpenFOAM: nl << size << nl, then `(` raw `)` unless empty.
+    out += '\n';
+    append_label_text(out, static_cast<std::int64_t>(values.size()));
+    out += '\n';
+    if (values.empty())
+        return;
+    out += '(';
+    if (label_bytes == 8)
+        append_raw_labels<std::int64_t>(out, values);
+    else
+        append_raw_labels<std::int32_t>(out, values);
+    out += ')';
+}
+
+// OpenFOAM's ASCII List layout for contiguous elements (List::writeList, shortListLen 10).
+template <class Elem, class AppendOne>
+void append_ascii_list(std::string& out, std::size_t n, Elem elem, AppendOne append_one,
+                       bool allow_uniform)
+{
+    bool uniform = allow_uniform && n > 1;
+    for (std::size_t i = 1; uniform && i < n; ++i)
+        uniform = elem(i) == elem(0);
+    if (uniform)
+    {
+        append_label_text(out, static_cast<std::int64_t>(n));
+        out += '{';
+        append_one(out, 0);
+        out += '}';
+        return;
+    }
+    if (n <= 10)
+    {
+        append_label_text(out, static_cast<std::int64_t>(n));
+        out += '(';
+        for (std::size_t i = 0; i < n; ++i)
+        {
+            if (i > 0)
+                out += ' ';
+            append_one(out, i);
+        }
+        out += ')';
+        return;
+    }
+    out += '\n';
+    append_label_text(out, static_cast<std::int64_t>(n));
+    out += "\n(\n";
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        append_one(out, i);
+        out += '\n';
+    }
+    out += ")\n";
+}
+
+} // namespace
+
+ElementLocation locate_list_element(FoamTokenizer& tok, const FoamHeader& header,
+                                    ListKind kind, std::size_t index)
+{
+    try
+    {
+        ListReadOptions options;
+        options.what = "list";
+        options.parallel = false;
+        if (kind == ListKind::face_compact_value)
+        {
+            read_label_list(tok, header, options); // offsets
+            kind = ListKind::label;
+        }
+        std::size_t element_bytes = 0;
+        if (header.is_binary())
+            element_bytes = kind == ListKind::label    ? header.label_bytes
+                            : kind == ListKind::scalar ? header.scalar_bytes
+                            : kind == ListKind::vector ? 3 * header.scalar_bytes
+                                                       : 0;
+        const ListStart start = read_list_start(tok, header, options,
+                                                kind == ListKind::vector ? min_chars_vector
+                                                : kind == ListKind::face ? min_chars_face
+                                                                         : min_chars_label,
+                                                element_bytes);
+        if (start.open != '(' || (start.has_size && index >= start.size))
+            return {};
+        if (element_bytes > 0)
+            return {start.line, tok.offset() + index * element_bytes};
+        std::vector<Index> scratch;
+        for (std::size_t i = 0; i < index; ++i)
+        {
+            std::int64_t l;
+            double d;
+            double v[3];
+            switch (kind)
+            {
+            case ListKind::label:
+                if (!tok.read_label(l))
+                    return {};
+                break;
+            case ListKind::scalar:
+                if (!tok.read_scalar(d))
+                    return {};
+                break;
+            case ListKind::vector:
+                tok.read_vector(v);
+                break;
+            case ListKind::face:
+            case ListKind::face_compact_value:
+                scratch.clear();
+                if (header.is_binary())
+                    read_binary_face(tok, header, scratch, i, options.what);
+                else
+                    read_ascii_face(tok, scratch, start, i, options.what);
+                break;
+            }
+        }
+        tok.skip_whitespace_and_comments();
+        return {tok.line(), tok.offset()};
+    }
+    catch (const Error&)
+    {
+        return {};
+    }
+}
+
+void expect_end_of_file(FoamTokenizer& tok, const std::string& what)
+{
+    if (!tok.at_end())
+    {
+        const FoamToken& t = tok.peek();
+        throw tok.error_at(t.line, "unexpected " + t.describe() + " after the " + what +
+                                       " list (expected end of file)");
+    }
+}
+
+std::vector<Index> read_label_list(FoamTokenizer& tok, const FoamHeader& header,
+                                   const ListReadOptions& options)
+{
+    return read_number_list<Index>(tok, header, options, header.label_bytes, read_ascii_label,
+                                   "label", decode_label_adapter);
+}
+
+std::vector<double> read_scalar_list(FoamTokenizer& tok, const FoamHeader& header,
+                                     const ListReadOptions& options)
+{
+    return read_number_list<double>(tok, header, options, header.scalar_bytes, read_ascii_scalar,
+                                    "scalar", decode_scalar_adapter);
+}
+
+Points read_vector_list(FoamTokenizer& tok, const FoamHeader& header,
+                        const ListReadOptions& options)
+{
+    const std::size_t vector_bytes = 3 * static_cast<std::size_t>(header.scalar_bytes);
+    const ListStart start = read_list_start(tok, header, options, min_chars_vector,
+                                            header.is_binary() ? vector_bytes : 0);
+    Points points;
+    if (start.open == 0)
+        return points;
+    if (header.is_binary())
+    {
+        const std::size_t n = start.open == '{' ? 1 : start.size;
+        const std::size_t data_offset = tok.offset();
+        if (n > remaining(tok) / vector_bytes)
+            throw binary_error(tok, start.line, data_offset, options.what, "truncated data");
+        const std::string_view raw = tok.read_raw(n * vector_bytes);
+        points.resize(static_cast<Eigen::Index>(n), 3);
+        decode_scalars(raw, header.scalar_bytes, points.data(), 3 * n);
+        expect_binary_close(tok, start, options.what, data_offset, start.open == '{' ? '}' : ')');
+        if (start.open == '{')
+        {
+            const Eigen::RowVector3d v = points.row(0);
+            points.resize(static_cast<Eigen::Index>(start.size), 3);
+            points.rowwise() = v;
+        }
+        return points;
+    }
+    if (start.open == '{')
+    {
+        double v[3];
+        read_ascii_vector(tok, v, start, 0, options.what);
+        expect_close(tok, start, options.what, "vector");
+        points.resize(static_cast<Eigen::Index>(start.size), 3);
+        points.rowwise() = Eigen::RowVector3d(v[0], v[1], v[2]);
+        return points;
+    }
+    if (start.has_size)
+    {
+        points.resize(static_cast<Eigen::Index>(start.size), 3);
+        double* const data = points.data();
+        bool done = false;
+        {
+            // Parallel path: one '(' per vector.
+            const std::string_view buf = tok.buffer();
+            const std::size_t body_begin = tok.offset();
+            const std::size_t body_end = find_list_end(buf, body_begin, 1);
+            if (body_end != std::string_view::npos &&
+                can_parallelize(buf.substr(body_begin, body_end - body_begin), options))
+            {
+                std::vector<Chunk> chunks =
+                    split_lines(buf, body_begin, body_end, tok.line(), chunk_count());
+#pragma omp parallel for schedule(static)
+                for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
+                    chunks[k].count = count_char(buf, chunks[k], '(');
+                std::size_t total = 0;
+                for (Chunk& c : chunks)
+                {
+                    c.first = total;
+                    total += c.count;
+                }
+                if (total == start.size)
+                {
+                    for_each_chunk(chunks.size(), [&](std::size_t k) {
+                        const Chunk& c = chunks[k];
+                        FoamTokenizer local(buf.substr(c.begin, c.end - c.begin), tok.path(),
+                                            c.line);
+                        for (std::size_t i = 0; i < c.count; ++i)
+                            read_ascii_vector(local, data + 3 * (c.first + i), start, c.first + i,
+                                              options.what);
+                        if (!local.at_end())
+                            throw local.error("unexpected " + local.peek().describe() +
+                                              " in list '" + options.what + "'");
+                    });
+                    tok.read_raw(body_end - body_begin);
+                    done = true;
+                }
+            }
+        }
+        if (!done)
+            for (std::size_t i = 0; i < start.size; ++i)
+                read_ascii_vector(tok, data + 3 * i, start, i, options.what);
+        expect_close(tok, start, options.what, "vector");
+        return points;
+    }
+    std::vector<double> flat;
+    for (;;)
+    {
+        tok.skip_whitespace_and_comments();
+        if (tok.offset() < tok.buffer().size() && tok.buffer()[tok.offset()] == ')')
+            break;
+        double v[3];
+        read_ascii_vector(tok, v, start, flat.size() / 3, options.what);
+        flat.insert(flat.end(), v, v + 3);
+    }
+    tok.expect(')');
+    const std::size_t n = flat.size() / 3;
+    if (options.expected_size && n != *options.expected_size)
+        throw tok.error_at(start.line, "list '" + options.what + "' has " + size_text(n) +
+                                           " elements, expected " +
+                                           size_text(*options.expected_size));
+    points = Eigen::Map<const Points>(flat.data(), static_cast<Eigen::Index>(n), 3);
+    return points;
+}
+
+CompactList read_face_list(FoamTokenizer& tok, const FoamHeader& header, bool compact,
+                           const ListReadOptions& options)
+{
+    if (!compact)
+        return read_face_list_plain(tok, header, options);
+
+    // faceCompactList: offsets (nFaces + 1) then flat labels.
+    ListReadOptions offsets_options = options;
+    offsets_options.what = options.what + " offsets";
+    if (options.expected_size)
+        offsets_options.expected_size = *options.expected_size + 1;
+    tok.skip_whitespace_and_comments();
+    const std::size_t offsets_line = tok.line();
+    const std::size_t offsets_offset = tok.offset();
+    CompactList faces;
+    faces.offsets = read_label_list(tok, header, offsets_options);
+    const auto offsets_error = [&](const std::string& msg) {
+        if (header.is_binary())
+            return binary_error(tok, offsets_line, offsets_offset, offsets_options.what, msg);
+        return tok.error_at(offsets_line, "list '" + offsets_options.what + "': " + msg);
+    };
+    if (faces.offsets.empty())
+        faces.offsets.push_back(0); // zero faces may be written as an empty offsets list
+    if (faces.offsets[0] != 0)
+        throw offsets_error("first offset is " + std::to_string(faces.offsets[0]) +
+                            ", expected 0");
+    for (std::size_t i = 1; i < faces.offsets.size(); ++i)
+        if (faces.offsets[i] < faces.offsets[i - 1])
+            throw offsets_error("offsets decrease at face " + size_text(i - 1) + " (" +
+                                std::to_string(faces.offsets[i - 1]) + " then " +
+                                std::to_string(faces.offsets[i]) + ")");
+    ListReadOptions flat_options = options;
+    flat_options.what = options.what + " vertex labels";
+    flat_options.expected_size = static_cast<std::size_t>(faces.offsets.back());
+    faces.values = read_label_list(tok, header, flat_options);
+    return faces;
+}
+
+void append_scalar(std::string& out, double value, int digits)
+{
+    char buf[40];
+    const std::to_chars_result r =
+        std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, digits);
+    out.append(buf, r.ptr);
+}
+
+void append_label_list(std::string& out, const std::vector<Index>& values, FoamFormat format,
+                       int label_bytes, bool allow_uniform)
+{
+    if (format == FoamFormat::binary)
+    {
+        append_binary_labels(out, values, label_bytes);
+        return;
+    }
+    append_ascii_list(
+        out, values.size(), [&](std::size_t i) { return values[i]; },
+        [&](std::string& o, std::size_t i) { append_label_text(o, values[i]); }, allow_uniform);
+}
+
+void append_vector_list(std::string& out, const Points& values, FoamFormat format, int digits)
+{
+    const std::size_t n = static_cast<std::size_t>(values.rows());
+    if (format == FoamFormat::binary)
+    {
+        out += '\n';
+        append_label_text(out, static_cast<std::int64_t>(n));
+        out += '\n';
+        if (n == 0)
+            return;
+        out += '(';
+        out.append(reinterpret_cast<const char*>(values.data()), n * 3 * sizeof(double));
+        out += ')';
+        return;
+    }
+    out.reserve(out.size() + n * (3 * (digits + 7) + 3) + 32);
+    append_ascii_list(
+        out, n,
+        [&](std::size_t i) {
+            return std::array<double, 3>{values(static_cast<Eigen::Index>(i), 0),
+                                         values(static_cast<Eigen::Index>(i), 1),
+                                         values(static_cast<Eigen::Index>(i), 2)};
+        },
+        [&](std::string& o, std::size_t i) {
+            const Eigen::Index r = static_cast<Eigen::Index>(i);
+            o += '(';
+            append_scalar(o, values(r, 0), digits);
+            o += ' ';
+            append_scalar(o, values(r, 1), digits);
+            o += ' ';
+            append_scalar(o, values(r, 2), digits);
+            o += ')';
+        },
+        true);
+}
+
+void append_face_list(std::string& out, const CompactList& faces, FoamFormat format,
+                      int label_bytes)
+{
+    if (format == FoamFormat::binary)
+    {
+        append_binary_labels(out, faces.offsets, label_bytes);
+        append_binary_labels(out, faces.values, label_bytes);
+        return;
+    }
+    // faceList is not contiguous: multi-line unless it has at most one face.
+    const Index n = faces.size();
+    const auto append_face = [&](std::string& o, Index f) {
+        const std::span<const Index> face = faces[f];
+        append_ascii_list(
+            o, face.size(), [&](std::size_t i) { return face[i]; },
+            [&](std::string& s, std::size_t i) { append_label_text(s, face[i]); }, true);
+    };
+    if (n <= 1)
+    {
+        append_label_text(out, n);
+        out += '(';
+        if (n == 1)
+            append_face(out, 0);
+        out += ')';
+        return;
+    }
+    out.reserve(out.size() + faces.values.size() * 8 + static_cast<std::size_t>(n) * 4);
+    out += '\n';
+    append_label_text(out, n);
+    out += "\n(\n";
+    for (Index f = 0; f < n; ++f)
+    {
+        append_face(out, f);
+        out += '\n';
+    }
+    out += ")\n";
+}
+
+} // namespace meshmorph::io

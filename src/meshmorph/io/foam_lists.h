@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Fast readers and writers for the big lists of polyMesh files: labels, scalars,
+//! vectors and faces, ASCII or binary (docs/polymesh-format.md §4, §5.2).
+//!
+//! Readers start at the tokenizer's position (after the FoamFile header, or after a
+//! `List<T>` word) and consume exactly one list. ASCII forms: `N(…)` on one or many lines,
+//! `N{v}`, unsized `(…)`, `0()`. Binary forms: `N` `(` raw bytes `)`, and `0` alone.
+//! Binary sizes follow the header's arch (label 32/64, scalar 32/64; converted to Index
+//! and double). Every declared count is checked against the bytes left in the buffer
+//! before anything is allocated, so hostile input cannot cause huge allocations.
+//!
+//! Errors are ParseError: ASCII ones carry the file and line; binary ones the line where
+//! the block starts plus "byte offset B" inside the file.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/core/types.h"
+#include "meshmorph/io/foam_header.h"
+#include "meshmorph/io/foam_tokenizer.h"
+
+namespace meshmorph::io
+{
+
+//! Options for one list read.
+struct ListReadOptions
+{
+    //! Name used in messages ("owner", "faces", "internalField").
+    std::string what = "list";
+    //! When set, the list must have exactly this many elements.
+    std::optional<std::size_t> expected_size;
+    //! Largest N accepted for a uniform `N{v}` list when no expected_size is given. A
+    //! uniform list is a few bytes of text for any N, so N cannot be checked against the
+    //! remaining input; this bound keeps a hostile `1000000000000{0}` from allocating.
+    std::size_t max_uniform_size = std::size_t(1) << 24;
+    //! Parse ASCII lists with OpenMP threads (results are identical either way).
+    bool parallel = true;
+};
+
+//! \brief Read a label list (ASCII or, if `header.is_binary()`, binary with
+//! header.label_bytes). Values must fit in Index.
+//! \throw ParseError on malformed input, size mismatch, truncated data, labels out of range.
+std::vector<Index> read_label_list(FoamTokenizer& tokenizer, const FoamHeader& header,
+                                   const ListReadOptions& options = {});
+
+//! \brief Read a scalar list (binary: header.scalar_bytes, 4-byte floats are converted).
+std::vector<double> read_scalar_list(FoamTokenizer& tokenizer, const FoamHeader& header,
+                                     const ListReadOptions& options = {});
+
+//! \brief Read a vector list as n x 3 points (ASCII `(x y z)` elements; binary 3 scalars).
+Points read_vector_list(FoamTokenizer& tokenizer, const FoamHeader& header,
+                        const ListReadOptions& options = {});
+
+//! \brief Read a face list: `faceList` (ASCII `N ( k(v…) … )`, or binary with each face its
+//! own binary block) or `faceCompactList` (two label lists: nFaces+1 offsets starting at 0
+//! and non-decreasing, then offsets[nFaces] vertex labels), ASCII or binary, chosen by
+//! `compact`. Vertex labels are not range-checked here (the caller knows nPoints).
+//! \throw ParseError on malformed input, bad offsets or truncated data.
+CompactList read_face_list(FoamTokenizer& tokenizer, const FoamHeader& header, bool compact,
+                           const ListReadOptions& options = {});
+
+//! Element kinds for locate_list_element.
+enum class ListKind
+{
+    label,
+    scalar,
+    vector,
+    face,               //!< faceList element (face index)
+    face_compact_value, //!< faceCompactList: index into the flat vertex-label list
+};
+
+//! Where a list element is in its file, for messages about values found invalid after
+//! parsing.
+struct ElementLocation
+{
+    std::size_t line = 0;        //!< line of the element (ASCII) or of the block start (binary)
+    std::size_t byte_offset = 0; //!< byte offset of the element in the file
+};
+
+//! \brief Locate element `index` of the list starting at the tokenizer's position (reads
+//! serially up to it; meant for error paths only). Returns {0, 0} if the list cannot be
+//! walked that far.
+ElementLocation locate_list_element(FoamTokenizer& tokenizer, const FoamHeader& header,
+                                    ListKind kind, std::size_t index);
+
+//! \brief Check that only whitespace and comments follow a list body.
+//! \throw ParseError "unexpected ... after the list" naming file and line.
+void expect_end_of_file(FoamTokenizer& tokenizer, const std::string& what);
+
+//! \brief Append `value` to `out` in the shortest form that reads back to the same double
+//! when `digits` is 17 (round trip), or `%.<digits>g` otherwise, as OpenFOAM prints scalars.
+void append_scalar(std::string& out, double value, int digits = 17);
+
+//! \brief Append a label list body: binary `\nN\n(` raw `)` (`0` alone when empty) or, ASCII,
+//! OpenFOAM's layout (`N(a b)` for N <= 10 on one line, else `N\n(\na\nb\n)`; `N{v}` for
+//! uniform lists with N >= 2 when `allow_uniform`). No leading/trailing newline for ASCII.
+void append_label_list(std::string& out, const std::vector<Index>& values, FoamFormat format,
+                       int label_bytes = 4, bool allow_uniform = true);
+
+//! \brief Append a vector list body: ASCII `N\n(\n(x y z)\n…)` with `digits` significant
+//! digits (one line `N((x y z) …)` for N <= 10, like OpenFOAM), or binary raw doubles.
+void append_vector_list(std::string& out, const Points& values, FoamFormat format,
+                        int digits = 17);
+
+//! \brief Append a face list: ASCII `faceList` (`N\n(\nk(v…)\n…)`), or binary
+//! `faceCompactList` (offsets block then flat block).
+void append_face_list(std::string& out, const CompactList& faces, FoamFormat format,
+                      int label_bytes = 4);
+
+} // namespace meshmorph::io
