@@ -484,7 +484,9 @@ std::vector<CellShape> classify_cells(const PolyMesh& mesh, const CompactList& c
 {
     const Index n_cells = cell_faces.size();
     std::vector<CellShape> shapes(static_cast<std::size_t>(n_cells));
-#pragma omp parallel for schedule(static)
+    // Threads only pay off on large meshes (a parallel region costs ~10-100 us, more when
+    // the machine is oversubscribed).
+#pragma omp parallel for schedule(static) if (n_cells > 20000)
     for (Index c = 0; c < n_cells; ++c)
         shapes[c] = classify_one(mesh, cell_faces[c], c);
     return shapes;

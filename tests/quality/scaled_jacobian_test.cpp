@@ -1,0 +1,203 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "meshmorph/quality/scaled_jacobian.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "helpers.h"
+#include "meshmorph/core/exceptions.h"
+#include "shape_meshes.h"
+
+#if MESHMORPH_TEST_WITH_VTK
+#include <vtkHexahedron.h>
+#include <vtkMeshQuality.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkTetra.h>
+#endif
+
+using namespace meshmorph;
+
+namespace
+{
+
+// Block mesh with interior points jittered by up to `amount` of the cell size.
+PolyMesh jittered_block(int n, double amount, unsigned seed)
+{
+    PolyMesh mesh = test::make_box_mesh(n, n, n);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-amount / n, amount / n);
+    const std::vector<char> boundary = boundary_point_mask(mesh);
+    for (Index p = 0; p < mesh.n_points(); ++p)
+        if (!boundary[p])
+            mesh.points.row(p) += Eigen::RowVector3d(u(rng), u(rng), u(rng));
+    return mesh;
+}
+
+std::array<Vector3, 4> regular_tet(double a)
+{
+    // Vertices of a regular tetrahedron with edge a; (0, 1, 2) counter-clockwise from 3.
+    return {Vector3(0, 0, 0), Vector3(a, 0, 0), Vector3(a / 2, a * std::sqrt(3.0) / 2, 0),
+            Vector3(a / 2, a * std::sqrt(3.0) / 6, a * std::sqrt(2.0 / 3.0))};
+}
+
+} // namespace
+
+TEST(ScaledJacobian, boxes_are_one_at_any_scale_and_aspect)
+{
+    for (double scale : {1e-6, 1.0, 1e6})
+    {
+        const PolyMesh mesh =
+            test::make_box_mesh(3, 2, 5, Vector3(0, 0, 0), Vector3(3 * scale, 0.1 * scale, scale));
+        const Eigen::VectorXd sj = scaled_jacobian(mesh);
+        ASSERT_EQ(sj.size(), mesh.n_cells);
+        for (Index c = 0; c < mesh.n_cells; ++c)
+            EXPECT_NEAR(sj[c], 1.0, 1e-14) << "scale " << scale;
+    }
+}
+
+TEST(ScaledJacobian, mirrored_mesh_is_inverted)
+{
+    PolyMesh mesh = test::make_box_mesh(2, 2, 2);
+    mesh.points.col(2) *= -1.0; // topology unchanged, every cell turned inside out
+    const Eigen::VectorXd sj = scaled_jacobian(mesh);
+    for (Index c = 0; c < mesh.n_cells; ++c)
+        EXPECT_NEAR(sj[c], -1.0, 1e-14);
+}
+
+TEST(ScaledJacobian, regular_tet_is_one_and_scale_free)
+{
+    for (double a : {1e-5, 1.0, 1e5})
+        EXPECT_NEAR(tet_scaled_jacobian(regular_tet(a)), 1.0, 1e-14);
+    std::array<Vector3, 4> flipped = regular_tet(1.0);
+    std::swap(flipped[1], flipped[2]);
+    EXPECT_NEAR(tet_scaled_jacobian(flipped), -1.0, 1e-14);
+    // Flat tet: zero.
+    std::array<Vector3, 4> flat = regular_tet(1.0);
+    flat[3].z() = 0;
+    EXPECT_NEAR(tet_scaled_jacobian(flat), 0.0, 1e-15);
+}
+
+TEST(ScaledJacobian, kuhn_tets_prism_and_pyramid_values_derived_by_hand)
+{
+    // Kuhn tets of the unit cube, e.g. (0,0,0) (1,0,0) (1,1,0) (1,1,1): 6V = 1; the edge
+    // length products are sqrt(2) at the middle vertices and 1*sqrt(2)*sqrt(3) = sqrt(6) at
+    // the ends of the cube diagonal, so sqrt(2) * 1 / sqrt(6).
+    const Eigen::VectorXd tets = scaled_jacobian(test::make_tet_cube());
+    for (Index c = 0; c < tets.size(); ++c)
+        EXPECT_NEAR(tets[c], std::sqrt(2.0) / std::sqrt(6.0), 1e-14);
+
+    // Half-cube prisms: the 45 degree corners give sin 45 * 2/sqrt(3) = sqrt(2/3).
+    const Eigen::VectorXd prisms = scaled_jacobian(test::make_prism_cube());
+    for (Index c = 0; c < prisms.size(); ++c)
+        EXPECT_NEAR(prisms[c], std::sqrt(2.0 / 3.0), 1e-14);
+
+    // Cube-centre pyramids: base corner edges (1,0,0), (0,1,0), (1/2,1/2,1/2):
+    // det = 1/2, |apex edge| = sqrt(3)/2, so sqrt(2) / sqrt(3).
+    const Eigen::VectorXd pyramids = scaled_jacobian(test::make_pyramid_cube());
+    for (Index c = 0; c < pyramids.size(); ++c)
+        EXPECT_NEAR(pyramids[c], std::sqrt(2.0 / 3.0), 1e-14);
+}
+
+TEST(ScaledJacobian, ideal_prism_and_pyramid_are_one)
+{
+    const double h = std::sqrt(3.0) / 2;
+    // VTK wedge order: first triangle wound away from the second (clockwise seen from above).
+    const std::array<Vector3, 6> prism{Vector3(0, 0, 0), Vector3(0.5, h, 0), Vector3(1, 0, 0),
+                                       Vector3(0, 0, 1), Vector3(0.5, h, 1), Vector3(1, 0, 1)};
+    EXPECT_NEAR(prism_scaled_jacobian(prism), 1.0, 1e-14);
+    const std::array<Vector3, 5> pyramid{Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(1, 1, 0),
+                                         Vector3(0, 1, 0),
+                                         Vector3(0.5, 0.5, 1 / std::sqrt(2.0))};
+    EXPECT_NEAR(pyramid_scaled_jacobian(pyramid), 1.0, 1e-14);
+    std::array<Vector3, 5> inverted = pyramid;
+    inverted[4].z() *= -1;
+    EXPECT_NEAR(pyramid_scaled_jacobian(inverted), -1.0, 1e-14);
+}
+
+TEST(ScaledJacobian, undefined_for_wedges_and_polyhedra)
+{
+    const Eigen::VectorXd w = scaled_jacobian(test::make_wedge_on_hex());
+    EXPECT_NEAR(w[0], 1.0, 1e-14); // the hex below
+    EXPECT_TRUE(std::isnan(w[1]));
+    const Eigen::VectorXd p = scaled_jacobian(test::make_pentagon_cells());
+    EXPECT_TRUE(std::isnan(p[0]) && std::isnan(p[1]));
+    const PolyMesh mesh = test::make_box_mesh(1, 1, 1);
+    const CompactList cf = cell_faces(mesh);
+    EXPECT_THROW(scaled_jacobian(mesh, cf, {}), InvalidInput);
+}
+
+TEST(ScaledJacobian, jitter_lowers_quality_below_one)
+{
+    const Eigen::VectorXd sj = scaled_jacobian(jittered_block(4, 0.3, 7));
+    EXPECT_LT(sj.minCoeff(), 0.99);
+    EXPECT_GT(sj.minCoeff(), 0.0); // 30 % jitter keeps cells valid
+    EXPECT_LE(sj.maxCoeff(), 1.0 + 1e-14);
+}
+
+#if MESHMORPH_TEST_WITH_VTK
+TEST(ScaledJacobian, hexes_match_vtk_mesh_quality)
+{
+    // Heavy jitter (70 % of the cell size) also produces inverted and non-convex hexes.
+    for (double amount : {0.2, 0.7})
+    {
+        const PolyMesh mesh = jittered_block(5, amount, 11);
+        const CompactList cf = cell_faces(mesh);
+        const std::vector<CellShape> shapes = classify_cells(mesh, cf);
+        const Eigen::VectorXd sj = scaled_jacobian(mesh, cf, shapes);
+        int negative = 0;
+        for (Index c = 0; c < mesh.n_cells; ++c)
+        {
+            const VtkCell cell = vtk_cell(mesh, cf, c, shapes[c]);
+            ASSERT_EQ(cell.type, VtkCellType::hexahedron);
+            vtkNew<vtkHexahedron> hex;
+            for (int i = 0; i < 8; ++i)
+            {
+                hex->GetPointIds()->SetId(i, i);
+                hex->GetPoints()->SetPoint(i, mesh.points(cell.points[i], 0),
+                                           mesh.points(cell.points[i], 1),
+                                           mesh.points(cell.points[i], 2));
+            }
+            const double expected = vtkMeshQuality::HexScaledJacobian(hex);
+            // Same formula, different summation order of the centre axes: rounding only.
+            EXPECT_NEAR(sj[c], expected, 1e-13) << "cell " << c;
+            negative += sj[c] < 0;
+        }
+        if (amount > 0.5)
+        {
+            EXPECT_GT(negative, 0) << "the heavy-jitter case should contain inverted cells";
+        }
+    }
+}
+
+TEST(ScaledJacobian, tets_match_vtk_mesh_quality)
+{
+    PolyMesh mesh = test::make_tet_cube();
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-0.3, 0.3);
+    for (int trial = 0; trial < 20; ++trial)
+    {
+        for (Index p = 0; p < mesh.n_points(); ++p)
+            mesh.points.row(p) = test::cube_points().row(p) + Eigen::RowVector3d(u(rng), u(rng), u(rng));
+        const CompactList cf = cell_faces(mesh);
+        const std::vector<CellShape> shapes = classify_cells(mesh, cf);
+        const Eigen::VectorXd sj = scaled_jacobian(mesh, cf, shapes);
+        for (Index c = 0; c < mesh.n_cells; ++c)
+        {
+            const VtkCell cell = vtk_cell(mesh, cf, c, shapes[c]);
+            ASSERT_EQ(cell.type, VtkCellType::tetra);
+            vtkNew<vtkTetra> tet;
+            for (int i = 0; i < 4; ++i)
+            {
+                tet->GetPointIds()->SetId(i, i);
+                tet->GetPoints()->SetPoint(i, mesh.points(cell.points[i], 0),
+                                           mesh.points(cell.points[i], 1),
+                                           mesh.points(cell.points[i], 2));
+            }
+            EXPECT_NEAR(sj[c], vtkMeshQuality::TetScaledJacobian(tet), 1e-13) << "cell " << c;
+        }
+    }
+}
+#endif
