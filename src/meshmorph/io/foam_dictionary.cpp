@@ -397,15 +397,53 @@ struct detail_dictionary_access
         return nullptr;
     }
 
-    const FoamEntry& resolve(const FoamTokenizer& tok, const FoamToken& var)
+    // Expands inner `${x}` references in a variable name (`_${FOAM_EXECUTABLE}`) from
+    // single-token entries or the environment; nullopt when one is undefined.
+    std::optional<std::string> expand_inner(std::string name) const
+    {
+        for (std::size_t at = name.find("${"); at != std::string::npos; at = name.find("${"))
+        {
+            int depth = 0;
+            std::size_t close = at + 1;
+            for (; close < name.size(); ++close)
+            {
+                if (name[close] == '{')
+                    ++depth;
+                else if (name[close] == '}' && --depth == 0)
+                    break;
+            }
+            if (close >= name.size())
+                return std::nullopt;
+            const std::optional<std::string> inner = expand_inner(name.substr(at + 2, close - at - 2));
+            if (!inner)
+                return std::nullopt;
+            std::string value;
+            const FoamEntry* e = lookup(*inner);
+            if (e && !e->is_dict() && e->tokens_.size() == 1)
+                value = e->tokens_[0].text;
+            else if (const char* env = std::getenv(inner->c_str()))
+                value = env;
+            else
+                return std::nullopt;
+            name = name.substr(0, at) + value + name.substr(close + 1);
+        }
+        return name;
+    }
+
+    // The entry a `$name` / `${name}` token refers to, or nullptr when undefined.
+    const FoamEntry* try_resolve(const FoamTokenizer& tok, const FoamToken& var)
     {
         std::string name = var.text.substr(1);
         if (name.size() >= 2 && name.front() == '{' && name.back() == '}')
             name = name.substr(1, name.size() - 2);
         if (name.empty())
             throw tok.error_at(var.line, "empty variable name '" + var.text + "'");
+        const std::optional<std::string> expanded = expand_inner(name);
+        if (!expanded)
+            return nullptr;
+        name = *expanded;
         if (const FoamEntry* e = lookup(name))
-            return *e;
+            return e;
         // Like OpenFOAM, fall back to an environment variable of that name.
         if (const char* env = std::getenv(name.c_str()))
         {
@@ -423,10 +461,50 @@ struct detail_dictionary_access
                 e.tokens_.push_back(std::move(vt));
             }
             env_entries.push_back(std::move(e));
-            return env_entries.back();
+            return &env_entries.back();
         }
+        return nullptr;
+    }
+
+    const FoamEntry& resolve(const FoamTokenizer& tok, const FoamToken& var)
+    {
+        if (const FoamEntry* e = try_resolve(tok, var))
+            return *e;
         throw tok.error_at(var.line, "undefined variable '" + var.text +
                                          "' (no such entry in scope, nor environment variable)");
+    }
+
+    // A dictionary's entries as value tokens (how OpenFOAM expands `$dict` inside a list).
+    static void dict_tokens(const FoamDictionary& d, std::size_t line,
+                            std::vector<FoamValueToken>& out)
+    {
+        const auto punct = [&](char c) {
+            FoamValueToken t;
+            t.type = TokenType::punctuation;
+            t.punct = c;
+            t.text.assign(1, c);
+            t.line = line;
+            out.push_back(std::move(t));
+        };
+        for (const FoamEntry& e : d.entries_)
+        {
+            FoamValueToken k;
+            k.type = e.is_regex() ? TokenType::string : TokenType::word;
+            k.text = e.keyword_;
+            k.line = line;
+            out.push_back(std::move(k));
+            if (e.is_dict())
+            {
+                punct('{');
+                dict_tokens(*e.dict_, line, out);
+                punct('}');
+            }
+            else
+            {
+                out.insert(out.end(), e.tokens_.begin(), e.tokens_.end());
+                punct(';');
+            }
+        }
     }
 
     // ---- #include ---------------------------------------------------------------------
@@ -635,12 +713,19 @@ struct detail_dictionary_access
             if (key.is_word() && key.text.size() > 1 && key.text[0] == '$')
             {
                 // `$dict` at keyword position: merge a copy of that dictionary's entries.
-                const FoamEntry& src = resolve(tok, key);
-                if (!src.is_dict())
-                    throw tok.error_at(key.line, "'" + key.text +
-                                                     "' at keyword position must name a "
-                                                     "dictionary, but it is a value");
-                const FoamDictionary copy = src.dict();
+                // Like OpenFOAM, an undefined name or a value there is ignored (with a warning).
+                const FoamEntry* src = try_resolve(tok, key);
+                if (!src || !src->is_dict())
+                {
+                    log::warning() << tok.path() << ":" << key.line << ": '" << key.text
+                                   << "' at keyword position "
+                                   << (src ? "names a value, not a dictionary"
+                                           : "is undefined")
+                                   << "; ignored";
+                    tok.accept(';');
+                    continue;
+                }
+                const FoamDictionary copy = src->dict();
                 for (const FoamEntry& e : copy.entries_)
                 {
                     FoamEntry c = e;
@@ -765,13 +850,15 @@ struct detail_dictionary_access
                 else if (t.text.size() > 1 && t.text[0] == '$')
                 {
                     const FoamEntry& src = resolve(tok, t);
+                    if (src.is_dict() && (!e.tokens_.empty() || !tok.peek().is_punct(';')))
+                    {
+                        // Inside a list (`fields ( rho { $meanOnly; } )`): splice the entries.
+                        dict_tokens(src.dict(), t.line, e.tokens_);
+                        continue;
+                    }
                     if (src.is_dict())
                     {
                         // `key $dict;` copies the whole dictionary.
-                        if (!e.tokens_.empty() || !tok.peek().is_punct(';'))
-                            throw tok.error_at(t.line, "'" + t.text +
-                                                           "' names a dictionary and cannot be "
-                                                           "part of a value");
                         tok.next();
                         e.dict_ = std::make_unique<FoamDictionary>(src.dict());
                         rescope(*e.dict_, child_scope(e.scope_, e.keyword_));

@@ -320,18 +320,44 @@ void FoamTokenizer::scan_word(FoamToken& t)
     const char* q = p;
     if (*q == '$' && q + 1 < end && q[1] == '{')
     {
-        // ${var}: the braces belong to the word.
-        const char* close = static_cast<const char*>(
-            std::memchr(q, '}', static_cast<std::size_t>(end - q)));
-        if (!close)
+        // ${var}: the braces belong to the word, and may nest (`${_${FOAM_EXECUTABLE}}`).
+        int depth = 0;
+        for (++q; q < end; ++q)
+        {
+            if (*q == '{')
+                ++depth;
+            else if (*q == '}' && --depth == 0)
+                break;
+            else if (*q == '\n')
+                break;
+        }
+        if (q == end || *q != '}')
             throw error_at(line_, "unterminated '${' variable (no closing '}')");
-        q = close + 1;
+        ++q;
     }
     else
     {
-        // `List<vector>` and similar keep their angle brackets; everything up to a delimiter.
-        while (!is_delimiter(q, end))
-            ++q;
+        // As in OpenFOAM, a word may contain balanced parentheses, so `div(phi,U)` and
+        // `laplacian((1|A(U)),p)` are single words; `List<vector>` keeps its angle brackets.
+        int depth = 0;
+        for (; q < end; ++q)
+        {
+            const char c = *q;
+            if (is_space(c) || c == '"' || c == ';' || c == '{' || c == '}')
+                break;
+            if (c == '/' && q + 1 < end && (q[1] == '/' || q[1] == '*'))
+                break;
+            if (c == '(')
+                ++depth;
+            else if (c == ')')
+            {
+                if (depth == 0)
+                    break;
+                --depth;
+            }
+            else if (depth == 0 && (c == '[' || c == ']' || c == ','))
+                break;
+        }
     }
     t.type = TokenType::word;
     t.text.assign(p, q);

@@ -6,7 +6,9 @@
 //! never copies it. Tokens are punctuation `( ) { } [ ] ;` (and `,`), words (`patch`,
 //! `List<vector>`, `#include`, `$var`), strings (`"..."` with `\"` and `\\` escapes), labels
 //! (int64) and scalars (double). A count glued to a bracket (`4(1 2 3 4)`, `6{0}`) is two
-//! tokens. Comments `//` and `/* */` are skipped everywhere.
+//! tokens. As in OpenFOAM, a word may contain balanced parentheses once started
+//! (`div(phi,U)`, `laplacian((1|A(U)),p)`), so write a space between a word and a list.
+//! Comments `//` and `/* */` are skipped everywhere.
 //!
 //! Binary list blocks are read by byte count with read_raw() right after the `(` token has
 //! been consumed with expect('('). Never call peek() inside a binary block: it would scan
