@@ -9,9 +9,11 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
+#include "meshmorph/io/foam_dictionary.h"
 
 namespace meshmorph::app
 {
@@ -128,7 +130,178 @@ Eigen::Matrix3d slip_projector(const std::vector<Vector3>& normals, int& rank)
     return P;
 }
 
+//! Keywords a boundary entry of each type may have (besides `type`).
+std::vector<std::string> motion_keywords(MotionType type)
+{
+    switch (type)
+    {
+    case MotionType::translate:
+        return {"vector"};
+    case MotionType::rotate:
+        return {"origin", "axis", "angle"};
+    case MotionType::scale:
+        return {"origin", "factor"};
+    case MotionType::surface:
+        return {"file"};
+    default:
+        return {};
+    }
+}
+
+void check_keywords(const io::FoamDictionary& dict, const std::vector<std::string>& allowed,
+                    const std::string& what)
+{
+    for (const io::FoamEntry& e : dict.entries())
+        if (std::find(allowed.begin(), allowed.end(), e.keyword()) == allowed.end())
+        {
+            std::string list;
+            for (const std::string& a : allowed)
+                list += (list.empty() ? "" : " ") + a;
+            throw e.error("unknown keyword for " + what + " (valid: " + list + ")");
+        }
+}
+
+//! `box (x0 y0 z0) (x1 y1 z1);` or `box ((x0 y0 z0) (x1 y1 z1));`
+std::pair<Vector3, Vector3> read_box(const io::FoamEntry& e)
+{
+    const std::vector<io::FoamValueToken>& t = e.tokens();
+    if (t.size() == 10 && t[0].is_punct('(') && t[5].is_punct('('))
+        return {e.get<Vector3>(0), e.get<Vector3>(5)};
+    const std::vector<Vector3> corners = e.get<std::vector<Vector3>>();
+    if (corners.size() != 2)
+        throw e.error("expected two corners (x0 y0 z0) (x1 y1 z1)");
+    return {corners[0], corners[1]};
+}
+
 } // namespace
+
+MorphSetup read_morph_setup(const io::FoamDictionary& dict)
+{
+    MorphSetup setup;
+    setup.dict_path = dict.path();
+    check_keywords(dict, {"method", "rbf", "dmffd", "ffd", "boundary", "handles", "conflicts"},
+                   "morphDict");
+    if (const io::FoamEntry* e = dict.find("conflicts"))
+    {
+        try
+        {
+            setup.conflicts = conflict_rule_from_string(e->get<std::string>());
+        }
+        catch (const InvalidInput& err)
+        {
+            throw e->error(err.what());
+        }
+    }
+
+    if (dict.found("boundary"))
+    {
+        const io::FoamDictionary& boundary = dict.sub_dict("boundary");
+        for (const io::FoamEntry& e : boundary.entries())
+        {
+            if (!e.is_dict())
+                throw e.error("expected a sub-dictionary { type <fixed|translate|...>; ... }");
+            const io::FoamDictionary& d = e.dict();
+            BoundaryEntry entry;
+            entry.key = e.keyword();
+            entry.is_regex = e.is_regex();
+            entry.line = e.line();
+            const io::FoamEntry& type_entry = d.entry("type");
+            const std::string type = type_entry.get<std::string>();
+            if (type == "empty" || type == "wedge")
+                throw type_entry.error("type " + type +
+                                       " is implied by the patch type; remove the entry");
+            try
+            {
+                entry.motion.type = motion_type_from_string(type);
+            }
+            catch (const InvalidInput& err)
+            {
+                throw type_entry.error(err.what());
+            }
+            std::vector<std::string> allowed = motion_keywords(entry.motion.type);
+            allowed.push_back("type");
+            check_keywords(d, allowed, "type " + type);
+            Motion& m = entry.motion;
+            switch (m.type)
+            {
+            case MotionType::translate:
+                m.vector = d.get<Vector3>("vector");
+                break;
+            case MotionType::rotate:
+                m.origin = d.get<Vector3>("origin");
+                m.axis = d.get<Vector3>("axis");
+                m.angle_degrees = d.get<double>("angle");
+                if (m.axis.norm() == 0.0)
+                    throw d.entry("axis").error("rotation axis must not be zero");
+                break;
+            case MotionType::scale:
+            {
+                m.origin = d.get<Vector3>("origin");
+                const io::FoamEntry& f = d.entry("factor");
+                if (f.tokens().size() == 1)
+                    m.factor = Vector3::Constant(f.get<double>());
+                else
+                    m.factor = f.get<Vector3>();
+                break;
+            }
+            case MotionType::surface:
+                m.file = d.get<std::string>("file");
+                break;
+            default:
+                break;
+            }
+            if (!m.vector.allFinite() || !m.origin.allFinite() || !m.axis.allFinite() ||
+                !m.factor.allFinite() || !std::isfinite(m.angle_degrees))
+                throw e.error("non-finite value");
+            setup.boundary.push_back(std::move(entry));
+        }
+    }
+
+    if (dict.found("handles"))
+    {
+        const io::FoamDictionary& handles = dict.sub_dict("handles");
+        for (const io::FoamEntry& e : handles.entries())
+        {
+            if (!e.is_dict())
+                throw e.error("expected a sub-dictionary { pointZone <name> | box (x0 y0 z0) "
+                              "(x1 y1 z1) | points (...); displacement (dx dy dz); }");
+            const io::FoamDictionary& d = e.dict();
+            check_keywords(d, {"pointZone", "box", "points", "displacement"}, "a handle");
+            HandleEntry h;
+            h.name = e.keyword();
+            h.line = e.line();
+            h.displacement = d.get<Vector3>("displacement");
+            const int n_selections = int(d.found("pointZone")) + int(d.found("box")) +
+                                     int(d.found("points"));
+            if (n_selections != 1)
+                throw e.error("give exactly one of pointZone, box or points");
+            if (d.found("pointZone"))
+            {
+                h.selection = HandleEntry::Selection::point_zone;
+                h.zone = d.get<std::string>("pointZone");
+            }
+            else if (d.found("box"))
+            {
+                h.selection = HandleEntry::Selection::box;
+                std::tie(h.box_min, h.box_max) = read_box(d.entry("box"));
+                if ((h.box_min.array() > h.box_max.array()).any())
+                    throw d.entry("box").error("box min corner exceeds max corner");
+            }
+            else
+            {
+                h.selection = HandleEntry::Selection::points;
+                const std::vector<Vector3> pts = d.get<std::vector<Vector3>>("points");
+                if (pts.empty())
+                    throw d.entry("points").error("empty list");
+                h.points.resize(static_cast<Eigen::Index>(pts.size()), 3);
+                for (std::size_t i = 0; i < pts.size(); ++i)
+                    h.points.row(static_cast<Eigen::Index>(i)) = pts[i].transpose();
+            }
+            setup.handles.push_back(std::move(h));
+        }
+    }
+    return setup;
+}
 
 std::string to_string(MotionType type)
 {
@@ -480,8 +653,16 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
             break;
         default:
             for (Index p : pts)
+            {
+                // 2D: evaluate at the projection onto the reference empty plane, so both
+                // planes get the same prescription (a rotation about a tilted axis would
+                // otherwise differ between them).
+                Vector3 x = mesh.points.row(p).transpose();
+                if (out.empty_normal)
+                    x -= (out.empty_normal->dot(x) - out.empty_offset) * *out.empty_normal;
                 claims.push_back({p, static_cast<Index>(pi), order, Claim::Kind::value,
-                                  motion.displacement(mesh.points.row(p).transpose())});
+                                  motion.displacement(x)});
+            }
         }
     }
     for (const auto& [file, requests] : surface_requests)

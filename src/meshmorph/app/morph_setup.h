@@ -2,7 +2,7 @@
 //! \file morphDict boundary and handle prescriptions, turned into point constraints.
 //!
 //! The set-up is plain data (MorphSetup), filled from `system/morphDict` by
-//! read_morph_setup() (morph_dict.h) or directly by tests. build_constraints() resolves
+//! read_morph_setup() or directly by tests. build_constraints() resolves
 //! which prescription applies to each boundary patch, evaluates the prescribed
 //! displacement of every boundary and handle point, detects and resolves conflicts, and
 //! returns the constraint set that the deformation is fitted to.
@@ -32,6 +32,11 @@
 
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/core/types.h"
+
+namespace meshmorph::io
+{
+class FoamDictionary;
+}
 
 namespace meshmorph::app
 {
@@ -123,6 +128,12 @@ struct MorphSetup
     std::vector<HandleEntry> handles;
     ConflictRule conflicts = ConflictRule::fixed;
 };
+
+//! \brief Read `conflicts`, `boundary` and `handles` of a parsed morphDict.
+//! Every entry is checked: an unknown top-level keyword, an entry that is not a
+//! sub-dictionary, an unknown `type`, a missing or extra parameter keyword, a bad value, a
+//! handle with zero or several selections. \throw ParseError naming the file, line and entry.
+MorphSetup read_morph_setup(const io::FoamDictionary& dict);
 
 //! The prescription chosen for one patch, and why.
 struct PatchAssignment

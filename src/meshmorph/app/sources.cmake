@@ -3,7 +3,9 @@
 set(MESHMORPH_APP_SOURCES
     meshmorph/app/options.cpp
     meshmorph/app/banner.cpp
+    meshmorph/app/check_mesh_case.cpp
     meshmorph/app/morph_setup.cpp
+    meshmorph/app/morph_mesh.cpp
 )
 meshmorph_add_component(app
     SOURCES ${MESHMORPH_APP_SOURCES}

@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Tests of morph_points() (src/meshmorph/app/morph_mesh.*): exactness at constraints, fixed
+// points, slip planes, 2D cases.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "helpers.h"
+#include "meshmorph/app/morph_mesh.h"
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/deform/rbf_deformation.h"
+
+namespace meshmorph::app
+{
+namespace
+{
+
+BoundaryEntry make_entry(const std::string& key, MotionType type)
+{
+    BoundaryEntry e;
+    e.key = key;
+    e.motion.type = type;
+    return e;
+}
+
+TEST(MorphPoints, rbf_ends_exactly_at_prescriptions_and_fixed_points_stay)
+{
+    const PolyMesh mesh = test::make_box_mesh(6, 6, 6);
+    MorphSetup setup;
+    BoundaryEntry top = make_entry("zMax", MotionType::translate);
+    top.motion.vector = Vector3(0.02, 0.0, 0.1);
+    setup.boundary.push_back(top);
+    setup.conflicts = ConflictRule::last; // edges of zMax move with it
+    const Constraints c = build_constraints(mesh, setup);
+
+    RbfDeformation rbf;
+    const PointMorph m = morph_points(mesh, c, rbf);
+    EXPECT_EQ(m.n_constraints, static_cast<Index>(c.points.size()));
+    EXPECT_LE(m.relative_constraint_error, 1e-9);
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+    {
+        const Eigen::RowVector3d want = c.displacements.row(static_cast<Eigen::Index>(i));
+        const Eigen::RowVector3d got = m.displacement.row(c.points[i]);
+        EXPECT_LE((got - want).norm(), 1e-9 * 0.1) << "point " << c.points[i];
+        if (want.norm() == 0.0)
+            EXPECT_LE(got.norm(), 1e-10);
+    }
+}
+
+TEST(MorphPoints, rbf_with_linear_term_reproduces_an_affine_boundary_motion_inside)
+{
+    // Every patch scaled about one origin: the whole field is affine, and the RBF's linear
+    // polynomial must reproduce it at the interior points too (paper Eq. 6).
+    const PolyMesh mesh = test::make_box_mesh(5, 4, 6, Vector3(-1, 0, 2), Vector3(1, 3, 4));
+    MorphSetup setup;
+    BoundaryEntry all = make_entry("default", MotionType::scale);
+    all.motion.origin = Vector3(0.1, 0.2, 0.3);
+    all.motion.factor = Vector3(0.7, 0.8, 1.1);
+    setup.boundary.push_back(all);
+    const Constraints c = build_constraints(mesh, setup);
+    RbfDeformation rbf;
+    const PointMorph m = morph_points(mesh, c, rbf);
+    for (Index p = 0; p < mesh.n_points(); ++p)
+    {
+        const Vector3 want = all.motion.displacement(mesh.points.row(p).transpose());
+        EXPECT_LE((m.displacement.row(p).transpose() - want).norm(), 1e-9 * want.norm() + 1e-12)
+            << "point " << p;
+    }
+}
+
+TEST(MorphPoints, slip_points_stay_in_their_plane_and_keep_the_fitted_tangential_motion)
+{
+    const PolyMesh mesh = test::make_box_mesh(5, 5, 5);
+    MorphSetup setup;
+    // Rotate the top about the z axis; the bottom slides in z = 0, sides free.
+    BoundaryEntry top = make_entry("zMax", MotionType::rotate);
+    top.motion.origin = Vector3(0.5, 0.5, 0);
+    top.motion.axis = Vector3(0, 0, 1);
+    top.motion.angle_degrees = 10;
+    setup.boundary.push_back(top);
+    setup.boundary.push_back(make_entry("zMin", MotionType::slip));
+    setup.boundary.push_back(make_entry("default", MotionType::free));
+    BoundaryEntry hold = make_entry("xMin", MotionType::fixed); // something pins the bottom
+    setup.boundary.push_back(hold);
+    setup.conflicts = ConflictRule::first;
+    const Constraints c = build_constraints(mesh, setup);
+    ASSERT_FALSE(c.slip_points.empty());
+
+    RbfDeformation rbf;
+    const PointMorph m = morph_points(mesh, c, rbf);
+    EXPECT_LE(m.relative_constraint_error, 1e-9);
+    double max_tangential = 0.0;
+    for (Index p : c.slip_points)
+    {
+        EXPECT_LE(std::abs(m.displacement(p, 2)), 1e-12) << "slip point left z = 0";
+        max_tangential = std::max(max_tangential, m.displacement.row(p).norm());
+    }
+    EXPECT_GT(max_tangential, 1e-3) << "slip points must be free to slide";
+}
+
+TEST(MorphPoints, two_d_cases_stay_two_d)
+{
+    // A 2D case: one cell thick in z, empty front and back.
+    const PolyMesh mesh = test::make_block_mesh(
+        8, 8, 1, [](double u, double v, double w) { return Vector3(u, v, 0.05 * w - 0.02); },
+        {"patch", "patch", "patch", "patch", "empty", "empty"});
+    MorphSetup setup;
+    BoundaryEntry top = make_entry("yMax", MotionType::rotate);
+    top.motion.origin = Vector3(0.5, 1, 0);
+    top.motion.axis = Vector3(1, 1, 1); // not a 2D motion: its z part must be dropped
+    top.motion.angle_degrees = 3;
+    setup.boundary.push_back(top);
+    setup.conflicts = ConflictRule::last;
+    const Constraints c = build_constraints(mesh, setup);
+
+    RbfDeformation rbf;
+    const PointMorph m = morph_points(mesh, c, rbf);
+    EXPECT_LE(m.relative_constraint_error, 1e-9);
+    EXPECT_EQ(m.displacement.col(2).cwiseAbs().maxCoeff(), 0.0);
+    const Index layer = 9 * 9;
+    for (Index p = 0; p < layer; ++p)
+        EXPECT_EQ(m.displacement.row(p), m.displacement.row(p + layer))
+            << "front and back planes must move identically";
+    EXPECT_GT(m.displacement.cwiseAbs().maxCoeff(), 1e-3);
+}
+
+TEST(MorphPoints, zero_prescriptions_are_the_identity)
+{
+    const PolyMesh mesh = test::make_box_mesh(3, 4, 5);
+    const Constraints c = build_constraints(mesh, MorphSetup{});
+    RbfDeformation rbf;
+    const PointMorph m = morph_points(mesh, c, rbf);
+    EXPECT_LE(m.displacement.cwiseAbs().maxCoeff(), 1e-15);
+}
+
+TEST(MorphPoints, nothing_prescribed_is_an_error)
+{
+    const PolyMesh mesh = test::make_box_mesh(2, 2, 2);
+    MorphSetup setup;
+    setup.boundary.push_back(make_entry("default", MotionType::free));
+    const Constraints c = build_constraints(mesh, setup);
+    RbfDeformation rbf;
+    EXPECT_THROW(morph_points(mesh, c, rbf), InvalidInput);
+}
+
+} // namespace
+} // namespace meshmorph::app
