@@ -60,7 +60,7 @@ void FfdDeformation::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref
 {
     detail::check_evaluate_arguments(fitted_, points, out, "FFD");
     const Eigen::Index n = points.rows();
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (points.rows() > 2000)
     for (Eigen::Index i = 0; i < n; ++i)
     {
         Index idx[64];
@@ -79,7 +79,7 @@ void FfdDeformation::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref
 Eigen::MatrixXd FfdDeformation::basis_matrix(const Eigen::Ref<const Points>& points) const
 {
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(points.rows(), lattice_.size());
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (points.rows() > 2000)
     for (Eigen::Index i = 0; i < points.rows(); ++i)
     {
         Index idx[64];

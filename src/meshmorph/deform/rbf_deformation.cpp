@@ -286,7 +286,7 @@ void RbfDeformation::Impl::factor_dense()
     double* B = A.data() + p * m + p;
     if (setup.sign < 0)
     {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (r > 500)
         for (Eigen::Index j = 0; j < r; ++j)
             for (Eigen::Index i = j; i < r; ++i)
                 B[i + j * m] = -B[i + j * m];

@@ -203,7 +203,7 @@ Eigen::MatrixXd RbfModel::kernel_matrix(const Eigen::Ref<const Points>& x) const
     Eigen::MatrixXd K(k, m);
     const Eigen::VectorXd xs = x.col(0), ys = x.col(1), zs = x.col(2);
     with_kernel(kernel, [&](const auto& phi) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (k * m > 20000)
         for (Eigen::Index j = 0; j < m; ++j)
         {
             const double xj = cx[std::size_t(j)], yj = cy[std::size_t(j)],
@@ -230,7 +230,7 @@ void RbfModel::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Point
     const double support2 = kernel.support * kernel.support;
 
     with_kernel(kernel, [&](const auto& phi) {
-#pragma omp parallel for schedule(dynamic, 8)
+#pragma omp parallel for schedule(dynamic, 8) if (n * std::max<Eigen::Index>(num_centres, 64) > 50000)
         for (Eigen::Index b = 0; b < nblocks; ++b)
         {
             alignas(64) double px[point_block], py[point_block], pz[point_block];

@@ -1,0 +1,406 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Greedy RBF refinement with an incrementally extended Cholesky factor of the Lagrange
+// null-space system (see the header for the formulation).
+#include "meshmorph/deform/greedy_rbf_deformation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include <Eigen/LU>
+#include <Eigen/QR>
+
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
+#include "meshmorph/deform/lapack.h"
+#include "meshmorph/deform/rbf_evaluator.h"
+#include "meshmorph/deform/rbf_setup.h"
+
+namespace meshmorph
+{
+
+struct GreedyRbfDeformation::Impl
+{
+    GreedySettings settings;
+    detail::RbfKernelSetup setup;
+    detail::RbfModel model;
+    FitReport report;
+    bool fitted = false;
+    bool converged = false;
+    std::vector<Index> centre_indices;
+    std::vector<double> history;
+};
+
+namespace
+{
+
+//! The growing factorisation of the greedy fit (all in normalised coordinates).
+class IncrementalSystem
+{
+public:
+    IncrementalSystem(const detail::RbfModel& model, double sign, const Points& X,
+                      const Eigen::MatrixXd& Pall, std::vector<Eigen::Index> unisolvent)
+        : model_(model), sign_(sign), X_(X), P_(Pall), U_(std::move(unisolvent))
+    {
+        const Eigen::Index p = P_.cols();
+        PU_.resize(p, p);
+        AUU_.resize(p, p);
+        for (Eigen::Index a = 0; a < p; ++a)
+        {
+            PU_.row(a) = P_.row(U_[std::size_t(a)]);
+            for (Eigen::Index b = 0; b < p; ++b)
+                AUU_(a, b) = phi(U_[std::size_t(a)], U_[std::size_t(b)]);
+        }
+        if (p > 0)
+        {
+            luT_.compute(PU_.transpose());
+            lu_.compute(PU_);
+        }
+        Lam_.resize(p, 0);
+        AU_.resize(p, 0);
+    }
+
+    Eigen::Index size() const { return r_; }
+    const std::vector<Eigen::Index>& selected() const { return sel_; }
+    const std::vector<Eigen::Index>& unisolvent() const { return U_; }
+
+    //! Adds candidates in order; stops at the first one that would make the factor
+    //! indefinite (returned in rejected, or -1). Returns the number added.
+    Eigen::Index add(const std::vector<Eigen::Index>& cand, Eigen::Index& rejected)
+    {
+        rejected = -1;
+        const Eigen::Index b = Eigen::Index(cand.size());
+        const Eigen::Index p = P_.cols();
+        const Eigen::Index r0 = r_;
+        if (b == 0)
+            return 0;
+        Eigen::MatrixXd Lam_n(p, b), AU_n(p, b);
+        for (Eigen::Index j = 0; j < b; ++j)
+        {
+            if (p > 0)
+                Lam_n.col(j) = luT_.solve(P_.row(cand[std::size_t(j)]).transpose());
+            for (Eigen::Index a = 0; a < p; ++a)
+                AU_n(a, j) = phi(U_[std::size_t(a)], cand[std::size_t(j)]);
+        }
+        Eigen::MatrixXd Kon(r0, b), Knn(b, b);
+#pragma omp parallel for schedule(static) if ((r0 + b) * b > 20000)
+        for (Eigen::Index j = 0; j < b; ++j)
+        {
+            for (Eigen::Index i = 0; i < r0; ++i)
+                Kon(i, j) = phi(sel_[std::size_t(i)], cand[std::size_t(j)]);
+            for (Eigen::Index i = 0; i < b; ++i)
+                Knn(i, j) = phi(cand[std::size_t(i)], cand[std::size_t(j)]);
+        }
+        if (p > 0)
+        {
+            const Eigen::MatrixXd Lo = Lam_.leftCols(r0), Ao = AU_.leftCols(r0);
+            Kon -= Ao.transpose() * Lam_n + Lo.transpose() * AU_n;
+            Kon += Lo.transpose() * (AUU_ * Lam_n);
+            Knn -= AU_n.transpose() * Lam_n + Lam_n.transpose() * AU_n;
+            Knn += Lam_n.transpose() * (AUU_ * Lam_n);
+        }
+        Kon *= sign_;
+        Knn *= sign_;
+        reserve(r0 + b);
+        const int ld = detail::lapack_int(L_.rows());
+        if (r0 > 0)
+        {
+            const int m = detail::lapack_int(r0), n = detail::lapack_int(b);
+            const double one = 1.0;
+            dtrsm_("L", "L", "N", "N", &m, &n, &one, L_.data(), &ld, Kon.data(), &m);
+        }
+        Eigen::MatrixXd S = Knn;
+        if (r0 > 0)
+            S.noalias() -= Kon.transpose() * Kon;
+        const int n = detail::lapack_int(b);
+        int info = 0;
+        dpotrf_("L", &n, S.data(), &n, &info);
+        Eigen::Index keep = b;
+        if (info > 0)
+        {
+            keep = info - 1;
+            rejected = cand[std::size_t(keep)];
+        }
+        L_.block(r0, 0, keep, r0) = Kon.leftCols(keep).transpose();
+        L_.block(r0, r0, keep, keep) = S.topLeftCorner(keep, keep).triangularView<Eigen::Lower>();
+        Lam_.conservativeResize(p, r0 + keep);
+        AU_.conservativeResize(p, r0 + keep);
+        Lam_.rightCols(keep) = Lam_n.leftCols(keep);
+        AU_.rightCols(keep) = AU_n.leftCols(keep);
+        for (Eigen::Index j = 0; j < keep; ++j)
+            sel_.push_back(cand[std::size_t(j)]);
+        r_ = r0 + keep;
+        return keep;
+    }
+
+    //! Weights of [U; selected] (rows) and polynomial coefficients for displacements H.
+    void solve(const Eigen::MatrixXd& H, Eigen::MatrixXd& W, Eigen::MatrixXd& Q) const
+    {
+        const Eigen::Index p = P_.cols();
+        Eigen::MatrixXd HU(p, 3);
+        for (Eigen::Index a = 0; a < p; ++a)
+            HU.row(a) = H.row(U_[std::size_t(a)]);
+        Eigen::MatrixXd Y(r_, 3);
+        for (Eigen::Index i = 0; i < r_; ++i)
+            Y.row(i) = H.row(sel_[std::size_t(i)]);
+        if (p > 0)
+            Y -= Lam_.transpose() * HU;
+        Y *= sign_;
+        if (r_ > 0)
+        {
+            const int n = detail::lapack_int(r_), ld = detail::lapack_int(L_.rows()), nrhs = 3;
+            int info = 0;
+            dpotrs_("L", &n, &nrhs, L_.data(), &ld, Y.data(), &n, &info);
+            if (info != 0)
+                throw SolverError("greedy RBF: dpotrs failed");
+        }
+        W.resize(p + r_, 3);
+        W.bottomRows(r_) = Y;
+        if (p > 0)
+        {
+            W.topRows(p) = -Lam_ * Y;
+            Q = lu_.solve(HU - AUU_ * W.topRows(p) - AU_ * Y);
+        }
+        else
+        {
+            Q.resize(0, 3);
+        }
+    }
+
+    double condition_lower_bound() const
+    {
+        if (r_ == 0)
+            return 1.0;
+        const Eigen::VectorXd d = L_.diagonal().head(r_).cwiseAbs();
+        const double ratio = d.maxCoeff() / d.minCoeff();
+        return ratio * ratio;
+    }
+
+private:
+    double phi(Eigen::Index i, Eigen::Index j) const
+    {
+        return model_.kernel.value((X_.row(i) - X_.row(j)).squaredNorm());
+    }
+    void reserve(Eigen::Index n)
+    {
+        if (n <= L_.rows())
+            return;
+        const Eigen::Index cap = std::max<Eigen::Index>(n, 2 * L_.rows());
+        Eigen::MatrixXd L = Eigen::MatrixXd::Zero(cap, cap);
+        L.topLeftCorner(r_, r_) = L_.topLeftCorner(r_, r_);
+        L_.swap(L);
+    }
+
+    const detail::RbfModel& model_;
+    double sign_;
+    const Points& X_;
+    const Eigen::MatrixXd& P_;
+    std::vector<Eigen::Index> U_;
+    Eigen::MatrixXd PU_, AUU_, Lam_, AU_, L_;
+    Eigen::FullPivLU<Eigen::MatrixXd> luT_, lu_;
+    std::vector<Eigen::Index> sel_;
+    Eigen::Index r_ = 0;
+};
+
+} // namespace
+
+GreedyRbfDeformation::GreedyRbfDeformation(const GreedySettings& settings)
+    : impl_(std::make_unique<Impl>())
+{
+    impl_->settings = settings;
+    impl_->setup = detail::rbf_kernel_setup(settings.rbf);
+    if (!(settings.tolerance >= 0.0) || !(settings.rms_tolerance >= 0.0))
+        throw InvalidInput("greedy RBF tolerances must be >= 0");
+    if (settings.max_centres < 1 || settings.initial_centres < 0 || settings.batch_size < 0)
+        throw InvalidInput("greedy RBF: max_centres must be >= 1, initial_centres and "
+                           "batch_size >= 0");
+}
+
+GreedyRbfDeformation::~GreedyRbfDeformation() = default;
+GreedyRbfDeformation::GreedyRbfDeformation(GreedyRbfDeformation&&) noexcept = default;
+GreedyRbfDeformation& GreedyRbfDeformation::operator=(GreedyRbfDeformation&&) noexcept = default;
+
+void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
+                               const Eigen::Ref<const Points>& displacements)
+{
+    detail::check_fit_arguments(constraints, displacements);
+    Impl& d = *impl_;
+    const GreedySettings& s = d.settings;
+    d.fitted = false;
+    d.converged = false;
+    d.history.clear();
+    d.report = FitReport{};
+    d.report.method = "greedy-rbf";
+    d.report.solver = "incremental Lagrange null-space Cholesky (dtrsm + dpotrf)";
+    d.model = detail::RbfModel{};
+    d.model.kernel = d.setup.params;
+    const detail::Normalisation nrm = detail::normalisation_of(constraints);
+    d.model.centre = nrm.centre;
+    d.model.scale = nrm.scale;
+    d.model.kernel.eps = d.setup.params.eps * nrm.scale;
+    d.model.kernel.support = d.setup.params.support / nrm.scale;
+    const detail::MergedHandles merged = detail::merge_duplicates(
+        constraints, d.model.normalise(constraints), displacements, s.rbf.duplicate_tolerance);
+    const Points& X = merged.centres;
+    const Eigen::MatrixXd H = merged.displacements;
+    const Eigen::Index N = X.rows();
+    Points Xphys(N, 3);
+    for (Eigen::Index i = 0; i < N; ++i)
+        Xphys.row(i) = constraints.row(merged.first[std::size_t(i)]);
+
+    detail::choose_polynomial(d.model, d.setup.degree, X, s.rbf.polynomial_rank_tolerance);
+    const Eigen::MatrixXd Pall = d.model.polynomial_matrix(X);
+    const Eigen::Index p = Pall.cols();
+    std::vector<Eigen::Index> U;
+    if (p > 0)
+    {
+        // Column pivoting on P^T picks a well-spread unisolvent set (extreme points).
+        Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Pall.transpose());
+        for (Eigen::Index k = 0; k < p; ++k)
+            U.push_back(qr.colsPermutation().indices()[k]);
+    }
+    std::vector<char> is_centre(std::size_t(N), 0), rejected(std::size_t(N), 0);
+    for (Eigen::Index u : U)
+        is_centre[std::size_t(u)] = 1;
+
+    // Farthest-point sampling for the initial centres, seeded by U (or the largest
+    // displacement when there is no polynomial).
+    const Eigen::Index budget = std::max<Eigen::Index>(s.max_centres, p);
+    Eigen::Index n0 = s.initial_centres > 0 ? s.initial_centres
+                                            : std::max<Eigen::Index>(p, std::min<Eigen::Index>(20, N));
+    n0 = std::min({n0, N, budget});
+    std::vector<Eigen::Index> initial;
+    Eigen::VectorXd mind = Eigen::VectorXd::Constant(N, std::numeric_limits<double>::infinity());
+    const auto update = [&](Eigen::Index c) {
+        for (Eigen::Index i = 0; i < N; ++i)
+            mind[i] = std::min(mind[i], (X.row(i) - X.row(c)).squaredNorm());
+    };
+    for (Eigen::Index u : U)
+        update(u);
+    if (U.empty())
+    {
+        Eigen::Index first = 0;
+        H.rowwise().norm().maxCoeff(&first);
+        initial.push_back(first);
+        is_centre[std::size_t(first)] = 1;
+        update(first);
+    }
+    while (Eigen::Index(U.size() + initial.size()) < n0)
+    {
+        Eigen::Index best = -1;
+        for (Eigen::Index i = 0; i < N; ++i)
+            if (!is_centre[std::size_t(i)] && (best < 0 || mind[i] > mind[best]))
+                best = i;
+        if (best < 0)
+            break;
+        initial.push_back(best);
+        is_centre[std::size_t(best)] = 1;
+        update(best);
+    }
+
+    IncrementalSystem system(d.model, d.setup.sign, X, Pall, U);
+    const auto add = [&](const std::vector<Eigen::Index>& cand) {
+        std::vector<Eigen::Index> rest = cand;
+        while (!rest.empty())
+        {
+            Eigen::Index bad = -1;
+            const Eigen::Index kept = system.add(rest, bad);
+            for (Eigen::Index j = kept; j < Eigen::Index(rest.size()); ++j)
+                is_centre[std::size_t(rest[std::size_t(j)])] = 0;
+            if (bad < 0)
+                break;
+            rejected[std::size_t(bad)] = 1;
+            rest.erase(rest.begin(), rest.begin() + kept + 1);
+            for (Eigen::Index j : rest)
+                is_centre[std::size_t(j)] = 1;
+        }
+    };
+    add(initial);
+
+    const double max_disp = H.rows() > 0 ? H.rowwise().norm().maxCoeff() : 0.0;
+    Points got(N, 3);
+    Eigen::Index iterations = 0;
+    while (true)
+    {
+        Eigen::MatrixXd W, Q;
+        system.solve(H, W, Q);
+        Points C(p + system.size(), 3);
+        for (Eigen::Index a = 0; a < p; ++a)
+            C.row(a) = X.row(U[std::size_t(a)]);
+        for (Eigen::Index i = 0; i < system.size(); ++i)
+            C.row(p + i) = X.row(system.selected()[std::size_t(i)]);
+        d.model.set_centres(C);
+        d.model.set_coefficients(W, Q);
+        d.model.evaluate(Xphys, got);
+        const Eigen::VectorXd err = (Eigen::MatrixXd(got) - H).rowwise().norm();
+        const double max_err = err.maxCoeff();
+        const double rms = std::sqrt(err.squaredNorm() / double(N));
+        d.history.push_back(max_err);
+        if (max_err <= s.tolerance * max_disp && rms <= s.rms_tolerance * max_disp)
+        {
+            d.converged = true;
+            break;
+        }
+        std::vector<Eigen::Index> cand;
+        for (Eigen::Index i = 0; i < N; ++i)
+            if (!is_centre[std::size_t(i)] && !rejected[std::size_t(i)] && err[i] > 0.0)
+                cand.push_back(i);
+        if (cand.empty())
+        {
+            d.converged = true; // every constraint is a centre: interpolated exactly
+            break;
+        }
+        const Eigen::Index centres = p + system.size();
+        if (centres >= budget)
+            break;
+        Eigen::Index b = s.batch_size > 0 ? s.batch_size
+                                          : std::clamp<Eigen::Index>(centres / 4, 1, 256);
+        b = std::min({b, Eigen::Index(cand.size()), budget - centres});
+        std::partial_sort(cand.begin(), cand.begin() + b, cand.end(),
+                          [&](Eigen::Index a, Eigen::Index c) {
+                              return err[a] > err[c] || (err[a] == err[c] && a < c);
+                          });
+        cand.resize(std::size_t(b));
+        for (Eigen::Index j : cand)
+            is_centre[std::size_t(j)] = 1;
+        add(cand);
+        ++iterations;
+    }
+    d.centre_indices.clear();
+    for (Eigen::Index a = 0; a < p; ++a)
+        d.centre_indices.push_back(merged.first[std::size_t(U[std::size_t(a)])]);
+    for (Eigen::Index j : system.selected())
+        d.centre_indices.push_back(merged.first[std::size_t(j)]);
+    d.fitted = true;
+    d.report.num_handles = Index(N);
+    d.report.num_merged_duplicates = Index(constraints.rows() - N);
+    d.report.num_centres = Index(d.centre_indices.size());
+    d.report.polynomial_terms = Index(p);
+    d.report.iterations = Index(iterations);
+    d.report.condition_estimate = system.condition_lower_bound();
+    detail::residual_report(*this, constraints, displacements, d.report);
+    if (!d.converged)
+        log::warning() << "greedy RBF: stopped at " << d.report.num_centres
+                       << " centres without meeting the tolerance (max residual "
+                       << d.report.max_residual << ", max displacement "
+                       << d.report.max_displacement << ")";
+}
+
+void GreedyRbfDeformation::evaluate(const Eigen::Ref<const Points>& points,
+                                    Eigen::Ref<Points> out) const
+{
+    detail::check_evaluate_arguments(impl_->fitted, points, out, "greedy RBF");
+    impl_->model.evaluate(points, out);
+}
+
+const FitReport& GreedyRbfDeformation::report() const { return impl_->report; }
+bool GreedyRbfDeformation::is_fitted() const { return impl_->fitted; }
+bool GreedyRbfDeformation::converged() const { return impl_->converged; }
+const std::vector<Index>& GreedyRbfDeformation::centre_indices() const
+{
+    return impl_->centre_indices;
+}
+const std::vector<double>& GreedyRbfDeformation::history() const { return impl_->history; }
+
+} // namespace meshmorph

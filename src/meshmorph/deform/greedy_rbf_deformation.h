@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Greedy adaptive RBF refinement (paper Sec. 3.4, Rendall & Allen style): a few
+//! centres first, then repeatedly the constraint points with the largest error.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "meshmorph/deform/rbf_deformation.h"
+
+namespace meshmorph
+{
+
+struct GreedySettings
+{
+    RbfSettings rbf; //!< kernel, polynomial, tolerances of the underlying RBF
+    //! Centres before the first refinement: the polynomial-unisolvent set plus farthest-point
+    //! samples. 0: automatic, max(polynomial terms, min(20, constraints)).
+    Index initial_centres = 0;
+    //! Stop when max_i |d(x_i) - dx_i| <= tolerance * max_i |dx_i| ...
+    double tolerance = 1e-3;
+    //! ... and the RMS error <= rms_tolerance * max_i |dx_i|.
+    double rms_tolerance = 1e-4;
+    //! Centre budget: stop (not converged) when reached.
+    Index max_centres = 4000;
+    //! Centres added per iteration (the worst points). 0: automatic, a quarter of the current
+    //! centres, at least 1 and at most 256.
+    Index batch_size = 0;
+};
+
+//! RBF deformation with greedily selected centres (a subset of the constraint points).
+//!
+//! The factorisation grows incrementally: the null space of the polynomial block uses the
+//! Lagrange basis of a fixed polynomial-unisolvent set U (the first centres), z_j = e_j -
+//! sum_{u in U} lambda_uj e_u, so adding centres only appends rows and columns to the
+//! reduced matrix Z^T A Z; its Cholesky factor is extended per batch by a triangular solve
+//! for the new off-diagonal block (dtrsm) and a Cholesky of the Schur complement (dpotrf),
+//! never refactored from scratch. Residuals over all constraints use the blocked evaluator.
+//!
+//! Exactness: the result interpolates its centres exactly; the remaining constraint points
+//! are met within the tolerance only. report() gives the max / RMS residual over all
+//! constraints and converged() whether the tolerance was met. An application that needs
+//! every constraint exact must fit RbfDeformation on all of them instead (or accept the
+//! reported residual).
+class GreedyRbfDeformation : public SpaceDeformation
+{
+public:
+    //! \throw InvalidInput on invalid settings.
+    explicit GreedyRbfDeformation(const GreedySettings& settings = {});
+    ~GreedyRbfDeformation() override;
+    GreedyRbfDeformation(GreedyRbfDeformation&&) noexcept;
+    GreedyRbfDeformation& operator=(GreedyRbfDeformation&&) noexcept;
+
+    //! \brief Greedy fit to m constraint points (m x 3) and displacements (m x 3).
+    //! \throw InvalidInput (sizes, m == 0, NaN, conflicting duplicates), SolverError.
+    void fit(const Eigen::Ref<const Points>& constraints,
+             const Eigen::Ref<const Points>& displacements) override;
+    void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
+    //! num_handles: constraints; num_centres: centres used; iterations; residuals over all
+    //! constraints; condition_estimate: (max L_ii / min L_ii)^2, a lower bound.
+    const FitReport& report() const override;
+    bool is_fitted() const override;
+    //! True when both tolerances were met (false when the budget stopped the refinement).
+    bool converged() const;
+    //! Indices (into the constraints given to fit) of the selected centres.
+    const std::vector<Index>& centre_indices() const;
+    //! Max residual after each iteration (absolute), for convergence plots.
+    const std::vector<double>& history() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace meshmorph
