@@ -2,6 +2,7 @@
 # mean curvature). Owners add their files to the list (one per line).
 set(MESHMORPH_QUALITY_SOURCES
     meshmorph/quality/scaled_jacobian.cpp
+    meshmorph/quality/mean_curvature.cpp
     meshmorph/quality/mesh_geometry.cpp
     meshmorph/quality/check_mesh.cpp
     meshmorph/quality/mesh_quality_checks.cpp
