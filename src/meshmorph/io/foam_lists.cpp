@@ -280,15 +280,6 @@ struct Chunk
     std::size_t count = 0;
 };
 
-// Whether parallel parsing is worth it and safe: big enough, more than one thread, and
-// no comment characters in the body (a chunk boundary could otherwise fall inside one).
-bool can_parallelize(std::string_view body, const ListReadOptions& options)
-{
-    if (!options.parallel || body.size() < parallel_min_bytes || omp_get_max_threads() < 2)
-        return false;
-    return std::memchr(body.data(), '/', body.size()) == nullptr;
-}
-
 // Find the end of a list body: the position of its matching ')' for a flat list of
 // numbers or of `(…)` elements nested one level, scanning raw characters. Returns npos if
 // not found. Only called when the body holds no comments.
@@ -337,6 +328,11 @@ std::vector<Chunk> split_lines(std::string_view buf, std::size_t begin, std::siz
         }
         chunks.push_back({pos, stop, 0, 0, 0});
         pos = stop;
+    }
+    if (chunks.size() == 1)
+    {
+        chunks[0].line = first_line; // no need to count lines
+        return chunks;
     }
     std::vector<std::size_t> lines(chunks.size(), 0);
 #pragma omp parallel for schedule(static)
@@ -410,41 +406,196 @@ template <class Body> void for_each_chunk(std::size_t n_chunks, Body body)
 
 int chunk_count() { return std::max(1, omp_get_max_threads()) * 4; }
 
-// Parallel path for `N ( numbers )`: returns false (nothing consumed) if not applicable.
-template <class T, class ReadOne>
-bool parse_numbers_parallel(FoamTokenizer& tok, const ListStart& start, T* out,
-                            const ListReadOptions& options, ReadOne read_one, const char* kind)
+// ---------------------------------------------------------------------------------------
+// Fast kernels for the bodies of big ASCII lists. They run over comment-free text only and
+// return false at anything unexpected; the caller then re-parses with the tokenizer, which
+// produces the precise error (file:line). Labels are parsed by a digit loop (faster than
+// std::from_chars<long>), scalars by std::from_chars<double>.
+namespace fast
+{
+
+inline bool is_space(char c) { return c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+inline bool is_delimiter(const char* p, const char* e)
+{
+    if (p == e)
+        return true;
+    const char c = *p;
+    return is_space(c) || c == '(' || c == ')' || c == '{' || c == '}' || c == '[' || c == ']' ||
+           c == ';' || c == ',' || c == '"';
+}
+
+inline const char* skip_space(const char* p, const char* e)
+{
+    while (p < e && is_space(*p))
+        ++p;
+    return p;
+}
+
+inline bool label(const char*& p, const char* e, Index& out)
+{
+    p = skip_space(p, e);
+    bool negative = false;
+    if (p < e && (*p == '-' || *p == '+'))
+    {
+        negative = *p == '-';
+        ++p;
+    }
+    const char* const digits = p;
+    std::uint64_t v = 0;
+    while (p < e && static_cast<unsigned>(*p - '0') < 10u && p - digits < 19)
+        v = v * 10 + static_cast<unsigned>(*p++ - '0');
+    if (p == digits || !is_delimiter(p, e))
+        return false;
+    const std::int64_t s = negative ? -static_cast<std::int64_t>(v) : static_cast<std::int64_t>(v);
+    if (s < std::numeric_limits<Index>::min() || s > std::numeric_limits<Index>::max())
+        return false;
+    out = static_cast<Index>(s);
+    return true;
+}
+
+inline bool scalar(const char*& p, const char* e, double& out)
+{
+    p = skip_space(p, e);
+    if (p < e && *p == '+')
+        ++p;
+    const std::from_chars_result r = std::from_chars(p, e, out);
+    if (r.ec != std::errc() || !is_delimiter(r.ptr, e))
+        return false;
+    p = r.ptr;
+    return true;
+}
+
+inline bool expect(const char*& p, const char* e, char c)
+{
+    p = skip_space(p, e);
+    if (p < e && *p == c)
+    {
+        ++p;
+        return true;
+    }
+    return false;
+}
+
+inline bool vector(const char*& p, const char* e, double* xyz)
+{
+    return expect(p, e, '(') && scalar(p, e, xyz[0]) && scalar(p, e, xyz[1]) &&
+           scalar(p, e, xyz[2]) && expect(p, e, ')');
+}
+
+// `k(v0 ... vk-1)` written to dst (which has room for exactly `k_expected` labels when
+// k_expected >= 0; otherwise appended to `grow`).
+inline bool face_into(const char*& p, const char* e, Index* dst, Index k_expected)
+{
+    Index k = 0;
+    if (!label(p, e, k) || k != k_expected || !expect(p, e, '('))
+        return false;
+    for (Index j = 0; j < k; ++j)
+        if (!label(p, e, dst[j]))
+            return false;
+    return expect(p, e, ')');
+}
+
+inline bool face_append(const char*& p, const char* e, std::vector<Index>& values)
+{
+    Index k = 0;
+    if (!label(p, e, k) || k < 0 || !expect(p, e, '('))
+        return false;
+    const std::size_t base = values.size();
+    values.resize(base + static_cast<std::size_t>(k));
+    for (Index j = 0; j < k; ++j)
+        if (!label(p, e, values[base + static_cast<std::size_t>(j)]))
+            return false;
+    return expect(p, e, ')');
+}
+
+} // namespace fast
+
+// Where the body of a sized ASCII list ends (its closing ')'), to split it into chunks.
+// Usually the list is the last thing in its file, so the last ')' of the file (followed
+// only by comments) closes it; otherwise the brackets are counted. npos if not found.
+std::size_t list_body_end(const FoamTokenizer& tok, int element_depth)
+{
+    const std::string_view buf = tok.buffer();
+    const std::size_t begin = tok.offset();
+    const std::size_t last = buf.rfind(')');
+    if (last != std::string_view::npos && last >= begin)
+    {
+        FoamTokenizer tail(buf.substr(last + 1), tok.path());
+        try
+        {
+            if (tail.at_end())
+                return last;
+        }
+        catch (const ParseError&)
+        {
+        }
+    }
+    return find_list_end(buf, begin, element_depth);
+}
+
+bool worth_parallel(const FoamTokenizer& tok, const ListReadOptions& options)
+{
+    return options.parallel && tok.buffer().size() - tok.offset() >= parallel_min_bytes &&
+           omp_get_max_threads() >= 2;
+}
+
+// Parse `n` fixed-size elements of a list body with the fast kernel `parse_one(p, e, i)`,
+// in parallel chunks when worthwhile (`count_chunk` counts the elements of a chunk).
+// On success advances the tokenizer past the body and the closing bracket.
+template <class ParseOne, class CountChunk>
+bool parse_fast(FoamTokenizer& tok, const ListStart& start, const ListReadOptions& options,
+                int element_depth, ParseOne parse_one, CountChunk count_chunk, const char* kind)
 {
     const std::string_view buf = tok.buffer();
     const std::size_t body_begin = tok.offset();
-    const std::size_t body_end = find_list_end(buf, body_begin, 0);
-    if (body_end == std::string_view::npos)
-        return false;
-    if (!can_parallelize(buf.substr(body_begin, body_end - body_begin), options))
-        return false;
-    std::vector<Chunk> chunks = split_lines(buf, body_begin, body_end, tok.line(), chunk_count());
-#pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
-        chunks[k].count = count_tokens(buf, chunks[k]);
-    std::size_t total = 0;
-    for (Chunk& c : chunks)
+    const std::size_t n = start.size;
+    bool ok = true;
+    // Comments or uniform sub-lists make a kernel fail (and the tokenizer take over), so a
+    // chunk boundary inside a comment cannot go unnoticed.
+    std::size_t body_end = worth_parallel(tok, options) ? list_body_end(tok, element_depth)
+                                                        : std::string_view::npos;
+    if (body_end != std::string_view::npos)
     {
-        c.first = total;
-        total += c.count;
+        std::vector<Chunk> chunks =
+            split_lines(buf, body_begin, body_end, tok.line(), chunk_count());
+#pragma omp parallel for schedule(static)
+        for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
+            chunks[k].count = count_chunk(chunks[k]);
+        std::size_t total = 0;
+        for (Chunk& c : chunks)
+        {
+            c.first = total;
+            total += c.count;
+        }
+        if (total != n)
+            return false;
+        std::vector<char> chunk_ok(chunks.size(), 1);
+#pragma omp parallel for schedule(dynamic, 1)
+        for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
+        {
+            const Chunk& c = chunks[k];
+            const char* p = buf.data() + c.begin;
+            const char* const e = buf.data() + c.end;
+            for (std::size_t i = 0; i < c.count && chunk_ok[k]; ++i)
+                chunk_ok[k] = parse_one(p, e, c.first + i);
+            if (chunk_ok[k] && fast::skip_space(p, e) != e)
+                chunk_ok[k] = 0;
+        }
+        ok = std::find(chunk_ok.begin(), chunk_ok.end(), 0) == chunk_ok.end();
     }
-    if (total != start.size)
-        return false; // let the serial path produce the precise message
-    for_each_chunk(chunks.size(), [&](std::size_t k) {
-        const Chunk& c = chunks[k];
-        FoamTokenizer local(buf.substr(c.begin, c.end - c.begin), tok.path(), c.line);
-        ListStart local_start = start;
-        for (std::size_t i = 0; i < c.count; ++i)
-            read_one(local, out[c.first + i], local_start, c.first + i, options.what);
-        if (!local.at_end())
-            throw local.error(std::string("unexpected ") + local.peek().describe() +
-                              " in list '" + options.what + "' of " + kind + "s");
-    });
-    // Advance the main tokenizer to the closing bracket.
+    else
+    {
+        const char* p = buf.data() + body_begin;
+        const char* const e = buf.data() + buf.size();
+        for (std::size_t i = 0; i < n && ok; ++i)
+            ok = parse_one(p, e, i);
+        p = fast::skip_space(p, e);
+        ok = ok && p < e && *p == ')';
+        body_end = static_cast<std::size_t>(p - buf.data());
+    }
+    if (!ok)
+        return false;
     tok.read_raw(body_end - body_begin);
     expect_close(tok, start, options.what, kind);
     return true;
@@ -491,7 +642,17 @@ std::vector<T> read_number_list(FoamTokenizer& tok, const FoamHeader& header,
     if (start.has_size)
     {
         values.resize(start.size);
-        if (parse_numbers_parallel(tok, start, values.data(), options, read_one, kind))
+        T* const out = values.data();
+        const std::string_view buf = tok.buffer();
+        if (parse_fast(
+                tok, start, options, 0,
+                [out](const char*& p, const char* e, std::size_t i) {
+                    if constexpr (std::is_same_v<T, double>)
+                        return fast::scalar(p, e, out[i]);
+                    else
+                        return fast::label(p, e, out[i]);
+                },
+                [&buf](const Chunk& c) { return count_tokens(buf, c); }, kind))
             return values;
         for (std::size_t i = 0; i < start.size; ++i)
             read_one(tok, values[i], start, i, options.what);
@@ -599,22 +760,23 @@ void read_binary_face(FoamTokenizer& tok, const FoamHeader& header, std::vector<
         values.insert(values.end(), start.size - 1, values[base]);
 }
 
-// Parallel path for an ASCII faceList body: one `(` per face, no nesting deeper than 1.
-bool parse_faces_parallel(FoamTokenizer& tok, const ListStart& start, CompactList& faces,
+// Fast path for an ASCII faceList body (one `(` per face, no nesting deeper than 1), in
+// parallel chunks when worthwhile. Returns false (nothing consumed) at anything unusual.
+bool parse_faces_fast(FoamTokenizer& tok, const ListStart& start, CompactList& faces,
                           const ListReadOptions& options)
 {
     const std::string_view buf = tok.buffer();
     const std::size_t body_begin = tok.offset();
-    const std::size_t body_end = find_list_end(buf, body_begin, 1);
+    // Two passes (sizes, then labels in place) also serially: the flat list is allocated
+    // once at its exact size, which keeps peak memory down.
+    const std::size_t body_end = list_body_end(tok, 1);
     if (body_end == std::string_view::npos)
-        return false;
-    const std::string_view body = buf.substr(body_begin, body_end - body_begin);
-    if (!can_parallelize(body, options) || body.find('{') != std::string_view::npos)
         return false;
     // Split at newlines that are outside a face: a face longer than 10 vertices spans lines,
     // so a chunk boundary must be where the bracket depth is 0. Compute depth at each
     // candidate boundary from the counts of '(' and ')' before it (all faces are one level).
-    std::vector<Chunk> raw_chunks = split_lines(buf, body_begin, body_end, tok.line(), chunk_count());
+    std::vector<Chunk> raw_chunks = split_lines(buf, body_begin, body_end, tok.line(),
+                                                worth_parallel(tok, options) ? chunk_count() : 1);
     std::vector<std::ptrdiff_t> depth_delta(raw_chunks.size());
     std::vector<std::size_t> face_counts(raw_chunks.size());
 #pragma omp parallel for schedule(static)
@@ -678,14 +840,17 @@ bool parse_faces_parallel(FoamTokenizer& tok, const ListStart& start, CompactLis
                 chunk_ok[k] = 0;
                 break;
             }
-            const void* close = std::memchr(q, ')', static_cast<std::size_t>(e - q));
-            if (close == nullptr)
+            // Faces are short: a plain loop beats a memchr call per face.
+            const char* close = q;
+            while (close < e && *close != ')')
+                ++close;
+            if (close == e)
             {
                 chunk_ok[k] = 0;
                 break;
             }
             faces.offsets[c.first + i + 1] = static_cast<Index>(n);
-            p = static_cast<const char*>(close) + 1;
+            p = close + 1;
         }
     }
     if (std::find(chunk_ok.begin(), chunk_ok.end(), 0) != chunk_ok.end())
@@ -700,23 +865,25 @@ bool parse_faces_parallel(FoamTokenizer& tok, const ListStart& start, CompactLis
         faces.offsets[i + 1] = static_cast<Index>(flat);
     }
     faces.values.resize(flat);
-    // Pass 2: the labels, validated, straight into place.
-    for_each_chunk(chunks.size(), [&](std::size_t k) {
+    // Pass 2: the labels, straight into place (the declared sizes are checked again).
+    std::vector<char> parsed(chunks.size(), 1);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
+    {
         const Chunk& c = chunks[k];
-        FoamTokenizer local(buf.substr(c.begin, c.end - c.begin), tok.path(), c.line);
-        std::vector<Index> scratch;
-        for (std::size_t i = 0; i < c.count; ++i)
-        {
-            scratch.clear();
-            read_ascii_face(local, scratch, start, c.first + i, options.what);
-            // Pass 1 counted the declared sizes and read_ascii_face checks them.
-            std::copy(scratch.begin(), scratch.end(),
-                      faces.values.begin() + faces.offsets[c.first + i]);
-        }
-        if (!local.at_end())
-            throw local.error("unexpected " + local.peek().describe() + " in list '" +
-                              options.what + "'");
-    });
+        const char* p = buf.data() + c.begin;
+        const char* const e = buf.data() + c.end;
+        for (std::size_t i = c.first; i < c.first + c.count && parsed[k]; ++i)
+            parsed[k] = fast::face_into(p, e, faces.values.data() + faces.offsets[i],
+                                        faces.offsets[i + 1] - faces.offsets[i]);
+        if (parsed[k] && fast::skip_space(p, e) != e)
+            parsed[k] = 0;
+    }
+    if (std::find(parsed.begin(), parsed.end(), 0) != parsed.end())
+    {
+        faces.clear();
+        return false;
+    }
     tok.read_raw(body_end - body_begin);
     expect_close(tok, start, options.what, "face");
     return true;
@@ -742,7 +909,7 @@ CompactList read_face_list_plain(FoamTokenizer& tok, const FoamHeader& header,
         return faces;
     }
     if (start.has_size && !header.is_binary() &&
-        parse_faces_parallel(tok, start, faces, options))
+        parse_faces_fast(tok, start, faces, options))
         return faces;
     if (start.has_size)
     {
@@ -990,44 +1157,15 @@ Points read_vector_list(FoamTokenizer& tok, const FoamHeader& header,
     {
         points.resize(static_cast<Eigen::Index>(start.size), 3);
         double* const data = points.data();
-        bool done = false;
-        {
-            // Parallel path: one '(' per vector.
-            const std::string_view buf = tok.buffer();
-            const std::size_t body_begin = tok.offset();
-            const std::size_t body_end = find_list_end(buf, body_begin, 1);
-            if (body_end != std::string_view::npos &&
-                can_parallelize(buf.substr(body_begin, body_end - body_begin), options))
-            {
-                std::vector<Chunk> chunks =
-                    split_lines(buf, body_begin, body_end, tok.line(), chunk_count());
-#pragma omp parallel for schedule(static)
-                for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
-                    chunks[k].count = count_char(buf, chunks[k], '(');
-                std::size_t total = 0;
-                for (Chunk& c : chunks)
-                {
-                    c.first = total;
-                    total += c.count;
-                }
-                if (total == start.size)
-                {
-                    for_each_chunk(chunks.size(), [&](std::size_t k) {
-                        const Chunk& c = chunks[k];
-                        FoamTokenizer local(buf.substr(c.begin, c.end - c.begin), tok.path(),
-                                            c.line);
-                        for (std::size_t i = 0; i < c.count; ++i)
-                            read_ascii_vector(local, data + 3 * (c.first + i), start, c.first + i,
-                                              options.what);
-                        if (!local.at_end())
-                            throw local.error("unexpected " + local.peek().describe() +
-                                              " in list '" + options.what + "'");
-                    });
-                    tok.read_raw(body_end - body_begin);
-                    done = true;
-                }
-            }
-        }
+        const std::string_view buf = tok.buffer();
+        if (parse_fast(
+                tok, start, options, 1,
+                [data](const char*& p, const char* e, std::size_t i) {
+                    return fast::vector(p, e, data + 3 * i);
+                },
+                [&buf](const Chunk& c) { return count_char(buf, c, '('); }, "vector"))
+            return points;
+        const bool done = false;
         if (!done)
             for (std::size_t i = 0; i < start.size; ++i)
                 read_ascii_vector(tok, data + 3 * i, start, i, options.what);
