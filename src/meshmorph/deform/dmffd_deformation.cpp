@@ -2,6 +2,7 @@
 // DM-FFD: clamped pseudo-inverse by LAPACK's divide-and-conquer SVD (dgesdd).
 #include "meshmorph/deform/dmffd_deformation.h"
 
+#include <array>
 #include <sstream>
 #include <vector>
 
@@ -82,6 +83,43 @@ void DmffdDeformation::fit(const Eigen::Ref<const Points>& handles,
     report_.rank = static_cast<Index>(rank);
     report_.condition_estimate = smax / smin_kept;
     refit(displacements);
+}
+
+void DmffdDeformation::fit_refined(const Eigen::Ref<const Points>& handles,
+                                   const Eigen::Ref<const Points>& displacements,
+                                   const DmffdRefinement& refinement)
+{
+    if (!(refinement.tolerance >= 0.0))
+        throw InvalidInput("DM-FFD refinement tolerance must be >= 0");
+    detail::check_fit_arguments(handles, displacements);
+    if (!settings_.lattice.box)
+        settings_.lattice.box = make_lattice(settings_.lattice, handles).box();
+    Index refinements = 0;
+    while (true)
+    {
+        fit(handles, displacements);
+        if (report_.max_residual <= refinement.tolerance * report_.max_displacement)
+            break;
+        std::array<int, 3>& n = settings_.lattice.control_points;
+        int axis = 0;
+        double spacing = -1.0;
+        for (int a = 0; a < 3; ++a)
+        {
+            const double h = settings_.lattice.box->axes.col(a).norm() / (n[std::size_t(a)] - 3);
+            if (h > spacing)
+            {
+                spacing = h;
+                axis = a;
+            }
+        }
+        std::array<int, 3> next = n;
+        next[std::size_t(axis)] = 2 * n[std::size_t(axis)] - 3;
+        if (Index(next[0]) * next[1] * next[2] > refinement.max_control_points)
+            break;
+        n = next;
+        ++refinements;
+    }
+    report_.iterations = refinements;
 }
 
 void DmffdDeformation::refit(const Eigen::Ref<const Points>& displacements)

@@ -21,6 +21,13 @@ struct DmffdSettings
     double clamping = 1e-2;
 };
 
+//! Lattice refinement for DM-FFD (paper Sec. 3.4, simplified, see fit_refined()).
+struct DmffdRefinement
+{
+    double tolerance = 1e-3;        //!< stop when max residual <= tolerance * max |dh|
+    Index max_control_points = 20000; //!< never refine beyond this lattice size
+};
+
 //! DM-FFD: C = Phi^+ H with Phi_ij = N_j(u(h_i)) (m x n, built dense) and the pseudo-inverse
 //! from LAPACK dgesdd (divide-and-conquer SVD). Least norm when under-determined, least
 //! squares when over-determined; the constraint residuals are in report().
@@ -39,6 +46,16 @@ public:
     //! logged and they show up in the residuals.
     void fit(const Eigen::Ref<const Points>& handles,
              const Eigen::Ref<const Points>& displacements) override;
+    //! \brief fit(), then refine the lattice until the max residual is within
+    //! refinement.tolerance or the next lattice would exceed max_control_points.
+    //! Refinement doubles the resolution (n -> 2n - 3 control points, half the knot spacing)
+    //! along the axis with the largest knot spacing, over a fixed box (the first lattice's).
+    //! This is a uniform refinement, not the paper's insertion of control planes in the
+    //! worst cells (which needs non-uniform knots). report().iterations counts refinements;
+    //! settings().lattice.control_points holds the final resolution.
+    void fit_refined(const Eigen::Ref<const Points>& handles,
+                     const Eigen::Ref<const Points>& displacements,
+                     const DmffdRefinement& refinement);
     //! New displacements for the same handles, reusing the SVD (O((m + n) r)).
     void refit(const Eigen::Ref<const Points>& displacements);
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;

@@ -8,6 +8,7 @@ set(MESHMORPH_DEFORM_SOURCES
     meshmorph/deform/ffd_deformation.cpp
     meshmorph/deform/dmffd_deformation.cpp
     meshmorph/deform/greedy_rbf_deformation.cpp
+    meshmorph/deform/handle_basis.cpp
 )
 # sqrt in the blocked RBF evaluator vectorises only without errno semantics.
 set_source_files_properties(meshmorph/deform/rbf_evaluator.cpp
