@@ -5,5 +5,7 @@ meshmorph_add_component(core
         meshmorph/core/log.cpp
         meshmorph/core/progress.cpp
         meshmorph/core/cell_shapes.cpp
+        meshmorph/core/triangle_surface.cpp
         # (one file per line)
-    DEPENDS Eigen3::Eigen OpenMP::OpenMP_CXX)
+    DEPENDS Eigen3::Eigen OpenMP::OpenMP_CXX
+    PRIVATE_DEPENDS ZLIB::ZLIB)
