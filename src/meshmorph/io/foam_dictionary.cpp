@@ -11,9 +11,8 @@
 #include <deque>
 #include <limits>
 
-#include <zlib.h>
-
 #include "meshmorph/core/log.h"
+#include "meshmorph/io/foam_file.h"
 
 namespace fs = std::filesystem;
 
@@ -23,46 +22,13 @@ namespace meshmorph::io
 namespace
 {
 
-// Reads `path`, or `path.gz` when only that exists. gzread passes plain files through, so
-// one code path serves both.
+// Reads `path`, or `path.gz` when only that exists (io/foam_file.h rules: gzip detected by
+// its magic bytes, a warning when both exist); nullopt when neither exists.
 std::optional<std::string> read_file_plain_or_gz(const fs::path& path)
 {
-    std::error_code ec;
-    fs::path actual = path;
-    if (!fs::is_regular_file(actual, ec))
-    {
-        actual += ".gz";
-        if (!fs::is_regular_file(actual, ec))
-            return std::nullopt;
-    }
-    gzFile file = gzopen(actual.c_str(), "rb");
-    if (!file)
-        throw IoError("cannot open '" + actual.string() + "': " + std::strerror(errno));
-    gzbuffer(file, 1 << 17);
-    std::string out;
-    const std::uintmax_t size = fs::file_size(actual, ec);
-    if (!ec)
-        out.reserve(static_cast<std::size_t>(size));
-    constexpr unsigned chunk = 1u << 20;
-    std::size_t used = 0;
-    for (;;)
-    {
-        out.resize(used + chunk);
-        const int n = gzread(file, out.data() + used, chunk);
-        if (n < 0)
-        {
-            int err = 0;
-            const std::string msg = gzerror(file, &err);
-            gzclose(file);
-            throw IoError("error reading '" + actual.string() + "': " + msg);
-        }
-        used += static_cast<std::size_t>(n);
-        if (n == 0)
-            break;
-    }
-    out.resize(used);
-    gzclose(file);
-    return out;
+    if (!resolve_foam_file(path))
+        return std::nullopt;
+    return read_foam_file(path).data;
 }
 
 bool is_number_name(const std::string& s)
@@ -1111,13 +1077,63 @@ FoamCompound read_compound(FoamTokenizer& tok, const std::string& type_word,
     if (n >= 0)
     {
         reserve(static_cast<std::size_t>(n));
-        for (std::int64_t i = 0; i < n; ++i)
+        const auto too_short = [&](std::int64_t i) {
+            return tok.error_at(start_line, type_word + " declares " + std::to_string(n) +
+                                                " elements but has only " + std::to_string(i));
+        };
+        // Dedicated loops for the large contiguous kinds; the checks for a premature ')'
+        // run only when an element fails to parse.
+        if (c.kind == Kind::label)
         {
-            if (tok.peek().is_punct(')') || tok.peek().is_end())
-                throw tok.error_at(start_line, type_word + " declares " + std::to_string(n) +
-                                                   " elements but has only " +
-                                                   std::to_string(i));
-            read_one(static_cast<std::size_t>(i));
+            std::int64_t v = 0;
+            for (std::int64_t i = 0; i < n; ++i)
+            {
+                if (!tok.read_label(v))
+                {
+                    const char ch = tok.peek_char();
+                    if (ch == ')' || ch == '\0')
+                        throw too_short(i);
+                    throw fail(static_cast<std::size_t>(i));
+                }
+                c.labels.push_back(v);
+            }
+        }
+        else if (c.kind == Kind::scalar)
+        {
+            double v = 0;
+            for (std::int64_t i = 0; i < n; ++i)
+            {
+                if (!tok.read_scalar(v))
+                {
+                    const char ch = tok.peek_char();
+                    if (ch == ')' || ch == '\0')
+                        throw too_short(i);
+                    throw fail(static_cast<std::size_t>(i));
+                }
+                c.scalars.push_back(v);
+            }
+        }
+        else if (c.kind == Kind::vector)
+        {
+            double xyz[3];
+            for (std::int64_t i = 0; i < n; ++i)
+            {
+                const char ch = tok.peek_char();
+                if (ch == ')' || ch == '\0')
+                    throw too_short(i);
+                tok.read_vector(xyz);
+                c.scalars.insert(c.scalars.end(), xyz, xyz + 3);
+            }
+        }
+        else
+        {
+            for (std::int64_t i = 0; i < n; ++i)
+            {
+                const char ch = tok.peek_char();
+                if (ch == ')' || ch == '\0')
+                    throw too_short(i);
+                read_one(static_cast<std::size_t>(i));
+            }
         }
         const FoamToken close = tok.next();
         if (!close.is_punct(')'))

@@ -438,7 +438,7 @@ void FoamTokenizer::expect(char c)
         next();
         return;
     }
-    skip_whitespace_and_comments();
+    skip_blanks();
     if (pos_ < buffer_.size() && buffer_[pos_] == c)
     {
         ++pos_;
@@ -504,6 +504,14 @@ std::int64_t FoamTokenizer::expect_size(std::string_view what)
     return v;
 }
 
+char FoamTokenizer::peek_char()
+{
+    if (has_peek_)
+        return peek_.is_end() ? '\0' : buffer_[peek_.offset];
+    skip_blanks();
+    return pos_ < buffer_.size() ? buffer_[pos_] : '\0';
+}
+
 bool FoamTokenizer::read_label(std::int64_t& value)
 {
     if (has_peek_)
@@ -514,12 +522,30 @@ bool FoamTokenizer::read_label(std::int64_t& value)
         next();
         return true;
     }
-    skip_whitespace_and_comments();
+    skip_blanks();
     const char* const begin = buffer_.data();
     const char* const end = begin + buffer_.size();
     const char* p = begin + pos_;
     if (p == end)
         return false;
+    // Fast path: up to 18 plain digits cannot overflow int64.
+    {
+        const char* q = p;
+        const bool negative = *q == '-';
+        if (negative || *q == '+')
+            ++q;
+        const char* const digits = q;
+        std::int64_t v = 0;
+        while (q < end && q - digits < 18 && static_cast<unsigned char>(*q - '0') < 10)
+            v = 10 * v + (*q++ - '0');
+        if (q > digits && (q == end || static_cast<unsigned char>(*q - '0') >= 10) &&
+            is_delimiter(q, end))
+        {
+            value = negative ? -v : v;
+            pos_ = static_cast<std::size_t>(q - begin);
+            return true;
+        }
+    }
     const char* num = p;
     if (*num == '+')
         ++num;
@@ -540,7 +566,7 @@ bool FoamTokenizer::read_scalar(double& value)
         next();
         return true;
     }
-    skip_whitespace_and_comments();
+    skip_blanks();
     const char* const begin = buffer_.data();
     const char* const end = begin + buffer_.size();
     const char* p = begin + pos_;
@@ -573,7 +599,7 @@ void FoamTokenizer::read_vector(double* xyz)
             throw error_at(t.line, "expected a vector component (x y z) but found " + t.describe());
         }
     }
-    skip_whitespace_and_comments();
+    skip_blanks();
     if (pos_ < buffer_.size() && buffer_[pos_] == ')')
     {
         ++pos_;

@@ -107,6 +107,9 @@ public:
     std::int64_t expect_size(std::string_view what = "a list size");
     //! Consume punctuation `c` if it is next; returns whether it did.
     bool accept(char c);
+    //! \brief Skip whitespace/comments and return the next raw character without consuming
+    //! it ('\0' at end of input). Cheap look-ahead for list loops (no token is built).
+    char peek_char();
 
     //! \brief Hot-loop reader: skip whitespace/comments and parse an integer in place.
     //! Returns false (consuming nothing but whitespace/comments) if the next token is not an
@@ -123,6 +126,26 @@ public:
     ParseError error_at(std::size_t line, const std::string& msg) const;
 
 private:
+    // Inline fast path of skip_whitespace_and_comments for the hot readers.
+    void skip_blanks()
+    {
+        if (has_peek_)
+            has_peek_ = false;
+        const std::size_t n = buffer_.size();
+        while (pos_ < n)
+        {
+            const char c = buffer_[pos_];
+            if (c == '\n')
+                ++line_;
+            else if (c != ' ' && c != '\t' && c != '\r')
+            {
+                if (c == '/' || c == '\f' || c == '\v')
+                    skip_whitespace_and_comments();
+                return;
+            }
+            ++pos_;
+        }
+    }
     FoamToken scan();
     void scan_word(FoamToken& t);
     void scan_string(FoamToken& t);
