@@ -10,6 +10,7 @@ set(MESHMORPH_IO_SOURCES
     meshmorph/io/case_instance.cpp
     meshmorph/io/read_poly_mesh.cpp
     meshmorph/io/write_poly_mesh.cpp
+    meshmorph/io/point_field.cpp
 )
 set(MESHMORPH_IO_VTK_SOURCES
     meshmorph/io/vtk_writer.cpp
