@@ -11,6 +11,9 @@
 #include <cmath>
 #include <random>
 
+#include "meshmorph/deform/dmffd_deformation.h"
+#include "meshmorph/deform/greedy_rbf_deformation.h"
+#include "meshmorph/deform/handle_basis.h"
 #include "meshmorph/deform/rbf_deformation.h"
 
 extern "C" void dgemm_(const char* transa, const char* transb, const int* m, const int* n,
@@ -70,7 +73,6 @@ void BM_rbf_fit(benchmark::State& state)
         meshmorph::RbfDeformation rbf;
         rbf.fit(h, d);
         cond = rbf.report().condition_estimate;
-        benchmark::DoNotOptimize(cond);
     }
     // Rate of the dominant m^3/3 Cholesky flops over the whole fit (assembly, QR, residual).
     state.counters["GFLOP/s"] = benchmark::Counter(double(m) * m * m / 3.0 * 1e-9,
@@ -105,6 +107,158 @@ BENCHMARK(BM_rbf_evaluate)
     ->Args({500, 1000000, 2})->Args({2000, 100000, 1})->Args({2000, 100000, 2})
     ->Args({4000, 1000000, 2})->Args({16000, 100000, 2})
     ->Unit(benchmark::kMillisecond)->UseRealTime();
+
+
+//! Paper Fig. 6: 427 handles on a sphere, k deformable points in the unit box; the precomputed
+//! handle basis B (k x 427) for RBF, DM-FFD (8^3 lattice) and FFD (8^3: B = M), on 1 or 2
+//! threads. range(0): method (0 RBF, 1 DM-FFD, 2 FFD), range(1): threads.
+void BM_fig6_handle_basis(benchmark::State& state)
+{
+    const int method = static_cast<int>(state.range(0));
+    const int threads = static_cast<int>(state.range(1));
+    const Eigen::Index m = 427, k = 20000;
+    Points h(m, 3);
+    const double golden = M_PI * (3.0 - std::sqrt(5.0));
+    for (Eigen::Index i = 0; i < m; ++i)
+    {
+        const double z = 1.0 - 2.0 * (double(i) + 0.5) / double(m);
+        const double r = std::sqrt(1.0 - z * z);
+        h.row(i) = Eigen::RowVector3d(0.5 + 0.4 * r * std::cos(golden * i),
+                                      0.5 + 0.4 * r * std::sin(golden * i), 0.5 + 0.4 * z);
+    }
+    const Points d = field(h);
+    const Points x = random_points(k, 3);
+    meshmorph::DmffdSettings ds;
+    ds.lattice.control_points = {8, 8, 8};
+    ds.lattice.box = meshmorph::FfdBox{};
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    for (auto _ : state)
+    {
+        if (method == 0)
+        {
+            meshmorph::RbfDeformation rbf;
+            rbf.fit(h, d);
+            const meshmorph::HandleBasis B = meshmorph::HandleBasis::compute(rbf, x);
+            benchmark::DoNotOptimize(B.matrix().data());
+        }
+        else if (method == 1)
+        {
+            meshmorph::DmffdDeformation dm(ds);
+            dm.fit(h, d);
+            const meshmorph::HandleBasis B = meshmorph::HandleBasis::compute(dm, x);
+            benchmark::DoNotOptimize(B.matrix().data());
+        }
+        else
+        {
+            const meshmorph::FfdLattice lattice(meshmorph::FfdBox{}, {8, 8, 8});
+            const meshmorph::FfdDeformation ffd(lattice);
+            const meshmorph::HandleBasis B = meshmorph::HandleBasis::compute(ffd, x);
+            benchmark::DoNotOptimize(B.matrix().data());
+        }
+    }
+    omp_set_num_threads(saved);
+    state.SetLabel(method == 0 ? "RBF" : method == 1 ? "DM-FFD 8^3" : "FFD 8^3");
+}
+BENCHMARK(BM_fig6_handle_basis)
+    ->ArgsProduct({{0, 1, 2}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
+
+//! Fig. 6 deformation by fit + evaluate (no basis) on 1e5 points. range(0): method, (1) threads.
+void BM_fig6_fit_evaluate(benchmark::State& state)
+{
+    const int method = static_cast<int>(state.range(0));
+    const int threads = static_cast<int>(state.range(1));
+    const Points h = random_points(427, 5) * 0.8 + Points::Constant(427, 3, 0.1);
+    const Points d = field(h);
+    const Points x = random_points(100000, 6);
+    Points out(x.rows(), 3);
+    meshmorph::DmffdSettings ds;
+    ds.lattice.control_points = {8, 8, 8};
+    ds.lattice.box = meshmorph::FfdBox{};
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    for (auto _ : state)
+    {
+        if (method == 0)
+        {
+            meshmorph::RbfDeformation rbf;
+            rbf.fit(h, d);
+            rbf.evaluate(x, out);
+        }
+        else if (method == 1)
+        {
+            meshmorph::DmffdDeformation dm(ds);
+            dm.fit(h, d);
+            dm.evaluate(x, out);
+        }
+        else
+        {
+            const meshmorph::FfdLattice lattice(meshmorph::FfdBox{}, {8, 8, 8});
+            meshmorph::FfdDeformation ffd(lattice);
+            ffd.set_control_displacements(field(lattice.control_points()));
+            ffd.evaluate(x, out);
+        }
+        benchmark::DoNotOptimize(out.data());
+    }
+    omp_set_num_threads(saved);
+    state.SetLabel(method == 0 ? "RBF" : method == 1 ? "DM-FFD 8^3" : "FFD 8^3");
+}
+BENCHMARK(BM_fig6_fit_evaluate)
+    ->ArgsProduct({{0, 1, 2}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
+
+//! FFD evaluation on 1e6 points, axis-aligned (direct local coordinates) vs a parallelepiped
+//! (Newton). range(0): 0 axis-aligned, 1 skewed; range(1): threads.
+void BM_ffd_evaluate(benchmark::State& state)
+{
+    meshmorph::FfdBox box;
+    if (state.range(0) == 1)
+        box.axes.col(0) = Eigen::Vector3d(1.0, 0.2, 0.0);
+    const meshmorph::FfdLattice lattice(box, {10, 10, 10});
+    meshmorph::FfdDeformation ffd(lattice, meshmorph::FfdOutside::clamp);
+    ffd.set_control_displacements(field(lattice.control_points()));
+    const Points x = random_points(1000000, 7);
+    Points out(x.rows(), 3);
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(static_cast<int>(state.range(1)));
+    for (auto _ : state)
+    {
+        ffd.evaluate(x, out);
+        benchmark::DoNotOptimize(out.data());
+    }
+    omp_set_num_threads(saved);
+    state.counters["Mpoints/s"] = benchmark::Counter(double(x.rows()) * 1e-6,
+                                                     benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_ffd_evaluate)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+//! Greedy refinement on 20000 sphere points (tolerance 1e-2 / 1e-3 of the max displacement).
+void BM_greedy_fit(benchmark::State& state)
+{
+    const Eigen::Index n = 20000;
+    Points x(n, 3);
+    const double golden = M_PI * (3.0 - std::sqrt(5.0));
+    for (Eigen::Index i = 0; i < n; ++i)
+    {
+        const double z = 1.0 - 2.0 * (double(i) + 0.5) / double(n);
+        const double r = std::sqrt(1.0 - z * z);
+        x.row(i) = Eigen::RowVector3d(r * std::cos(golden * i), r * std::sin(golden * i), z);
+    }
+    const Points d = field(x);
+    meshmorph::GreedySettings s;
+    s.tolerance = 1e-2;
+    s.rms_tolerance = 1e-3;
+    meshmorph::Index centres = 0;
+    for (auto _ : state)
+    {
+        meshmorph::GreedyRbfDeformation g(s);
+        g.fit(x, d);
+        centres = g.report().num_centres;
+    }
+    state.counters["centres"] = double(centres);
+}
+BENCHMARK(BM_greedy_fit)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 } // namespace
 

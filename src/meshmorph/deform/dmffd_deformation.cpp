@@ -163,16 +163,19 @@ Eigen::MatrixXd DmffdDeformation::handle_basis(const Eigen::Ref<const Points>& p
     detail::require_finite(points, "DM-FFD handle basis: point");
     const FfdLattice& lattice = ffd_->lattice();
     const FfdOutside outside = ffd_->outside();
-    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(points.rows(), Pinv.cols());
-#pragma omp parallel for schedule(dynamic, 64)
+    // Columns of Bt = B^T are sums of 64 contiguous columns of Phi^+T.
+    const Eigen::MatrixXd PinvT = Pinv.transpose(); // m x n
+    Eigen::MatrixXd Bt = Eigen::MatrixXd::Zero(Pinv.cols(), points.rows());
+#pragma omp parallel for schedule(dynamic, 64) if (points.rows() > 500)
     for (Eigen::Index i = 0; i < points.rows(); ++i)
     {
         Index idx[64];
         double w[64];
         const int count = lattice.basis(points.row(i).transpose(), outside, idx, w);
         for (int k = 0; k < count; ++k)
-            B.row(i) += w[k] * Pinv.row(idx[k]);
+            Bt.col(i) += w[k] * PinvT.col(idx[k]);
     }
+    Eigen::MatrixXd B = Bt.transpose();
     return B;
 }
 

@@ -2,6 +2,7 @@
 // Classic FFD on a uniform cubic B-spline lattice.
 #include "meshmorph/deform/ffd_deformation.h"
 
+#include <cstddef>
 #include <string>
 
 #include "meshmorph/core/exceptions.h"
@@ -66,13 +67,19 @@ void FfdDeformation::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref
         Index idx[64];
         double w[64];
         const int count = lattice_.basis(points.row(i).transpose(), outside_, idx, w);
-        double d[3] = {0.0, 0.0, 0.0};
+        // Scalar accumulators (not an array) keep the sums in registers.
+        const double* cd = control_displacements_.data();
+        double dx = 0.0, dy = 0.0, dz = 0.0;
         for (int k = 0; k < count; ++k)
-            for (int c = 0; c < 3; ++c)
-                d[c] += w[k] * control_displacements_(idx[k], c);
-        out(i, 0) = d[0];
-        out(i, 1) = d[1];
-        out(i, 2) = d[2];
+        {
+            const double* c = cd + 3 * static_cast<std::ptrdiff_t>(idx[k]);
+            dx += w[k] * c[0];
+            dy += w[k] * c[1];
+            dz += w[k] * c[2];
+        }
+        out(i, 0) = dx;
+        out(i, 1) = dy;
+        out(i, 2) = dz;
     }
 }
 
