@@ -6,6 +6,7 @@ set(MESHMORPH_APP_SOURCES
     meshmorph/app/check_mesh_case.cpp
     meshmorph/app/morph_setup.cpp
     meshmorph/app/morph_mesh.cpp
+    meshmorph/app/deformation_factory.cpp
 )
 meshmorph_add_component(app
     SOURCES ${MESHMORPH_APP_SOURCES}

@@ -16,6 +16,7 @@
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/quality/foam_vector.h"
+#include "meshmorph/quality/scaled_jacobian.h"
 
 namespace meshmorph
 {
@@ -235,7 +236,7 @@ SurfaceTopology surface_topology(const PolyMesh& mesh, const std::vector<Index>&
 
 // ---------------------------------------------------------------------------------------
 
-void mesh_stats(Context& c)
+std::vector<CellShape> mesh_stats(Context& c)
 {
     const PolyMesh& mesh = c.mesh;
     std::ostringstream& out = c.pr.out;
@@ -322,6 +323,7 @@ void mesh_stats(Context& c)
             out << std::setw(13) << std::right << n_faces << "   " << n << "\n";
     }
     out << "\n";
+    return shapes;
 }
 
 void check_topology(Context& c)
@@ -492,7 +494,7 @@ void check_topology(Context& c)
         // 7. Cell zip-up: every edge of a cell used by exactly two of its faces.
         std::vector<char> open(static_cast<std::size_t>(n_cells), 0);
         std::vector<char> listed(static_cast<std::size_t>(n_cells), 0);
-#pragma omp parallel
+#pragma omp parallel if (mesh.n_faces() > detail::parallel_threshold)
         {
             std::vector<Edge> edges;
 #pragma omp for schedule(static)
@@ -552,7 +554,7 @@ void check_topology(Context& c)
         std::vector<Index> n_baffle(static_cast<std::size_t>(n_faces), 0);
         std::vector<Index> n_dup(static_cast<std::size_t>(n_faces), 0);
         std::vector<char> order_error(static_cast<std::size_t>(n_faces), 0);
-#pragma omp parallel
+#pragma omp parallel if (mesh.n_faces() > detail::parallel_threshold)
         {
             std::vector<std::pair<Index, Index>> common; // (other face, count)
             std::vector<Index> others;
@@ -887,7 +889,7 @@ void check_geometry(Context& c, FaceValues& fv)
         int n_dims = 0;
         for (int k = 0; k < 3; ++k)
             n_dims += dirs.geometric[k] == 1;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
         for (Index cell = 0; cell < n_cells; ++cell)
         {
             FoamVector sum, sum_mag;
@@ -959,7 +961,7 @@ void check_geometry(Context& c, FaceValues& fv)
     // G3 face areas.
     std::vector<double> mag_area(static_cast<std::size_t>(n_faces));
     {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
         for (Index f = 0; f < n_faces; ++f)
             mag_area[f] = detail::mag(row(g.face_areas, f));
         double lo_a = great, hi_a = -great;
@@ -1016,7 +1018,7 @@ void check_geometry(Context& c, FaceValues& fv)
     // G5 non-orthogonality.
     fv.ortho.assign(static_cast<std::size_t>(n_faces), 1.0);
     {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
         for (Index f = 0; f < n_int; ++f)
         {
             const FoamVector d =
@@ -1073,7 +1075,7 @@ void check_geometry(Context& c, FaceValues& fv)
     // G6 face pyramids.
     {
         std::vector<char> n_err(static_cast<std::size_t>(n_faces), 0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
         for (Index f = 0; f < n_faces; ++f)
         {
             const FoamVector cf = row(g.face_centres, f);
@@ -1112,7 +1114,7 @@ void check_geometry(Context& c, FaceValues& fv)
     // G7 skewness.
     fv.skewness.assign(static_cast<std::size_t>(n_faces), 0.0);
     {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
         for (Index f = 0; f < n_faces; ++f)
         {
             const FoamVector cf = row(g.face_centres, f);
@@ -1168,7 +1170,7 @@ void check_geometry(Context& c, FaceValues& fv)
     // Per-cell maxima for VTK fields.
     r.cell_non_orthogonality = Eigen::VectorXd::Zero(n_cells);
     r.cell_skewness = Eigen::VectorXd::Zero(n_cells);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
     for (Index cell = 0; cell < n_cells; ++cell)
     {
         double min_cos = 1, max_skew = 0;
@@ -1182,6 +1184,59 @@ void check_geometry(Context& c, FaceValues& fv)
         r.cell_skewness[cell] = max_skew;
     }
 
+    // Cell determinants (A5) are always computed: they are a VTK field.
+    {
+        r.cell_determinant.resize(n_cells);
+        int n_dims = dirs.n_geometric();
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
+        for (Index cell = 0; cell < n_cells; ++cell)
+        {
+            if (n_dims == 1)
+            {
+                r.cell_determinant[cell] = 1.0;
+                continue;
+            }
+            double avg = 0;
+            Index n_internal = 0;
+            for (Index f : c.cell_faces[cell])
+                if (f < n_int)
+                {
+                    avg += mag_area[f];
+                    ++n_internal;
+                }
+            if (n_internal == 0 || avg < rootvsmall)
+            {
+                r.cell_determinant[cell] = 0;
+                continue;
+            }
+            avg /= static_cast<double>(n_internal);
+            double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
+            for (Index f : c.cell_faces[cell])
+                if (f < n_int)
+                {
+                    const FoamVector a = row(g.face_areas, f) / avg;
+                    xx += a.x * a.x;
+                    xy += a.x * a.y;
+                    xz += a.x * a.z;
+                    yy += a.y * a.y;
+                    yz += a.y * a.z;
+                    zz += a.z * a.z;
+                }
+            if (n_dims == 2)
+            {
+                if (dirs.geometric[0] == -1)
+                    xx = 1;
+                if (dirs.geometric[1] == -1)
+                    yy = 1;
+                if (dirs.geometric[2] == -1)
+                    zz = 1;
+            }
+            const double det = xx * yy * zz + xy * yz * xz + xz * xy * yz - xx * yz * yz -
+                               xy * xy * zz - xz * yy * xz;
+            r.cell_determinant[cell] = std::abs(det) / 8.0;
+        }
+    }
+
     if (!c.settings.all_geometry)
         return;
     r.has_all_geometry = true;
@@ -1190,7 +1245,7 @@ void check_geometry(Context& c, FaceValues& fv)
     {
         constexpr double tol = small * small;
         std::vector<char> n_err(static_cast<std::size_t>(n_faces), 0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
         for (Index f = 0; f < n_faces; ++f)
         {
             const std::span<const Index> face = mesh.faces[f];
@@ -1307,7 +1362,7 @@ void check_geometry(Context& c, FaceValues& fv)
     {
         const double max_sin = std::sin(detail::deg_to_rad(10.0));
         std::vector<double> concavity(static_cast<std::size_t>(n_faces), 0.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
         for (Index f = 0; f < n_faces; ++f)
         {
             const std::span<const Index> face = mesh.faces[f];
@@ -1365,7 +1420,7 @@ void check_geometry(Context& c, FaceValues& fv)
     // A4 flatness.
     {
         std::vector<double> flatness(static_cast<std::size_t>(n_faces), 1.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
         for (Index f = 0; f < n_faces; ++f)
         {
             const std::span<const Index> face = mesh.faces[f];
@@ -1417,55 +1472,6 @@ void check_geometry(Context& c, FaceValues& fv)
 
     // A5 cell determinant.
     {
-        r.cell_determinant.resize(n_cells);
-        int n_dims = dirs.n_geometric();
-#pragma omp parallel for schedule(static)
-        for (Index cell = 0; cell < n_cells; ++cell)
-        {
-            if (n_dims == 1)
-            {
-                r.cell_determinant[cell] = 1.0;
-                continue;
-            }
-            double avg = 0;
-            Index n_internal = 0;
-            for (Index f : c.cell_faces[cell])
-                if (f < n_int)
-                {
-                    avg += mag_area[f];
-                    ++n_internal;
-                }
-            if (n_internal == 0 || avg < rootvsmall)
-            {
-                r.cell_determinant[cell] = 0;
-                continue;
-            }
-            avg /= static_cast<double>(n_internal);
-            double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
-            for (Index f : c.cell_faces[cell])
-                if (f < n_int)
-                {
-                    const FoamVector a = row(g.face_areas, f) / avg;
-                    xx += a.x * a.x;
-                    xy += a.x * a.y;
-                    xz += a.x * a.z;
-                    yy += a.y * a.y;
-                    yz += a.y * a.z;
-                    zz += a.z * a.z;
-                }
-            if (n_dims == 2)
-            {
-                if (dirs.geometric[0] == -1)
-                    xx = 1;
-                if (dirs.geometric[1] == -1)
-                    yy = 1;
-                if (dirs.geometric[2] == -1)
-                    zz = 1;
-            }
-            const double det = xx * yy * zz + xy * yz * xz + xz * xy * yz - xx * yz * yz -
-                               xy * xy * zz - xz * yy * xz;
-            r.cell_determinant[cell] = std::abs(det) / 8.0;
-        }
         double min_det = n_cells > 0 ? r.cell_determinant[0] : 0, sum_det = 0;
         std::vector<Index> cells;
         for (Index cell = 0; cell < n_cells; ++cell)
@@ -1496,7 +1502,7 @@ void check_geometry(Context& c, FaceValues& fv)
     // A6 concave cells.
     {
         std::vector<char> concave(static_cast<std::size_t>(n_cells), 0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
         for (Index cell = 0; cell < n_cells; ++cell)
         {
             const std::span<const Index> cf = c.cell_faces[cell];
@@ -1540,7 +1546,7 @@ void check_geometry(Context& c, FaceValues& fv)
     // A7 face weights.
     {
         std::vector<double> weight(static_cast<std::size_t>(n_int));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
         for (Index f = 0; f < n_int; ++f)
         {
             const FoamVector fc = row(g.face_centres, f);
@@ -1659,7 +1665,16 @@ QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
     report.n_patches = static_cast<Index>(mesh.patches.size());
     Printer printer(settings.write_precision);
     Context context{mesh, cell_faces, geometry, settings, report, printer};
-    mesh_stats(context);
+    const std::vector<CellShape> shapes = mesh_stats(context);
+    // The paper's measure (not a checkMesh check): minimum over cells where it is defined.
+    report.cell_scaled_jacobian = scaled_jacobian(mesh, cell_faces, shapes);
+    for (Index cell = 0; cell < mesh.n_cells; ++cell)
+    {
+        const double sj = report.cell_scaled_jacobian[cell];
+        if (std::isfinite(sj) &&
+            !(std::isfinite(report.min_scaled_jacobian) && report.min_scaled_jacobian <= sj))
+            report.min_scaled_jacobian = sj;
+    }
     if (!settings.no_topology)
         check_topology(context);
     FaceValues fv;

@@ -125,7 +125,10 @@ struct QualityReport
 
     //! Per-cell fields (nCells): max face non-orthogonality [deg] and skewness over the
     //! cell's faces, aspect ratio, and (with all_geometry) the checkMesh cell determinant.
+    //! The determinant is always computed (printed only with all_geometry).
     Eigen::VectorXd cell_non_orthogonality, cell_skewness, cell_aspect_ratio, cell_determinant;
+    //! Per-cell scaled Jacobian (nCells), when computed; min_scaled_jacobian is its minimum.
+    Eigen::VectorXd cell_scaled_jacobian;
 };
 
 //! \brief Run checkMesh's checks (spec §3, §5) and build the report.

@@ -16,6 +16,10 @@
 namespace meshmorph::detail
 {
 
+//! Below this many faces the checker runs serially: thread start-up and barriers cost more
+//! than the work (and far more on a loaded machine, where OpenMP threads spin-wait).
+inline constexpr std::int64_t parallel_threshold = 20000;
+
 struct FoamVector
 {
     double x = 0, y = 0, z = 0;

@@ -18,7 +18,7 @@ void face_centres_and_areas(const PolyMesh& mesh, Points& centres, Points& areas
     centres.resize(n_faces, 3);
     areas.resize(n_faces, 3);
     const Points& p = mesh.points;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
     {
         const std::span<const Index> face = mesh.faces[f];
@@ -76,7 +76,7 @@ void cell_centres_and_volumes(const PolyMesh& mesh, const CompactList& cell_face
     // One cell at a time, faces in cell_faces order: owned faces ascending, then neighboured
     // faces ascending -- the same per-cell accumulation order as OpenFOAM's owner pass
     // followed by its neighbour pass, so results are bit-identical and thread-independent.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
     for (Index c = 0; c < n_cells; ++c)
     {
         const std::span<const Index> faces = cell_faces[c];

@@ -60,7 +60,7 @@ void check_mesh_quality_dict(const PolyMesh& mesh, const CompactList& cell_faces
         report.mesh_quality_failures.emplace_back(key, added);
     };
     const auto run = [&](const std::string& key, const std::string& line, auto&& test) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
         for (Index f = 0; f < n_faces; ++f)
             flag[f] = test(f) ? 1 : 0;
         merge(key, line);
@@ -317,7 +317,7 @@ void check_mesh_quality_dict(const PolyMesh& mesh, const CompactList& cell_faces
     {
         const Index n_cells = mesh.n_cells;
         std::vector<char> bad_cell(static_cast<std::size_t>(n_cells), 0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
         for (Index cell = 0; cell < n_cells; ++cell)
         {
             double t[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};

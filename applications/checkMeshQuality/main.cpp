@@ -1,0 +1,19 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Description
+//     Checks the validity and quality of an OpenFOAM polyMesh like OpenFOAM's checkMesh:
+//     the same topology and geometry checks, formulas and report text (OpenFOAM v1912),
+//     plus offending-element sets, per-cell quality fields (VTK) and a JSON summary.
+//
+// Usage
+//     checkMeshQuality [-case DIR] [-time T | -latestTime] [-allGeometry] [-allTopology]
+//                      [-meshQuality] [-writeSets] [-vtk FILE] [-json FILE] [-help]
+//
+//     Exit status: 0 mesh OK, 1 checks failed, 2 input error, 3 internal error.
+#include <iostream>
+
+#include "meshmorph/app/check_mesh_case.h"
+
+int main(int argc, char* argv[])
+{
+    return meshmorph::app::run_check_mesh_quality(argc, argv, std::cout, std::cerr);
+}

@@ -1,0 +1,264 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// checkMeshQuality: options, case reading, report, sets, VTK and JSON output.
+#include "meshmorph/app/check_mesh_case.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <ostream>
+#include <regex>
+#include <sstream>
+
+#include "meshmorph/app/banner.h"
+#include "meshmorph/app/options.h"
+#include "meshmorph/core/config.h"
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/io/case_instance.h"
+#include "meshmorph/io/foam_dictionary.h"
+#include "meshmorph/io/foam_file.h"
+#include "meshmorph/io/read_poly_mesh.h"
+#include "meshmorph/quality/quality_json.h"
+#if MESHMORPH_WITH_VTK
+#include "meshmorph/io/vtk_writer.h"
+#endif
+
+namespace meshmorph::app
+{
+
+namespace fs = std::filesystem;
+
+namespace
+{
+
+fs::path openfoam_etc_dir()
+{
+    if (const char* dir = std::getenv("WM_PROJECT_DIR"); dir && *dir)
+        return fs::path(dir) / "etc";
+    return "/usr/share/openfoam/etc";
+}
+
+//! Replace `#includeEtc "X"` by `#include "<etc>/X"` when that file exists (the dictionary
+//! parser does not know the OpenFOAM installation). Line numbers are preserved.
+std::string resolve_include_etc(const std::string& text)
+{
+    static const std::regex include_etc(R"re(#includeEtc\s+"([^"]+)")re");
+    std::string result;
+    std::sregex_iterator it(text.begin(), text.end(), include_etc), end;
+    std::size_t last = 0;
+    for (; it != end; ++it)
+    {
+        const std::smatch& m = *it;
+        const fs::path file = openfoam_etc_dir() / m[1].str();
+        result.append(text, last, static_cast<std::size_t>(m.position(0)) - last);
+        if (fs::exists(file))
+            result += "#include \"" + file.string() + "\"";
+        else
+            result += m.str(0);
+        last = static_cast<std::size_t>(m.position(0) + m.length(0));
+    }
+    result.append(text, last, std::string::npos);
+    return result;
+}
+
+} // namespace
+
+MeshQualitySettings read_mesh_quality_dict(const fs::path& path)
+{
+    const io::FileBuffer file = io::read_foam_file(path);
+    const io::FoamDictionary dict =
+        io::parse_dictionary(resolve_include_etc(file.data), file.path.string());
+    MeshQualitySettings q;
+    q.max_non_ortho = dict.get<double>("maxNonOrtho");
+    q.min_vol = dict.get<double>("minVol");
+    q.min_tet_quality = dict.get<double>("minTetQuality");
+    q.max_concave = dict.get<double>("maxConcave");
+    q.min_area = dict.get<double>("minArea");
+    q.max_internal_skewness = dict.get<double>("maxInternalSkewness");
+    q.max_boundary_skewness = dict.get<double>("maxBoundarySkewness");
+    q.min_face_weight = dict.get<double>("minFaceWeight");
+    q.min_vol_ratio = dict.get<double>("minVolRatio");
+    q.min_twist = dict.get<double>("minTwist");
+    q.min_triangle_twist = dict.get<double>("minTriangleTwist");
+    q.min_face_flatness = dict.get_or<double>("minFaceFlatness", -1.0);
+    q.min_determinant = dict.get<double>("minDeterminant");
+    return q;
+}
+
+int read_write_precision(const fs::path& case_dir)
+{
+    const fs::path path = case_dir / "system" / "controlDict";
+    if (!io::foam_file_exists(path))
+        return 6;
+    const io::FileBuffer file = io::read_foam_file(path);
+    const io::FoamDictionary dict =
+        io::parse_dictionary(resolve_include_etc(file.data), file.path.string());
+    const int precision = dict.get_or<int>("writePrecision", 6);
+    if (precision < 1 || precision > 30)
+        throw dict.entry("writePrecision").error("writePrecision must be in [1, 30]");
+    return precision;
+}
+
+std::string mesh_set_file_text(const MeshSet& set, const std::string& location)
+{
+    const char* cls = set.kind == MeshSet::Kind::face
+                          ? "faceSet"
+                          : (set.kind == MeshSet::Kind::cell ? "cellSet" : "pointSet");
+    std::ostringstream out;
+    out << "/*--------------------------------*- C++ -*----------------------------------*\\\n"
+        << "  Written by meshMorph " << MESHMORPH_VERSION << " (checkMeshQuality)\n"
+        << "\\*---------------------------------------------------------------------------*/\n"
+        << "FoamFile\n{\n"
+        << "    version     2.0;\n"
+        << "    format      ascii;\n"
+        << "    class       " << cls << ";\n"
+        << "    location    \"" << location << "\";\n"
+        << "    object      " << set.name << ";\n"
+        << "}\n"
+        << "// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //\n\n"
+        << "\n" << set.labels.size() << "\n(\n";
+    for (Index label : set.labels)
+        out << label << "\n";
+    out << ")\n\n\n"
+        << "// ************************************************************************* //\n";
+    return out.str();
+}
+
+std::vector<fs::path> write_mesh_sets(const std::vector<MeshSet>& sets, const fs::path& case_dir,
+                                      const std::string& instance)
+{
+    std::vector<fs::path> written;
+    if (sets.empty())
+        return written;
+    const fs::path dir = case_dir / instance / "polyMesh" / "sets";
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec)
+        throw IoError("cannot create directory " + dir.string() + ": " + ec.message());
+    for (const MeshSet& set : sets)
+        written.push_back(io::write_file_atomic(
+            dir / set.name, mesh_set_file_text(set, instance + "/polyMesh/sets")));
+    return written;
+}
+
+int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out,
+                           std::ostream& err)
+{
+    Options options(
+        "checkMeshQuality",
+        "Checks the validity and quality of an OpenFOAM polyMesh like OpenFOAM's checkMesh\n"
+        "(same checks, formulas and report text as v1912), optionally writing the sets of\n"
+        "offending faces/cells, a VTK file with per-cell quality fields and a JSON summary.",
+        {{"case", "DIR", "Case directory (default: the current directory)"},
+         {"time", "TIME", "Check the mesh at this time (a time name or value, or constant)"},
+         {"latestTime", "", "Check the mesh at the latest time"},
+         {"allGeometry", "", "Include the extra geometry checks (face tets, flatness, ...)"},
+         {"allTopology", "", "Include the extra topology checks (cell zip-up, face-face)"},
+         {"noTopology", "", "Skip the topology checks"},
+         {"meshQuality", "", "Also check against system/meshQualityDict (snappyHexMesh's)"},
+         {"writeSets", "", "Write the offending faces/cells/points as OpenFOAM sets to "
+                           "<instance>/polyMesh/sets"},
+         {"vtk", "FILE", "Write the mesh with per-cell quality fields as a VTK .vtu file"},
+         {"json", "FILE", "Write the results as JSON"},
+         {"quiet", "", "Print only the report (no banner or timings)"}},
+        {{exit_mesh_ok, "the mesh passed every check (\"Mesh OK.\")"},
+         {exit_checks_failed, "some checks failed (\"Failed N mesh checks.\")"},
+         {exit_input_error,
+          "input error: bad option, missing or malformed case files or dictionaries"},
+         {exit_internal_error, "unexpected internal error"}});
+    if (const std::optional<int> code = parse_command_line(options, argc, argv, out, err))
+        return *code;
+    try
+    {
+        if (options.found("time") && options.found("latestTime"))
+            throw UsageError("-time and -latestTime are mutually exclusive");
+        fs::path case_dir = fs::absolute(options.value_or("case", ".")).lexically_normal();
+        if (!case_dir.has_filename() && case_dir.has_parent_path())
+            case_dir = case_dir.parent_path();
+        if (!fs::is_directory(case_dir))
+            throw IoError("case directory " + case_dir.string() + " does not exist");
+        const bool quiet = options.found("quiet");
+        std::ostringstream discard;
+        std::ostream& info = quiet ? discard : out;
+        print_banner(info, {"checkMeshQuality", options.command_line(), case_dir.string()});
+        StageTimer timer(info);
+
+        io::PolyMeshReadOptions read_options;
+        if (options.found("latestTime"))
+            read_options.time = io::TimeSelection::latest_time();
+        else if (const std::optional<std::string> t = options.get("time"))
+            read_options.time = io::TimeSelection::at(*t);
+        CheckMeshSettings settings;
+        settings.all_geometry = options.found("allGeometry");
+        settings.all_topology = options.found("allTopology");
+        settings.no_topology = options.found("noTopology");
+        settings.report_sets = options.found("writeSets");
+        settings.write_precision = read_write_precision(case_dir);
+        if (options.found("meshQuality"))
+            settings.mesh_quality =
+                read_mesh_quality_dict(case_dir / "system" / "meshQualityDict");
+
+        const io::FoamPolyMesh foam = io::read_poly_mesh(case_dir, read_options);
+        const PolyMesh& mesh = foam.mesh;
+        timer.lap("Read mesh (" + std::to_string(mesh.n_cells) + " cells)");
+
+        const CompactList cf = cell_faces(mesh);
+        const MeshGeometry geometry = compute_geometry(mesh, cf);
+        QualityReport report = check_mesh(mesh, cf, geometry, settings);
+        out << "Time = " << foam.time << "\n\n" << report.text;
+        info << "\n";
+        timer.lap("Checked mesh");
+
+        if (settings.report_sets)
+        {
+            const std::vector<fs::path> files =
+                write_mesh_sets(report.sets, case_dir, foam.points_instance);
+            timer.lap("Wrote " + std::to_string(files.size()) + " sets to " +
+                      (case_dir / foam.points_instance / "polyMesh" / "sets").string());
+        }
+        if (const std::optional<std::string> vtk = options.get("vtk"))
+        {
+#if MESHMORPH_WITH_VTK
+            std::vector<io::VtkField> fields;
+            fields.emplace_back("nonOrthogonality", report.cell_non_orthogonality);
+            fields.emplace_back("skewness", report.cell_skewness);
+            fields.emplace_back("aspectRatio", report.cell_aspect_ratio);
+            fields.emplace_back("volume", geometry.cell_volumes);
+            fields.emplace_back("determinant", report.cell_determinant);
+            if (report.cell_scaled_jacobian.size() == mesh.n_cells)
+                fields.emplace_back("scaledJacobian", report.cell_scaled_jacobian);
+            io::write_vtu(fs::absolute(*vtk), mesh, {}, fields);
+            timer.lap("Wrote " + *vtk);
+#else
+            throw UsageError("-vtk: this build has no VTK support (MESHMORPH_WITH_VTK=OFF)");
+#endif
+        }
+        if (const std::optional<std::string> json_path = options.get("json"))
+        {
+            nlohmann::json j = quality_json(report);
+            j["case"] = case_dir.string();
+            j["time"] = foam.time;
+            const std::string text = j.dump(2) + "\n";
+            io::write_file_atomic(fs::absolute(*json_path), text);
+            timer.lap("Wrote " + *json_path);
+        }
+        if (!quiet)
+            print_end(out);
+        return report.mesh_ok() ? exit_mesh_ok : exit_checks_failed;
+    }
+    catch (const UsageError& e)
+    {
+        err << "Error: " << e.what() << "\n";
+        return exit_usage_error;
+    }
+    catch (const Error& e)
+    {
+        err << "Error: " << e.what() << "\n";
+        return exit_input_error;
+    }
+    catch (const std::exception& e)
+    {
+        err << "Error (internal): " << e.what() << "\n";
+        return exit_internal_error;
+    }
+}
+
+} // namespace meshmorph::app

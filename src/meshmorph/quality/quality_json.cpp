@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// JSON form of a QualityReport and the before/after summary table.
+#include "meshmorph/quality/quality_json.h"
+
+#include <cmath>
+#include <ostream>
+
+namespace meshmorph
+{
+
+namespace
+{
+
+nlohmann::json number(double v)
+{
+    if (!std::isfinite(v))
+        return nullptr;
+    return v;
+}
+
+std::string pad(const std::string& text, std::size_t width)
+{
+    return text.size() >= width ? text + " " : text + std::string(width - text.size(), ' ');
+}
+
+} // namespace
+
+nlohmann::json quality_json(const QualityReport& r)
+{
+    nlohmann::json j;
+    j["points"] = r.n_points;
+    j["faces"] = r.n_faces;
+    j["internalFaces"] = r.n_internal_faces;
+    j["cells"] = r.n_cells;
+    j["patches"] = r.n_patches;
+    j["cellTypes"] = {{"hexahedra", r.cell_types.hex},       {"prisms", r.cell_types.prism},
+                      {"wedges", r.cell_types.wedge},        {"pyramids", r.cell_types.pyramid},
+                      {"tetWedges", r.cell_types.tet_wedge}, {"tetrahedra", r.cell_types.tet},
+                      {"polyhedra", r.cell_types.polyhedron}};
+    j["boundingBox"] = {{r.bounding_box_min.x(), r.bounding_box_min.y(), r.bounding_box_min.z()},
+                        {r.bounding_box_max.x(), r.bounding_box_max.y(), r.bounding_box_max.z()}};
+    j["boundaryOpenness"] = {r.boundary_openness.x(), r.boundary_openness.y(),
+                             r.boundary_openness.z()};
+    j["maxCellOpenness"] = number(r.max_cell_openness);
+    j["maxAspectRatio"] = number(r.max_aspect_ratio);
+    j["highAspectRatioCells"] = r.high_aspect_ratio_cells;
+    j["minFaceArea"] = number(r.min_face_area);
+    j["maxFaceArea"] = number(r.max_face_area);
+    j["minVolume"] = number(r.min_volume);
+    j["maxVolume"] = number(r.max_volume);
+    j["totalVolume"] = number(r.total_volume);
+    j["negativeVolumeCells"] = r.negative_volume_cells;
+    j["maxNonOrthogonality"] = number(r.max_non_orthogonality);
+    j["avgNonOrthogonality"] = number(r.avg_non_orthogonality);
+    j["severelyNonOrthogonalFaces"] = r.severely_non_orthogonal_faces;
+    j["nonOrthogonalityErrors"] = r.non_orthogonality_errors;
+    j["incorrectlyOrientedFacePyramids"] = r.incorrectly_oriented_face_pyramids;
+    j["maxSkewness"] = number(r.max_skewness);
+    j["highlySkewedFaces"] = r.highly_skewed_faces;
+    if (r.has_all_geometry)
+    {
+        j["faceTetErrors"] = r.face_tet_errors;
+        j["minEdgeLength"] = number(r.min_edge_length);
+        j["maxEdgeLength"] = number(r.max_edge_length);
+        j["concaveFaces"] = r.concave_faces;
+        j["maxConcaveAngle"] = number(r.max_concave_angle);
+        j["minFaceFlatness"] = number(r.min_face_flatness);
+        j["warpedFaces"] = r.warped_faces;
+        j["minDeterminant"] = number(r.min_determinant);
+        j["avgDeterminant"] = number(r.avg_determinant);
+        j["smallDeterminantCells"] = r.small_determinant_cells;
+        j["concaveCells"] = r.concave_cells;
+        j["minFaceWeight"] = number(r.min_face_weight);
+        j["avgFaceWeight"] = number(r.avg_face_weight);
+        j["lowWeightFaces"] = r.low_weight_faces;
+        j["minVolumeRatio"] = number(r.min_volume_ratio);
+        j["avgVolumeRatio"] = number(r.avg_volume_ratio);
+        j["lowVolumeRatioFaces"] = r.low_volume_ratio_faces;
+    }
+    if (r.has_mesh_quality)
+    {
+        nlohmann::json failures = nlohmann::json::object();
+        for (const auto& [key, count] : r.mesh_quality_failures)
+            failures[key] = count;
+        j["meshQualityFailures"] = failures;
+        j["meshQualityFaces"] = r.mesh_quality_faces;
+    }
+    j["minScaledJacobian"] = number(r.min_scaled_jacobian);
+    j["failedChecks"] = r.failed_checks;
+    j["failedCheckNames"] = r.failed_check_names;
+    j["meshOK"] = r.mesh_ok();
+    return j;
+}
+
+void print_quality_summary(std::ostream& out, const nlohmann::json& before,
+                           const nlohmann::json& after, int precision)
+{
+    struct Row
+    {
+        const char* label;
+        const char* key;
+    };
+    static const Row rows[] = {
+        {"cells", "cells"},
+        {"min volume", "minVolume"},
+        {"total volume", "totalVolume"},
+        {"negative volume cells", "negativeVolumeCells"},
+        {"max aspect ratio", "maxAspectRatio"},
+        {"max non-orthogonality [deg]", "maxNonOrthogonality"},
+        {"avg non-orthogonality [deg]", "avgNonOrthogonality"},
+        {"severely non-orth. faces", "severelyNonOrthogonalFaces"},
+        {"max skewness", "maxSkewness"},
+        {"highly skewed faces", "highlySkewedFaces"},
+        {"wrongly oriented pyramids", "incorrectlyOrientedFacePyramids"},
+        {"min determinant", "minDeterminant"},
+        {"min face weight", "minFaceWeight"},
+        {"min volume ratio", "minVolumeRatio"},
+        {"concave cells", "concaveCells"},
+        {"face tet errors", "faceTetErrors"},
+        {"min scaled Jacobian", "minScaledJacobian"},
+        {"failed checks", "failedChecks"},
+    };
+    const auto cell = [&](const nlohmann::json& j, const char* key) -> std::string {
+        if (j.is_null() || !j.contains(key))
+            return "";
+        const nlohmann::json& v = j[key];
+        if (v.is_null())
+            return "-";
+        if (v.is_number_integer())
+            return std::to_string(v.get<long long>());
+        if (v.is_number())
+            return format_scalar(v.get<double>(), precision);
+        return v.dump();
+    };
+    const bool has_before = !before.is_null(), has_after = !after.is_null();
+    out << "    " << pad("metric", 31);
+    if (has_before)
+        out << pad("before", 16);
+    if (has_after)
+        out << "after";
+    out << "\n";
+    for (const Row& row : rows)
+    {
+        const std::string b = cell(before, row.key), a = cell(after, row.key);
+        if (b.empty() && a.empty())
+            continue;
+        out << "    " << pad(row.label, 31);
+        if (has_before)
+            out << pad(b.empty() ? "-" : b, 16);
+        if (has_after)
+            out << (a.empty() ? "-" : a);
+        out << "\n";
+    }
+    const auto ok = [](const nlohmann::json& j) {
+        return j.value("meshOK", false) ? "Mesh OK" : "mesh checks failed";
+    };
+    out << "    " << pad("verdict", 31);
+    if (has_before)
+        out << pad(ok(before), 16);
+    if (has_after)
+        out << ok(after);
+    out << "\n";
+}
+
+} // namespace meshmorph

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file The checker's machine-readable report (JSON) and a compact before/after summary.
+//!
+//! The JSON object is an interface shared with morphMesh (which embeds it as `before` and
+//! `after`); its key names are fixed: points, faces, internalFaces, cells, patches,
+//! cellTypes{hexahedra, prisms, wedges, pyramids, tetWedges, tetrahedra, polyhedra},
+//! boundingBox [[min],[max]], maxCellOpenness, maxAspectRatio, minFaceArea, maxFaceArea,
+//! minVolume, maxVolume, totalVolume, negativeVolumeCells, maxNonOrthogonality,
+//! avgNonOrthogonality, severelyNonOrthogonalFaces (> 70 deg), nonOrthogonalityErrors
+//! (> 90 deg), incorrectlyOrientedFacePyramids, maxSkewness, highlySkewedFaces,
+//! failedChecks, meshOK, minScaledJacobian (null when not computed); with -allGeometry also
+//! minFaceWeight, minVolumeRatio, smallDeterminantCells, concaveCells, warpedFaces,
+//! faceTetErrors (and a few more); with -meshQuality `meshQualityFailures` {criterion: count}.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "meshmorph/quality/check_mesh.h"
+
+namespace meshmorph
+{
+
+//! \brief The JSON object of a report (see the file comment for the keys). Non-finite
+//! numbers (e.g. an undefined scaled Jacobian) become null.
+nlohmann::json quality_json(const QualityReport& report);
+
+//! \brief Print a compact before/after table of the main metrics, e.g.
+//! ```
+//!     metric                         before          after
+//!     max non-orthogonality [deg]    12.5            31.2
+//!     ...
+//!     failed checks                  0               1
+//! ```
+//! Either side may be null (only one column then). Values are read from quality_json()
+//! objects, so a morph can also print a summary of JSON it loaded.
+void print_quality_summary(std::ostream& out, const nlohmann::json& before,
+                           const nlohmann::json& after, int precision = 6);
+
+} // namespace meshmorph
