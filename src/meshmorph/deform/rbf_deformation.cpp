@@ -274,8 +274,38 @@ void RbfDeformation::Impl::factor_dense()
     if (p > 0)
     {
         qr.compute(P);
-        A.applyOnTheLeft(qr.householderQ().adjoint());
-        A.applyOnTheRight(qr.householderQ());
+        // Q^T A Q in two sweeps over A instead of 4p reflector applications: with the compact
+        // WY form Q = I - V T V^T (LAPACK dlarft, forward), Y = A V, Z = V^T Y and
+        // W = Y T - V (T^T Z T) / 2, the product is the symmetric rank-2p update
+        // A - W V^T - V W^T.
+        const Eigen::MatrixXd& qrm = qr.matrixQR();
+        const Eigen::VectorXd& tau = qr.hCoeffs();
+        Eigen::MatrixXd V = Eigen::MatrixXd::Zero(m, p);
+        for (Eigen::Index j = 0; j < p; ++j)
+        {
+            V(j, j) = 1.0;
+            V.col(j).tail(m - j - 1) = qrm.col(j).tail(m - j - 1);
+        }
+        Eigen::MatrixXd T = Eigen::MatrixXd::Zero(p, p);
+        for (Eigen::Index i = 0; i < p; ++i)
+        {
+            T(i, i) = tau[i];
+            if (i > 0)
+            {
+                const Eigen::VectorXd vtv = V.leftCols(i).transpose() * V.col(i);
+                const Eigen::VectorXd tv =
+                    T.topLeftCorner(i, i).triangularView<Eigen::Upper>() * vtv;
+                T.col(i).head(i) = -tau[i] * tv;
+            }
+        }
+        const Eigen::MatrixXd Y = A * V;
+        const Eigen::MatrixXd Z = V.transpose() * Y;
+        Eigen::MatrixXd WV(m, 2 * p), VW(m, 2 * p);
+        WV.leftCols(p) = Y * T - 0.5 * V * (T.transpose() * Z * T);
+        WV.rightCols(p) = V;
+        VW.leftCols(p) = V;
+        VW.rightCols(p) = WV.leftCols(p);
+        A.noalias() -= WV * VW.transpose();
     }
     report.solver = p > 0 ? "null-space QR + LAPACK dpotrf" : "LAPACK dpotrf";
     report.condition_estimate = 1.0;
