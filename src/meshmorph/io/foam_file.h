@@ -38,6 +38,37 @@ bool foam_file_exists(const std::filesystem::path& path);
 //! or truncated gzip data.
 FileBuffer read_foam_file(const std::filesystem::path& path);
 
+//! \brief A whole file for parsing without copying: memory-mapped (read-only) when plain,
+//! decompressed into memory when gzip. Same X / X.gz rule as read_foam_file. Move-only.
+class MappedFoamFile
+{
+public:
+    //! \throw IoError naming the path as read_foam_file.
+    explicit MappedFoamFile(const std::filesystem::path& path);
+    MappedFoamFile(MappedFoamFile&& other) noexcept;
+    MappedFoamFile& operator=(MappedFoamFile&& other) noexcept;
+    MappedFoamFile(const MappedFoamFile&) = delete;
+    MappedFoamFile& operator=(const MappedFoamFile&) = delete;
+    ~MappedFoamFile();
+
+    //! The (decompressed) contents; valid while this object lives.
+    std::string_view data() const { return {data_, size_}; }
+    //! The file actually read (`X` or `X.gz`).
+    const std::filesystem::path& path() const { return path_; }
+    bool is_compressed() const { return is_compressed_; }
+    //! Release the contents early (data() becomes empty).
+    void release();
+
+private:
+    std::filesystem::path path_;
+    std::string owned_;       // decompressed data of a gzip file
+    void* map_ = nullptr;     // mmap of a plain file
+    std::size_t map_size_ = 0;
+    const char* data_ = nullptr;
+    std::size_t size_ = 0;
+    bool is_compressed_ = false;
+};
+
 //! Options of write_file_atomic.
 struct WriteFileOptions
 {

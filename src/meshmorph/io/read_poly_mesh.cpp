@@ -25,17 +25,18 @@ namespace
 // One file in memory with its tokenizer positioned after the FoamFile header.
 struct OpenFile
 {
-    FileBuffer buffer;
+    explicit OpenFile(const fs::path& path) : buffer(path) {}
+    MappedFoamFile buffer;
     FoamFileInfo info;
     std::size_t body_offset = 0; // where the body starts (for locating elements later)
     std::size_t body_line = 1;
 
-    std::string name() const { return buffer.path.string(); }
+    std::string name() const { return buffer.path().string(); }
 
     // A fresh tokenizer at the start of the body.
     FoamTokenizer body_tokenizer() const
     {
-        FoamTokenizer tok(std::string_view(buffer.data).substr(body_offset), name(), body_line);
+        FoamTokenizer tok(buffer.data().substr(body_offset), name(), body_line);
         return tok;
     }
 
@@ -55,12 +56,11 @@ struct OpenFile
 OpenFile open_file(const fs::path& path, std::initializer_list<std::string_view> classes,
                    const std::string& object)
 {
-    OpenFile file;
-    file.buffer = read_foam_file(path);
-    file.info.path = file.buffer.path;
-    file.info.is_compressed = file.buffer.is_compressed;
-    file.info.bytes = file.buffer.data.size();
-    FoamTokenizer tok(file.buffer.data, file.name());
+    OpenFile file(path);
+    file.info.path = file.buffer.path();
+    file.info.is_compressed = file.buffer.is_compressed();
+    file.info.bytes = file.buffer.data().size();
+    FoamTokenizer tok(file.buffer.data(), file.name());
     if (!has_header(tok))
     {
         const FoamToken& t = tok.peek();
