@@ -108,3 +108,26 @@ TEST(DmffdDeformation, rejects_bad_input)
 }
 
 } // namespace meshmorph
+
+namespace meshmorph
+{
+TEST(DmffdDeformation, invariant_under_scaling_of_the_problem)
+{
+    const Points h = test::random_points(200, 0.0, 1.0, 17);
+    const Points d = test::smooth_field(h);
+    const Points x = test::random_points(100, 0.0, 1.0, 19);
+    DmffdSettings s;
+    s.lattice.control_points = {5, 6, 5};
+    DmffdDeformation ref(s);
+    ref.fit(h, d);
+    const Points expected = displacements(ref, x);
+    for (double scale : {1e-6, 1e6})
+    {
+        DmffdDeformation dm(s);
+        dm.fit(h * scale, d * scale);
+        EXPECT_EQ(dm.report().rank, ref.report().rank);
+        const Points got = displacements(dm, x * scale) / scale;
+        EXPECT_LE((got - expected).cwiseAbs().maxCoeff(), 1e-10 * test::max_norm(d)) << scale;
+    }
+}
+} // namespace meshmorph

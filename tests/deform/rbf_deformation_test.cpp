@@ -7,6 +7,7 @@
 
 #include "deform_test_helpers.h"
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
 #include "meshmorph/deform/rbf_deformation.h"
 
 namespace meshmorph
@@ -275,6 +276,82 @@ TEST(RbfDeformation, refit_equals_fresh_fit_and_handle_basis_reproduces_it)
     EXPECT_LE((displacements(rbf, x) - expected).cwiseAbs().maxCoeff(), 1e-12);
     const Points bh = B * d2;
     EXPECT_LE((bh - expected).cwiseAbs().maxCoeff(), 1e-11);
+}
+
+} // namespace meshmorph
+
+namespace meshmorph
+{
+
+TEST(RbfDeformation, matches_a_direct_solve_of_eq8)
+{
+    // Reference: the full (m+4) x (m+4) system of Eq. 8 solved by full-pivoting LU.
+    const Points h = test::random_points(50, 0.0, 2.0, 23);
+    const Points d = test::smooth_field(h);
+    const Points x = test::random_points(100, -0.5, 2.5, 29);
+    for (RbfKernel k : {RbfKernel::triharmonic, RbfKernel::biharmonic, RbfKernel::multiquadric,
+                        RbfKernel::gaussian, RbfKernel::wendland_c2})
+    {
+        RbfSettings s;
+        s.kernel = k;
+        s.shape_parameter = 1.5;
+        s.support_radius = 1.5;
+        const auto phi = [&](double r) {
+            switch (k)
+            {
+            case RbfKernel::triharmonic: return r * r * r;
+            case RbfKernel::biharmonic: return r;
+            case RbfKernel::multiquadric: return std::sqrt(1.0 + 2.25 * r * r);
+            case RbfKernel::gaussian: return std::exp(-2.25 * r * r);
+            default:
+            {
+                const double t = r / 1.5;
+                return t < 1.0 ? std::pow(1.0 - t, 4) * (4.0 * t + 1.0) : 0.0;
+            }
+            }
+        };
+        const Eigen::Index m = h.rows();
+        Eigen::MatrixXd M = Eigen::MatrixXd::Zero(m + 4, m + 4);
+        Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(m + 4, 3);
+        for (Eigen::Index i = 0; i < m; ++i)
+        {
+            for (Eigen::Index j = 0; j < m; ++j)
+                M(i, j) = phi((h.row(i) - h.row(j)).norm());
+            M.block(i, m, 1, 3) = h.row(i);
+            M(i, m + 3) = 1.0;
+            M.block(m, i, 3, 1) = h.row(i).transpose();
+            M(m + 3, i) = 1.0;
+            rhs.row(i) = d.row(i);
+        }
+        const Eigen::MatrixXd W = M.fullPivLu().solve(rhs);
+        Points expected(x.rows(), 3);
+        for (Eigen::Index i = 0; i < x.rows(); ++i)
+        {
+            Eigen::RowVector3d v = x.row(i) * W.middleRows(m, 3) + W.row(m + 3);
+            for (Eigen::Index j = 0; j < m; ++j)
+                v += phi((x.row(i) - h.row(j)).norm()) * W.row(j);
+            expected.row(i) = v;
+        }
+        RbfDeformation rbf(s);
+        rbf.fit(h, d);
+        EXPECT_LE((displacements(rbf, x) - expected).cwiseAbs().maxCoeff(),
+                  1e-8 * test::max_norm(expected))
+            << to_string(k);
+    }
+}
+
+TEST(RbfDeformation, warns_about_a_large_condition_number)
+{
+    RbfSettings s;
+    s.kernel = RbfKernel::gaussian;
+    s.shape_parameter = 1.0; // flat Gaussian on 40 points: cond ~1e13 but factorisable
+    s.condition_warning = 1e6;
+    RbfDeformation rbf(s);
+    const Points h = test::random_points(40);
+    const log::CaptureScope capture;
+    rbf.fit(h, test::smooth_field(h));
+    EXPECT_GT(rbf.report().condition_estimate, 1e6);
+    EXPECT_NE(capture.text().find("condition estimate"), std::string::npos) << capture.text();
 }
 
 } // namespace meshmorph
