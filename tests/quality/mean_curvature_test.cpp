@@ -248,9 +248,13 @@ TEST(MeanCurvature, single_flat_patch_and_box_faces)
         for (int k = 0; k < 3; ++k)
             on_sides += x[k] < 1e-12 || x[k] > 1 - 1e-12;
         if (on_sides == 1)
+        {
             EXPECT_NEAR(all[p], 0.0, 1e-12);
+        }
         else if (on_sides >= 2)
+        {
             EXPECT_GT(all[p], 0.1);
+        }
     }
 }
 
