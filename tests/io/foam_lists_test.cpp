@@ -198,6 +198,15 @@ TEST(FoamLists, hostile_counts_fail_before_allocating)
     const std::string binary =
         test::error_of([] { labels("\n1000000000000\n(abcd)", binary_header()); });
     EXPECT_NE(binary.find("byte offset"), std::string::npos) << binary;
+    // A face size that passes the list-level checks but not its own brackets, in a list
+    // big enough for the parallel path.
+    std::string many = "\n100000\n(\n2000000000(1 2 3)\n";
+    for (int i = 1; i < 100000; ++i)
+        many += "3(0 1 2)\n";
+    many += ")\n";
+    FoamTokenizer big(many, "test/faces");
+    const std::string big_face = test::error_of([&] { read_face_list(big, ascii_header(), false); });
+    EXPECT_NE(big_face.find("test/faces:4"), std::string::npos) << big_face;
     FoamTokenizer faces("2(1000000000000(1 2 3) 3(0 1 2))", "test/faces");
     const std::string face = test::error_of([&] { read_face_list(faces, ascii_header(), false); });
     EXPECT_NE(face.find("test/faces:1"), std::string::npos) << face;

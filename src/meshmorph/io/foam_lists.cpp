@@ -760,126 +760,158 @@ void read_binary_face(FoamTokenizer& tok, const FoamHeader& header, std::vector<
         values.insert(values.end(), start.size - 1, values[base]);
 }
 
-// Fast path for an ASCII faceList body (one `(` per face, no nesting deeper than 1), in
-// parallel chunks when worthwhile. Returns false (nothing consumed) at anything unusual.
+// Whether a line starting at p begins a face: digits immediately followed by '('. Lines
+// inside a face written over several lines (more than 10 vertices) hold a lone number or
+// bracket, so such a line is always a face start.
+bool is_face_start(const char* p, const char* e)
+{
+    const char* q = p;
+    while (q < e && static_cast<unsigned>(*q - '0') < 10u)
+        ++q;
+    return q > p && q < e && *q == '(';
+}
+
+// Fast path for an ASCII faceList body (`k(v…)` elements, one bracket level), in parallel
+// chunks when worthwhile. Returns false (nothing consumed) at anything unusual, so that the
+// tokenizer re-parses and reports the precise error.
 bool parse_faces_fast(FoamTokenizer& tok, const ListStart& start, CompactList& faces,
-                          const ListReadOptions& options)
+                      const ListReadOptions& options)
 {
     const std::string_view buf = tok.buffer();
     const std::size_t body_begin = tok.offset();
-    // Two passes (sizes, then labels in place) also serially: the flat list is allocated
-    // once at its exact size, which keeps peak memory down.
     const std::size_t body_end = list_body_end(tok, 1);
     if (body_end == std::string_view::npos)
         return false;
-    // Split at newlines that are outside a face: a face longer than 10 vertices spans lines,
-    // so a chunk boundary must be where the bracket depth is 0. Compute depth at each
-    // candidate boundary from the counts of '(' and ')' before it (all faces are one level).
-    std::vector<Chunk> raw_chunks = split_lines(buf, body_begin, body_end, tok.line(),
-                                                worth_parallel(tok, options) ? chunk_count() : 1);
-    std::vector<std::ptrdiff_t> depth_delta(raw_chunks.size());
-    std::vector<std::size_t> face_counts(raw_chunks.size());
-#pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(raw_chunks.size()); ++k)
+    // Chunks start at face starts (see is_face_start), so each can be parsed alone.
+    std::vector<std::size_t> bounds{body_begin};
+    if (worth_parallel(tok, options))
     {
-        const std::size_t open = count_char(buf, raw_chunks[k], '(');
-        const std::size_t close = count_char(buf, raw_chunks[k], ')');
-        depth_delta[k] = static_cast<std::ptrdiff_t>(open) - static_cast<std::ptrdiff_t>(close);
-        face_counts[k] = open;
-    }
-    // Merge chunks whose start is inside a face into their predecessor.
-    std::vector<Chunk> chunks;
-    std::ptrdiff_t depth = 0;
-    for (std::size_t k = 0; k < raw_chunks.size(); ++k)
-    {
-        if (depth == 0 || chunks.empty())
+        const int parts = chunk_count();
+        const std::size_t len = body_end - body_begin;
+        for (int k = 1; k < parts; ++k)
         {
-            chunks.push_back(raw_chunks[k]);
-            chunks.back().count = face_counts[k];
-        }
-        else
-        {
-            chunks.back().end = raw_chunks[k].end;
-            chunks.back().count += face_counts[k];
-        }
-        depth += depth_delta[k];
-        if (depth < 0 || depth > 1)
-            return false;
-    }
-    std::size_t total = 0;
-    for (Chunk& c : chunks)
-    {
-        c.first = total;
-        total += c.count;
-    }
-    if (total != start.size)
-        return false;
-    // Pass 1: face sizes only (the number before each '('), to place every chunk's
-    // vertices without a second buffer. Any surprise sends us to the serial parser, which
-    // produces the precise error message.
-    faces.offsets.assign(start.size + 1, 0);
-    std::vector<char> chunk_ok(chunks.size(), 1);
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
-    {
-        const Chunk& c = chunks[k];
-        const char* p = buf.data() + c.begin;
-        const char* const e = buf.data() + c.end;
-        for (std::size_t i = 0; i < c.count; ++i)
-        {
-            while (p < e && (*p == ' ' || *p == '\n' || *p == '\t' || *p == '\r'))
-                ++p;
-            std::int64_t n = 0;
-            const std::from_chars_result r = std::from_chars(p, e, n);
-            const char* q = r.ptr;
-            while (q < e && (*q == ' ' || *q == '\n' || *q == '\t' || *q == '\r'))
-                ++q;
-            if (r.ec != std::errc() || q >= e || *q != '(' || n < 0 ||
-                n > std::numeric_limits<Index>::max())
+            std::size_t pos = std::max(bounds.back(), body_begin + len * k / parts);
+            while (pos < body_end)
             {
-                chunk_ok[k] = 0;
+                const void* nl = std::memchr(buf.data() + pos, '\n', body_end - pos);
+                if (!nl)
+                {
+                    pos = body_end;
+                    break;
+                }
+                pos = static_cast<std::size_t>(static_cast<const char*>(nl) - buf.data()) + 1;
+                if (is_face_start(buf.data() + pos, buf.data() + body_end))
+                    break;
+            }
+            if (pos >= body_end)
+                break;
+            bounds.push_back(pos);
+        }
+    }
+    bounds.push_back(body_end);
+    const std::size_t n_chunks = bounds.size() - 1;
+
+    // Pass 1: the face sizes of each chunk (the number before each '('), so that pass 2
+    // can place every vertex label directly, with the flat list allocated once.
+    std::vector<std::vector<Index>> sizes(n_chunks);
+    std::vector<char> ok(n_chunks, 1);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(n_chunks); ++k)
+    {
+        const char* p = buf.data() + bounds[k];
+        const char* const e = buf.data() + bounds[k + 1];
+        std::vector<Index>& local = sizes[k];
+        // One chunk: reserve the offsets' final size so they can take over this buffer.
+        local.reserve(n_chunks == 1 ? start.size + 1 : static_cast<std::size_t>(e - p) / 12 + 16);
+        for (;;)
+        {
+            p = fast::skip_space(p, e);
+            if (p == e)
+                break;
+            Index n = 0;
+            if (!fast::label(p, e, n) || n < 0 || !fast::expect(p, e, '('))
+            {
+                ok[k] = 0;
                 break;
             }
             // Faces are short: a plain loop beats a memchr call per face.
-            const char* close = q;
-            while (close < e && *close != ')')
-                ++close;
-            if (close == e)
+            const char* const open = p;
+            while (p < e && *p != ')')
+                ++p;
+            // The declared size must fit between the brackets (a hostile size must not
+            // become a huge allocation below).
+            if (p == e || static_cast<std::size_t>(n) > static_cast<std::size_t>(p - open) / 2 + 1)
             {
-                chunk_ok[k] = 0;
+                ok[k] = 0;
                 break;
             }
-            faces.offsets[c.first + i + 1] = static_cast<Index>(n);
-            p = close + 1;
+            ++p;
+            local.push_back(n);
         }
     }
-    if (std::find(chunk_ok.begin(), chunk_ok.end(), 0) != chunk_ok.end())
+    if (std::find(ok.begin(), ok.end(), 0) != ok.end())
         return false;
+    std::size_t total = 0;
+    for (const std::vector<Index>& local : sizes)
+        total += local.size();
+    if (total != start.size)
+        return false;
+    if (n_chunks == 1)
+    {
+        // Reuse the sizes buffer for the offsets (no second nFaces array).
+        sizes[0].insert(sizes[0].begin(), 0);
+        faces.offsets = std::move(sizes[0]);
+        std::size_t running = 0;
+        for (std::size_t i = 1; i < faces.offsets.size(); ++i)
+        {
+            running += static_cast<std::size_t>(faces.offsets[i]);
+            if (running > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
+                throw tok.error_at(start.line, "list '" + options.what +
+                                                   "' has more vertex labels than a label can count");
+            faces.offsets[i] = static_cast<Index>(running);
+        }
+        sizes.clear();
+    }
+    else
+        faces.offsets.resize(start.size + 1);
+    faces.offsets[0] = 0;
+    std::vector<std::size_t> first(n_chunks + 1, 0);
     std::size_t flat = 0;
-    for (std::size_t i = 0; i < start.size; ++i)
+    std::size_t f = 0;
+    for (std::size_t k = 0; k < sizes.size(); ++k)
     {
-        flat += static_cast<std::size_t>(faces.offsets[i + 1]);
-        if (flat > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
-            throw tok.error_at(start.line, "list '" + options.what +
-                                               "' has more vertex labels than a label can count");
-        faces.offsets[i + 1] = static_cast<Index>(flat);
+        first[k] = f;
+        for (Index n : sizes[k])
+        {
+            flat += static_cast<std::size_t>(n);
+            if (flat > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
+                throw tok.error_at(start.line, "list '" + options.what +
+                                                   "' has more vertex labels than a label can count");
+            faces.offsets[++f] = static_cast<Index>(flat);
+        }
+        std::vector<Index>().swap(sizes[k]);
     }
+    if (n_chunks == 1)
+    {
+        f = start.size;
+        flat = static_cast<std::size_t>(faces.offsets.back());
+    }
+    first[n_chunks] = f;
     faces.values.resize(flat);
+
     // Pass 2: the labels, straight into place (the declared sizes are checked again).
-    std::vector<char> parsed(chunks.size(), 1);
 #pragma omp parallel for schedule(dynamic, 1)
-    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(n_chunks); ++k)
     {
-        const Chunk& c = chunks[k];
-        const char* p = buf.data() + c.begin;
-        const char* const e = buf.data() + c.end;
-        for (std::size_t i = c.first; i < c.first + c.count && parsed[k]; ++i)
-            parsed[k] = fast::face_into(p, e, faces.values.data() + faces.offsets[i],
-                                        faces.offsets[i + 1] - faces.offsets[i]);
-        if (parsed[k] && fast::skip_space(p, e) != e)
-            parsed[k] = 0;
+        const char* p = buf.data() + bounds[k];
+        const char* const e = buf.data() + bounds[k + 1];
+        for (std::size_t i = first[k]; i < first[k + 1] && ok[k]; ++i)
+            ok[k] = fast::face_into(p, e, faces.values.data() + faces.offsets[i],
+                                    faces.offsets[i + 1] - faces.offsets[i]);
+        if (ok[k] && fast::skip_space(p, e) != e)
+            ok[k] = 0;
     }
-    if (std::find(parsed.begin(), parsed.end(), 0) != parsed.end())
+    if (std::find(ok.begin(), ok.end(), 0) != ok.end())
     {
         faces.clear();
         return false;
