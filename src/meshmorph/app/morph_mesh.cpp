@@ -6,12 +6,31 @@
 #include <chrono>
 #include <cmath>
 
+#include <ostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "meshmorph/app/banner.h"
+#include "meshmorph/app/deformation_factory.h"
+#include "meshmorph/app/options.h"
+#include "meshmorph/core/config.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/core/progress.h"
+#include "meshmorph/io/foam_dictionary.h"
+#include "meshmorph/io/foam_file.h"
+#include "meshmorph/io/read_poly_mesh.h"
+#include "meshmorph/io/write_poly_mesh.h"
+#include "meshmorph/quality/quality_json.h"
+#if MESHMORPH_WITH_VTK
+#include "meshmorph/io/vtk_writer.h"
+#endif
 
 namespace meshmorph::app
 {
+
+namespace fs = std::filesystem;
 
 namespace
 {
@@ -153,6 +172,336 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
     result.relative_constraint_error =
         result.max_constraint_error / std::max(result.max_prescribed, 1e-12 * diag);
     return result;
+}
+
+namespace
+{
+
+std::string fmt(double v, int precision = 3)
+{
+    std::ostringstream o;
+    o.precision(precision);
+    o << v;
+    return o.str();
+}
+
+//! Reads target surfaces once per file; paths relative to the case.
+class SurfaceProjector
+{
+public:
+    explicit SurfaceProjector(fs::path case_dir) : case_dir_(std::move(case_dir)) {}
+    Points operator()(const std::string& file, const Points& query) const
+    {
+        (void)query;
+        throw IoError((case_dir_ / file).string() +
+                      ": boundary type surface needs the STL/OBJ reader, not built yet");
+    }
+
+private:
+    fs::path case_dir_;
+};
+
+} // namespace
+
+MorphResult morph_case(const MorphOptions& options)
+{
+    MorphResult result;
+    const fs::path case_dir = fs::absolute(options.case_dir);
+    if (!fs::is_directory(case_dir))
+        throw IoError("case directory " + case_dir.string() + " does not exist");
+    fs::path dict_path = options.dict.empty() ? fs::path("system/morphDict") : options.dict;
+    if (dict_path.is_relative())
+        dict_path = case_dir / dict_path;
+
+    // Everything that can fail on user input happens before anything is written.
+    auto stage_start = Clock::now();
+    const io::FoamDictionary dict = io::read_dictionary(dict_path);
+    MorphSetup setup = read_morph_setup(dict);
+    const DeformationSettings settings = read_deformation_settings(dict, options.method);
+    result.method = to_string(settings.method);
+
+    io::PolyMeshReadOptions read_options;
+    read_options.time = options.time;
+    io::FoamPolyMesh foam = io::read_poly_mesh(case_dir, read_options);
+    const PolyMesh& mesh = foam.mesh;
+    result.instance = foam.points_instance;
+    log::info() << "Read mesh from " << foam.points_dir.string() << ": " << mesh.n_points()
+                << " points, " << mesh.n_cells << " cells, " << mesh.patches.size()
+                << " patches";
+
+    ConstraintInputs inputs;
+    inputs.project_to_surface = SurfaceProjector(case_dir);
+    result.constraints = build_constraints(mesh, setup, inputs);
+    const Constraints& c = result.constraints;
+
+    if (options.overwrite)
+        result.output_instance = foam.points_instance;
+    else
+    {
+        const std::vector<io::TimeDir> times = io::list_times(case_dir);
+        result.output_instance =
+            io::next_time_name(times, foam.time, io::read_time_settings(case_dir));
+    }
+#if !MESHMORPH_WITH_VTK
+    if (options.vtk)
+        throw InvalidInput("-vtk: this build has no VTK support (MESHMORPH_WITH_VTK=OFF)");
+#endif
+    result.timings.read = seconds_since(stage_start);
+    log::info() << "Read case and " << dict_path.string() << " in "
+                << format_seconds(result.timings.read) << " s";
+
+    // The set-up, as the user should see it.
+    for (const PatchAssignment& a : c.patches)
+        log::info() << "    " << a.patch << " (" << a.patch_type << ", " << a.n_points
+                    << " points): " << to_string(a.motion) << "  [" << a.matched_by << "]";
+    log::info() << "Constraints: " << c.points.size() << " prescribed points, "
+                << c.slip_points.size() << " slip points, " << c.n_free_points
+                << " free boundary points, " << c.n_handle_points << " handle points"
+                << (c.n_handle_overrides > 0
+                        ? " (" + std::to_string(c.n_handle_overrides) +
+                              " boundary points overridden by handles)"
+                        : std::string());
+    if (c.empty_normal)
+        log::info() << "2D case: no motion normal to the empty planes (normal "
+                    << c.empty_normal->transpose() << ")";
+    if (c.n_conflicts > 0)
+    {
+        auto w = log::warning();
+        w << c.n_conflicts << " points have conflicting prescriptions, resolved by rule '"
+          << to_string(c.conflict_rule) << "' (set 'conflicts' in the dictionary to change):";
+        for (const std::string& line : c.conflict_summary)
+            w << "\n    " << line;
+    }
+
+    // Quality before.
+    stage_start = Clock::now();
+    CheckMeshSettings check_settings;
+    result.before = check_mesh(mesh, check_settings);
+    result.timings.check = seconds_since(stage_start);
+
+    // Fit and evaluate.
+    const Index n_fit = static_cast<Index>(c.points.size() + c.slip_points.size());
+    log::info() << "Method: " << describe(settings, n_fit);
+    std::unique_ptr<SpaceDeformation> deformation = make_deformation(settings, mesh.points, n_fit);
+    result.morph = morph_points(mesh, c, *deformation, needs_fit(settings));
+    result.timings.fit = result.morph.fit_seconds;
+    result.timings.evaluate = result.morph.evaluate_seconds;
+    const FitReport& r = result.morph.report;
+    log::info() << "Fitted " << result.morph.n_constraints << " constraints with "
+                << r.num_centres << (settings.method == DeformationMethod::rbf ? " centres" : " control points")
+                << (r.solver.empty() ? std::string() : " (" + r.solver + ")")
+                << (r.condition_estimate > 0 ? ", condition ~ " + fmt(r.condition_estimate) : "")
+                << " in " << format_seconds(result.timings.fit) << " s";
+    log::info() << "Evaluated " << mesh.n_points() << " points in "
+                << format_seconds(result.timings.evaluate) << " s; max displacement "
+                << fmt(result.morph.displacement.rowwise().norm().maxCoeff());
+    log::info() << "Max constraint error " << fmt(result.morph.max_constraint_error) << " ("
+                << fmt(result.morph.relative_constraint_error) << " of the largest prescribed "
+                << "displacement " << fmt(result.morph.max_prescribed) << ")";
+    if (settings.method == DeformationMethod::rbf &&
+        result.morph.relative_constraint_error > 1e-9)
+        log::warning() << "constrained points miss their prescriptions by up to "
+                       << fmt(result.morph.relative_constraint_error)
+                       << " (relative): greedy tolerance or ill-conditioning";
+
+    // Quality after.
+    stage_start = Clock::now();
+    PolyMesh moved = mesh;
+    moved.points += result.morph.displacement;
+    result.after = check_mesh(moved, check_settings);
+    result.timings.check += seconds_since(stage_start);
+    {
+        std::ostringstream summary;
+        print_quality_summary(summary, quality_json(result.before), quality_json(result.after));
+        log::info() << "Mesh quality before and after the morph:\n" << summary.str();
+    }
+    std::vector<std::string> reasons;
+    if (result.after.negative_volume_cells > result.before.negative_volume_cells)
+        reasons.push_back(std::to_string(result.after.negative_volume_cells) +
+                          " negative-volume cells (" +
+                          std::to_string(result.before.negative_volume_cells) + " before)");
+    if (result.after.incorrectly_oriented_face_pyramids >
+        result.before.incorrectly_oriented_face_pyramids)
+        reasons.push_back(std::to_string(result.after.incorrectly_oriented_face_pyramids) +
+                          " incorrectly oriented face pyramids (" +
+                          std::to_string(result.before.incorrectly_oriented_face_pyramids) +
+                          " before)");
+    if (!reasons.empty())
+    {
+        result.refusal = "the morphed mesh has " + reasons.front() +
+                         (reasons.size() > 1 ? " and " + reasons.back() : std::string());
+        if (!options.force)
+        {
+            result.refused = true;
+            log::error() << "Refusing to write: " << result.refusal
+                         << ". Reduce the motion, change the method or use -force.";
+            return result;
+        }
+        log::warning() << "-force: writing although " << result.refusal;
+    }
+
+    // Write.
+    stage_start = Clock::now();
+    io::FoamFileInfo like = foam.points;
+    result.points_file = io::write_points(moved.points, like, case_dir, result.output_instance,
+                                          foam.region);
+    result.written = true;
+#if MESHMORPH_WITH_VTK
+    if (options.vtk)
+    {
+        const fs::path dir = case_dir / "VTK";
+        fs::create_directories(dir);
+        result.vtk_file = dir / ("morphMesh_" + result.output_instance + ".vtu");
+        std::vector<io::VtkField> point_data;
+        point_data.emplace_back("displacement", result.morph.displacement);
+        std::vector<io::VtkField> cell_data;
+        if (result.after.cell_non_orthogonality.size() == moved.n_cells)
+            cell_data.emplace_back("nonOrthogonality", result.after.cell_non_orthogonality);
+        if (result.after.cell_skewness.size() == moved.n_cells)
+            cell_data.emplace_back("skewness", result.after.cell_skewness);
+        if (result.after.cell_aspect_ratio.size() == moved.n_cells)
+            cell_data.emplace_back("aspectRatio", result.after.cell_aspect_ratio);
+        io::write_vtu(result.vtk_file, moved, point_data, cell_data);
+    }
+#endif
+    result.timings.write = seconds_since(stage_start);
+    log::info() << "Wrote " << result.points_file.string() << " in "
+                << format_seconds(result.timings.write) << " s";
+    if (!result.vtk_file.empty())
+        log::info() << "Wrote " << result.vtk_file.string()
+                    << " (point data: displacement; cell data: nonOrthogonality, skewness, "
+                       "aspectRatio)";
+    return result;
+}
+
+std::string morph_json(const MorphResult& result)
+{
+    nlohmann::json j;
+    j["method"] = result.method;
+    j["constraints"] = result.morph.n_constraints;
+    j["centres"] = result.morph.report.num_centres;
+    j["maxConstraintError"] = result.morph.max_constraint_error;
+    j["relativeConstraintError"] = result.morph.relative_constraint_error;
+    j["maxPrescribedDisplacement"] = result.morph.max_prescribed;
+    j["slipPoints"] = result.morph.n_slip;
+    j["handlePoints"] = result.constraints.n_handle_points;
+    j["conflicts"] = result.constraints.n_conflicts;
+    j["conflictRule"] = to_string(result.constraints.conflict_rule);
+    j["solver"] = result.morph.report.solver;
+    j["conditionEstimate"] = result.morph.report.condition_estimate;
+    j["timings"] = {{"read", result.timings.read},
+                    {"fit", result.timings.fit},
+                    {"evaluate", result.timings.evaluate},
+                    {"check", result.timings.check},
+                    {"write", result.timings.write}};
+    j["before"] = quality_json(result.before);
+    j["after"] = quality_json(result.after);
+    j["instance"] = result.instance;
+    j["outputInstance"] = result.output_instance;
+    j["written"] = result.written;
+    j["refused"] = result.refused;
+    if (result.refused)
+        j["refusal"] = result.refusal;
+    return j.dump(2) + "\n";
+}
+
+int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::ostream& err)
+{
+    Options options(
+        "morphMesh",
+        "Morphs the polyMesh of an OpenFOAM case with a space deformation (RBF by default,\n"
+        "DM-FFD or FFD) fitted to the boundary and handle prescriptions of system/morphDict,\n"
+        "then checks the result like checkMesh. Without -overwrite only <next time>/polyMesh/\n"
+        "points is written (read it with -latestTime); a morph that creates negative-volume\n"
+        "cells or wrongly oriented face pyramids is not written unless -force.\n"
+        "Conflicting prescriptions on shared points follow the dictionary's 'conflicts' rule\n"
+        "(default fixed: such points do not move); handles override boundary prescriptions.",
+        {{"case", "DIR", "Case directory (default: the current directory)"},
+         {"dict", "FILE", "Alternative morphDict (relative to the case; default system/morphDict)"},
+         {"time", "TIME", "Morph the mesh at this time (a time name or value, or constant)"},
+         {"latestTime", "", "Morph the mesh at the latest time"},
+         {"overwrite", "", "Replace the points of the mesh instance instead of writing a new time"},
+         {"noOverwrite", "", "Write a new time directory (the default)"},
+         {"method", "rbf|dmffd|ffd", "Override the dictionary's method"},
+         {"json", "FILE", "Write constraints, timings and before/after quality as JSON"},
+         {"vtk", "", "Also write VTK/morphMesh_<time>.vtu with the displacement and quality"},
+         {"force", "", "Write even if the morph creates invalid cells"}},
+        {{exit_morph_ok, "morphed mesh written"},
+         {exit_morph_input_error, "bad option, dictionary, mesh or surface file; nothing written"},
+         {exit_morph_refused, "the morph creates invalid cells; nothing written (see -force)"},
+         {exit_morph_solver_error, "the deformation could not be fitted; nothing written"},
+         {exit_morph_internal_error, "unexpected internal error"}});
+    if (const std::optional<int> code = parse_command_line(options, argc, argv, out, err))
+        return *code;
+    try
+    {
+        if (options.found("time") && options.found("latestTime"))
+            throw UsageError("-time and -latestTime are mutually exclusive");
+        if (options.found("overwrite") && options.found("noOverwrite"))
+            throw UsageError("-overwrite and -noOverwrite are mutually exclusive");
+        MorphOptions morph;
+        morph.case_dir = fs::absolute(options.value_or("case", "."));
+        if (const std::optional<std::string> d = options.get("dict"))
+            morph.dict = *d;
+        if (options.found("latestTime"))
+            morph.time = io::TimeSelection::latest_time();
+        else if (const std::optional<std::string> t = options.get("time"))
+            morph.time = io::TimeSelection::at(*t);
+        morph.overwrite = options.found("overwrite");
+        if (const std::optional<std::string> m = options.get("method"))
+        {
+            deformation_method_from_string(*m); // validate early: a usage error
+            morph.method = *m;
+        }
+        if (const std::optional<std::string> j = options.get("json"))
+            morph.json = fs::absolute(*j);
+        morph.vtk = options.found("vtk");
+        morph.force = options.found("force");
+
+        print_banner(out, {"morphMesh", options.command_line(), morph.case_dir.string()});
+        const MorphResult result = morph_case(morph);
+        if (!morph.json.empty())
+        {
+            io::write_file_atomic(morph.json, morph_json(result));
+            out << "Wrote " << morph.json.string() << "\n";
+        }
+        out << "\nTimings [s]: read " << format_seconds(result.timings.read) << ", fit "
+            << format_seconds(result.timings.fit) << ", evaluate "
+            << format_seconds(result.timings.evaluate) << ", check "
+            << format_seconds(result.timings.check) << ", write "
+            << format_seconds(result.timings.write) << "\n";
+        if (result.refused)
+        {
+            err << "Error: " << result.refusal << "; nothing written (use -force to write anyway)\n";
+            return exit_morph_refused;
+        }
+        out << (result.after.mesh_ok() ? "Mesh OK."
+                                       : "Failed " + std::to_string(result.after.failed_checks) +
+                                             " mesh checks.")
+            << "\n";
+        print_end(out);
+        return exit_morph_ok;
+    }
+    catch (const UsageError& e)
+    {
+        err << "Error: " << e.what() << "\n";
+        return exit_usage_error;
+    }
+    catch (const SolverError& e)
+    {
+        err << "Error: " << e.what() << "\nNothing written.\n";
+        return exit_morph_solver_error;
+    }
+    catch (const Error& e)
+    {
+        err << "Error: " << e.what() << "\nNothing written.\n";
+        return exit_morph_input_error;
+    }
+    catch (const std::exception& e)
+    {
+        err << "Internal error: " << e.what() << "\n";
+        return exit_morph_internal_error;
+    }
 }
 
 } // namespace meshmorph::app

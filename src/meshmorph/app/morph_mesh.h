@@ -19,6 +19,7 @@
 #pragma once
 
 #include <filesystem>
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
@@ -95,8 +96,21 @@ struct MorphResult
 //! \throw ParseError, IoError, InvalidInput, SolverError.
 MorphResult morph_case(const MorphOptions& options);
 
-//! The `-json` document: method, constraints, centres, maxConstraintError, timings,
-//! before, after (the checker's keys).
+//! The `-json` document: method, constraints, centres, maxConstraintError, timings
+//! {read, fit, evaluate, check, write}, before, after (the checker's keys), plus
+//! relativeConstraintError, conflicts, handlePoints, slipPoints, outputInstance, written,
+//! refused.
 std::string morph_json(const MorphResult& result);
+
+//! Exit statuses of morphMesh (listed by -help).
+inline constexpr int exit_morph_ok = 0;
+inline constexpr int exit_morph_input_error = 2;  //!< options, dictionary, mesh, surface files
+inline constexpr int exit_morph_refused = 3;      //!< new invalid cells; nothing written
+inline constexpr int exit_morph_solver_error = 4; //!< the fit failed
+inline constexpr int exit_morph_internal_error = 5;
+
+//! \brief The morphMesh application (argv[0] = program name): options, banner, morph_case,
+//! summary. Report to `out`, errors to `err`. Returns an exit status; never throws.
+int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::ostream& err);
 
 } // namespace meshmorph::app

@@ -1,0 +1,335 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// morphDict deformation settings and the factory of SpaceDeformations.
+#include "meshmorph/app/deformation_factory.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/io/foam_dictionary.h"
+
+namespace meshmorph::app
+{
+
+namespace
+{
+
+void check_keywords(const io::FoamDictionary& dict, const std::vector<std::string>& allowed,
+                    const std::string& what)
+{
+    for (const io::FoamEntry& e : dict.entries())
+        if (std::find(allowed.begin(), allowed.end(), e.keyword()) == allowed.end())
+        {
+            std::string list;
+            for (const std::string& a : allowed)
+                list += (list.empty() ? "" : " ") + a;
+            throw e.error("unknown keyword for " + what + " (valid: " + list + ")");
+        }
+}
+
+std::array<int, 3> read_lattice(const io::FoamDictionary& d)
+{
+    const io::FoamEntry& e = d.entry("lattice");
+    const std::vector<std::int32_t> n = e.get<std::vector<std::int32_t>>();
+    if (n.size() != 3)
+        throw e.error("expected three control-point counts (nx ny nz)");
+    for (std::int32_t v : n)
+        if (v < 4)
+            throw e.error("a cubic B-spline lattice needs at least 4 control points per "
+                          "direction, got " +
+                          std::to_string(v));
+    return {n[0], n[1], n[2]};
+}
+
+std::optional<FfdBox> read_bounds(const io::FoamDictionary& d)
+{
+    const io::FoamEntry* e = d.find("bounds");
+    if (e == nullptr)
+        return std::nullopt;
+    const std::vector<Vector3> corners = e->get<std::vector<Vector3>>();
+    if (corners.size() != 2)
+        throw e->error("expected ((x0 y0 z0) (x1 y1 z1))");
+    const Vector3 extent = corners[1] - corners[0];
+    if ((extent.array() <= 0.0).any())
+        throw e->error("bounds: the second corner must exceed the first in x, y and z");
+    FfdBox box;
+    box.origin = corners[0];
+    box.axes = extent.asDiagonal();
+    return box;
+}
+
+//! Expect punctuation c at tokens[i] and advance.
+void expect_punct(const io::FoamEntry& e, const std::vector<io::FoamValueToken>& t,
+                  std::size_t& i, char c)
+{
+    if (i >= t.size() || !t[i].is_punct(c))
+        throw e.error(std::string("expected '") + c + "' in a list of ((i j k) (dx dy dz)), found " +
+                      (i < t.size() ? t[i].describe() : std::string("end of entry")));
+    ++i;
+}
+
+double number(const io::FoamEntry& e, const std::vector<io::FoamValueToken>& t, std::size_t& i)
+{
+    if (i >= t.size() || !t[i].is_number())
+        throw e.error("expected a number in a list of ((i j k) (dx dy dz)), found " +
+                      (i < t.size() ? t[i].describe() : std::string("end of entry")));
+    return t[i++].scalar;
+}
+
+//! `displacements ( ((i j k) (dx dy dz)) ... );` (an optional count before the list).
+std::vector<ControlDisplacement> read_control_displacements(const io::FoamEntry& e,
+                                                            const std::array<int, 3>& counts)
+{
+    const std::vector<io::FoamValueToken>& t = e.tokens();
+    std::size_t i = 0;
+    if (i < t.size() && t[i].is_label())
+        ++i;
+    expect_punct(e, t, i, '(');
+    std::vector<ControlDisplacement> out;
+    while (i < t.size() && !t[i].is_punct(')'))
+    {
+        ControlDisplacement c;
+        expect_punct(e, t, i, '(');
+        expect_punct(e, t, i, '(');
+        for (int a = 0; a < 3; ++a)
+        {
+            if (i >= t.size() || !t[i].is_label())
+                throw e.error("control point index must be an integer, found " +
+                              (i < t.size() ? t[i].describe() : std::string("end of entry")));
+            const std::int64_t v = t[i++].label;
+            if (v < 0 || v >= counts[a])
+                throw e.error("control point index " + std::to_string(v) +
+                              " out of range [0, " + std::to_string(counts[a] - 1) + "]");
+            c.index[a] = static_cast<int>(v);
+        }
+        expect_punct(e, t, i, ')');
+        expect_punct(e, t, i, '(');
+        for (int a = 0; a < 3; ++a)
+            c.displacement[a] = number(e, t, i);
+        expect_punct(e, t, i, ')');
+        expect_punct(e, t, i, ')');
+        out.push_back(c);
+    }
+    expect_punct(e, t, i, ')');
+    if (i != t.size())
+        throw e.error("unexpected " + t[i].describe() + " after the list");
+    return out;
+}
+
+} // namespace
+
+std::string to_string(DeformationMethod method)
+{
+    switch (method)
+    {
+    case DeformationMethod::rbf:
+        return "rbf";
+    case DeformationMethod::dmffd:
+        return "dmffd";
+    case DeformationMethod::ffd:
+        return "ffd";
+    }
+    return "?";
+}
+
+DeformationMethod deformation_method_from_string(const std::string& name)
+{
+    if (name == "rbf")
+        return DeformationMethod::rbf;
+    if (name == "dmffd")
+        return DeformationMethod::dmffd;
+    if (name == "ffd")
+        return DeformationMethod::ffd;
+    throw InvalidInput("unknown method '" + name + "' (valid: rbf dmffd ffd)");
+}
+
+DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
+                                              const std::optional<std::string>& method_override)
+{
+    DeformationSettings s;
+    if (method_override)
+        s.method = deformation_method_from_string(*method_override);
+    else if (const io::FoamEntry* e = dict.find("method"))
+    {
+        try
+        {
+            s.method = deformation_method_from_string(e->get<std::string>());
+        }
+        catch (const InvalidInput& err)
+        {
+            throw e->error(err.what());
+        }
+    }
+
+    // Every method's sub-dictionary present is validated (a typo in an unused one is still
+    // a mistake the user wants to hear about); the chosen one is used.
+    if (const io::FoamDictionary* d = dict.find_dict("rbf"))
+    {
+        check_keywords(*d, {"kernel", "shape", "polynomial", "supportRadius", "order", "greedy"},
+                       "rbf");
+        if (const io::FoamEntry* e = d->find("kernel"))
+        {
+            try
+            {
+                s.rbf.kernel = rbf_kernel_from_string(e->get<std::string>());
+            }
+            catch (const InvalidInput& err)
+            {
+                throw e->error(err.what());
+            }
+        }
+        s.rbf.shape_parameter = d->get_or<double>("shape", s.rbf.shape_parameter);
+        if (!(s.rbf.shape_parameter > 0.0))
+            throw d->entry("shape").error("shape must be > 0");
+        s.rbf.support_radius = d->get_or<double>("supportRadius", s.rbf.support_radius);
+        s.rbf.polyharmonic_order = d->get_or<std::int32_t>("order", s.rbf.polyharmonic_order);
+        if (const io::FoamEntry* e = d->find("polynomial"))
+        {
+            const std::string p = e->get<std::string>();
+            if (p == "linear")
+                s.rbf.polynomial = true;
+            else if (p == "none")
+                s.rbf.polynomial = false;
+            else
+                throw e->error("unknown polynomial '" + p + "' (valid: linear none)");
+        }
+        if (d->found("greedy"))
+        {
+            const io::FoamDictionary& g = d->sub_dict("greedy");
+            check_keywords(g, {"tolerance", "rmsTolerance", "maxCentres", "initialCentres",
+                               "batchSize"},
+                           "rbf.greedy");
+            GreedySettings gs;
+            gs.tolerance = g.get_or<double>("tolerance", gs.tolerance);
+            gs.rms_tolerance = g.get_or<double>("rmsTolerance", std::min(gs.rms_tolerance,
+                                                                         gs.tolerance));
+            gs.max_centres = g.get_or<std::int32_t>("maxCentres", gs.max_centres);
+            gs.initial_centres = g.get_or<std::int32_t>("initialCentres", gs.initial_centres);
+            gs.batch_size = g.get_or<std::int32_t>("batchSize", gs.batch_size);
+            if (!(gs.tolerance > 0.0))
+                throw g.entry("tolerance").error("tolerance must be > 0");
+            if (gs.max_centres < 1)
+                throw g.entry("maxCentres").error("maxCentres must be >= 1");
+            s.greedy = gs;
+        }
+    }
+    if (const io::FoamDictionary* d = dict.find_dict("dmffd"))
+    {
+        check_keywords(*d, {"lattice", "clamping", "bounds"}, "dmffd");
+        if (d->found("lattice"))
+            s.dmffd.lattice.control_points = read_lattice(*d);
+        s.dmffd.clamping = d->get_or<double>("clamping", s.dmffd.clamping);
+        if (!(s.dmffd.clamping >= 0.0 && s.dmffd.clamping < 1.0))
+            throw d->entry("clamping").error("clamping must be in [0, 1)");
+        s.dmffd.lattice.box = read_bounds(*d);
+    }
+    if (const io::FoamDictionary* d = dict.find_dict("ffd"))
+    {
+        check_keywords(*d, {"lattice", "bounds", "displacements"}, "ffd");
+        if (d->found("lattice"))
+            s.ffd.control_points = read_lattice(*d);
+        s.ffd.box = read_bounds(*d);
+        if (const io::FoamEntry* e = d->find("displacements"))
+            s.ffd_displacements = read_control_displacements(*e, s.ffd.control_points);
+    }
+    if (s.method == DeformationMethod::ffd)
+    {
+        const io::FoamDictionary* d = dict.find_dict("ffd");
+        if (d == nullptr || !d->found("displacements"))
+            throw ParseError(dict.path(), d ? d->line() : 0,
+                             "method ffd needs ffd { lattice (nx ny nz); displacements ( ((i j k) "
+                             "(dx dy dz)) ... ); }: FFD moves control points, it does not fit the "
+                             "boundary prescriptions");
+    }
+    return s;
+}
+
+bool needs_fit(const DeformationSettings& settings)
+{
+    return settings.method != DeformationMethod::ffd;
+}
+
+std::unique_ptr<SpaceDeformation> make_deformation(const DeformationSettings& s,
+                                                   const Eigen::Ref<const Points>& points,
+                                                   Index n_constraints)
+{
+    switch (s.method)
+    {
+    case DeformationMethod::rbf:
+    {
+        if (s.greedy || n_constraints > s.direct_limit)
+        {
+            GreedySettings g;
+            if (s.greedy)
+                g = *s.greedy;
+            else
+            {
+                // Automatic: tight enough that boundary points end within 1e-6 of the
+                // largest prescription, bounded in memory like the direct solve.
+                g.tolerance = 1e-6;
+                g.rms_tolerance = 1e-7;
+                g.max_centres = s.direct_limit;
+            }
+            g.rbf = s.rbf;
+            return std::make_unique<GreedyRbfDeformation>(g);
+        }
+        return std::make_unique<RbfDeformation>(s.rbf);
+    }
+    case DeformationMethod::dmffd:
+    {
+        DmffdSettings d = s.dmffd;
+        if (!d.lattice.box) // enclose the whole mesh, not only the handles (paper Sec. 3.6)
+            d.lattice.box = make_lattice(d.lattice, points).box();
+        return std::make_unique<DmffdDeformation>(d);
+    }
+    case DeformationMethod::ffd:
+    {
+        const FfdLattice lattice = make_lattice(s.ffd, points);
+        auto ffd = std::make_unique<FfdDeformation>(lattice, s.ffd.outside);
+        Points control = Points::Zero(lattice.size(), 3);
+        for (const ControlDisplacement& c : s.ffd_displacements)
+            control.row(lattice.index(c.index[0], c.index[1], c.index[2])) =
+                c.displacement.transpose();
+        ffd->set_control_displacements(control);
+        return ffd;
+    }
+    }
+    throw std::logic_error("make_deformation: unknown method");
+}
+
+std::string describe(const DeformationSettings& s, Index n_constraints)
+{
+    std::ostringstream out;
+    switch (s.method)
+    {
+    case DeformationMethod::rbf:
+        out << "rbf (" << to_string(s.rbf.kernel) << ", "
+            << (s.rbf.polynomial ? "linear polynomial" : "no polynomial") << ", ";
+        if (s.greedy)
+            out << "greedy, tolerance " << s.greedy->tolerance << ", max " << s.greedy->max_centres
+                << " centres)";
+        else if (n_constraints > s.direct_limit)
+            out << "greedy (automatic above " << s.direct_limit
+                << " constraints), tolerance 1e-06)";
+        else
+            out << "direct, exact)";
+        break;
+    case DeformationMethod::dmffd:
+    {
+        const auto& n = s.dmffd.lattice.control_points;
+        out << "dmffd (lattice " << n[0] << "x" << n[1] << "x" << n[2] << ", clamping "
+            << s.dmffd.clamping << ")";
+        break;
+    }
+    case DeformationMethod::ffd:
+    {
+        const auto& n = s.ffd.control_points;
+        out << "ffd (lattice " << n[0] << "x" << n[1] << "x" << n[2] << ", "
+            << s.ffd_displacements.size() << " control points moved)";
+        break;
+    }
+    }
+    return out.str();
+}
+
+} // namespace meshmorph::app
