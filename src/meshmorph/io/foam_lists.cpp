@@ -270,12 +270,11 @@ inline void read_ascii_vector(FoamTokenizer& tok, double* out, const ListStart& 
 }
 
 // A chunk of an ASCII list body for parallel parsing: [begin, end) of the buffer, the
-// line at `begin`, and the index of its first element.
+// index of its first element and its number of elements.
 struct Chunk
 {
     std::size_t begin = 0;
     std::size_t end = 0;
-    std::size_t line = 0;
     std::size_t first = 0;
     std::size_t count = 0;
 };
@@ -306,11 +305,10 @@ std::size_t find_list_end(std::string_view buf, std::size_t from, int element_de
     return std::string_view::npos;
 }
 
-// Split [begin, end) into about `parts` chunks at newlines that start an element. For
-// element lists (vectors, faces) an element starts a line; for number lists any newline
-// separates tokens. Also counts the newlines before each chunk for line numbers.
+// Split [begin, end) into about `parts` chunks at newlines (vectors and numbers never span
+// lines in the bodies the fast kernels accept).
 std::vector<Chunk> split_lines(std::string_view buf, std::size_t begin, std::size_t end,
-                               std::size_t first_line, int parts)
+                               int parts)
 {
     std::vector<Chunk> chunks;
     const std::size_t len = end - begin;
@@ -326,36 +324,8 @@ std::vector<Chunk> split_lines(std::string_view buf, std::size_t begin, std::siz
             stop = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - buf.data()) + 1
                       : end;
         }
-        chunks.push_back({pos, stop, 0, 0, 0});
+        chunks.push_back({pos, stop, 0, 0});
         pos = stop;
-    }
-    if (chunks.size() == 1)
-    {
-        chunks[0].line = first_line; // no need to count lines
-        return chunks;
-    }
-    std::vector<std::size_t> lines(chunks.size(), 0);
-#pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
-    {
-        std::size_t n = 0;
-        const char* p = buf.data() + chunks[k].begin;
-        const char* const e = buf.data() + chunks[k].end;
-        while (p < e)
-        {
-            const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(e - p));
-            if (!nl)
-                break;
-            ++n;
-            p = static_cast<const char*>(nl) + 1;
-        }
-        lines[k] = n;
-    }
-    std::size_t line = first_line;
-    for (std::size_t k = 0; k < chunks.size(); ++k)
-    {
-        chunks[k].line = line;
-        line += lines[k];
     }
     return chunks;
 }
@@ -381,27 +351,6 @@ std::size_t count_char(std::string_view buf, const Chunk& c, char ch)
 {
     return static_cast<std::size_t>(
         std::count(buf.data() + c.begin, buf.data() + c.end, ch));
-}
-
-// Runs body(k) for every chunk in parallel; the first ParseError (lowest chunk) is rethrown.
-template <class Body> void for_each_chunk(std::size_t n_chunks, Body body)
-{
-    std::vector<std::exception_ptr> errors(n_chunks);
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(n_chunks); ++k)
-    {
-        try
-        {
-            body(static_cast<std::size_t>(k));
-        }
-        catch (...)
-        {
-            errors[k] = std::current_exception();
-        }
-    }
-    for (const std::exception_ptr& e : errors)
-        if (e)
-            std::rethrow_exception(e);
 }
 
 int chunk_count() { return std::max(1, omp_get_max_threads()) * 4; }
@@ -558,7 +507,7 @@ bool parse_fast(FoamTokenizer& tok, const ListStart& start, const ListReadOption
     if (body_end != std::string_view::npos)
     {
         std::vector<Chunk> chunks =
-            split_lines(buf, body_begin, body_end, tok.line(), chunk_count());
+            split_lines(buf, body_begin, body_end, chunk_count());
 #pragma omp parallel for schedule(static)
         for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
             chunks[k].count = count_chunk(chunks[k]);
@@ -1197,9 +1146,7 @@ Points read_vector_list(FoamTokenizer& tok, const FoamHeader& header,
                 },
                 [&buf](const Chunk& c) { return count_char(buf, c, '('); }, "vector"))
             return points;
-        const bool done = false;
-        if (!done)
-            for (std::size_t i = 0; i < start.size; ++i)
+        for (std::size_t i = 0; i < start.size; ++i)
                 read_ascii_vector(tok, data + 3 * i, start, i, options.what);
         expect_close(tok, start, options.what, "vector");
         return points;

@@ -135,7 +135,8 @@ void read_faces_into(const fs::path& path, PolyMesh& mesh, FoamFileInfo& info, b
     mesh.faces = read_face_list(tok, file.info.header, compact, options);
     expect_end_of_file(tok, "faces");
 
-    const Index n_points = mesh.n_points();
+    // Vertex labels are checked against nPoints in check_face_points(), once the points
+    // are read (after the topology, which keeps peak memory lower).
     const Index n_faces = mesh.faces.size();
     for (Index f = 0; f < n_faces; ++f)
     {
@@ -147,22 +148,36 @@ void read_faces_into(const fs::path& path, PolyMesh& mesh, FoamFileInfo& info, b
                                      "face " + std::to_string(f) + " has " +
                                          std::to_string(end - begin) +
                                          " vertices, at least 3 are required");
-        for (Index j = begin; j < end; ++j)
-        {
-            const Index v = mesh.faces.values[j];
-            if (v < 0 || v >= n_points)
-            {
-                const std::string msg = "face " + std::to_string(f) + " has vertex label " +
-                                        std::to_string(v) + " outside [0, " +
-                                        std::to_string(n_points) + ") (nPoints from points)";
-                if (compact)
-                    throw file.element_error(ListKind::face_compact_value,
-                                             static_cast<std::size_t>(j), msg);
-                throw file.element_error(ListKind::face, static_cast<std::size_t>(f), msg);
-            }
-        }
     }
     info = file.info;
+}
+
+// Every vertex label in [0, nPoints). The faces file is opened again only to locate an
+// offending label for the message.
+void check_face_points(const PolyMesh& mesh, const FoamFileInfo& faces_info)
+{
+    const Index n_points = mesh.n_points();
+    const std::vector<Index>& values = mesh.faces.values;
+    std::size_t bad = values.size();
+    for (std::size_t j = 0; j < values.size(); ++j)
+        if (values[j] < 0 || values[j] >= n_points)
+        {
+            bad = j;
+            break;
+        }
+    if (bad == values.size())
+        return;
+    const auto it = std::upper_bound(mesh.faces.offsets.begin(), mesh.faces.offsets.end(),
+                                     static_cast<Index>(bad));
+    const std::size_t f = static_cast<std::size_t>(it - mesh.faces.offsets.begin()) - 1;
+    const std::string msg = "face " + std::to_string(f) + " has vertex label " +
+                            std::to_string(values[bad]) + " outside [0, " +
+                            std::to_string(n_points) + ") (nPoints from points)";
+    const bool compact = faces_info.header.class_name == "faceCompactList";
+    const OpenFile file = open_file(faces_info.path, {"faceList", "faceCompactList"}, "faces");
+    if (compact)
+        throw file.element_error(ListKind::face_compact_value, bad, msg);
+    throw file.element_error(ListKind::face, f, msg);
 }
 
 void read_owner_into(const fs::path& path, PolyMesh& mesh, FoamFileInfo& info, bool parallel)
@@ -292,24 +307,29 @@ void read_zones_into(const fs::path& path, std::vector<Zone>& zones,
     info = file.info;
 }
 
-void read_topology(const fs::path& dir, FoamPolyMesh& result, const PolyMeshReadOptions& options)
+// Topology first, then points (peak memory: the big faces text is gone before the points
+// text arrives), then the checks that need both, then the zones.
+void read_all(const fs::path& points_dir, const fs::path& faces_dir, FoamPolyMesh& result,
+              const PolyMeshReadOptions& options)
 {
     PolyMesh& mesh = result.mesh;
-    read_faces_into(dir / "faces", mesh, result.faces, options.parallel);
-    read_owner_into(dir / "owner", mesh, result.owner, options.parallel);
-    read_neighbour_into(dir / "neighbour", mesh, result.neighbour, options.parallel);
-    read_boundary_into(dir / "boundary", mesh, result.boundary);
+    read_faces_into(faces_dir / "faces", mesh, result.faces, options.parallel);
+    read_owner_into(faces_dir / "owner", mesh, result.owner, options.parallel);
+    read_neighbour_into(faces_dir / "neighbour", mesh, result.neighbour, options.parallel);
+    read_boundary_into(faces_dir / "boundary", mesh, result.boundary);
     mesh.finalize();
+    read_points_into(points_dir / "points", mesh, result.points, options.parallel);
+    check_face_points(mesh, result.faces);
     if (options.read_zones)
     {
-        read_zones_into(dir / "pointZones", mesh.point_zones, result.point_zones, "pointZones",
-                        mesh.n_points());
-        read_zones_into(dir / "faceZones", mesh.face_zones, result.face_zones, "faceZones",
+        read_zones_into(faces_dir / "pointZones", mesh.point_zones, result.point_zones,
+                        "pointZones", mesh.n_points());
+        read_zones_into(faces_dir / "faceZones", mesh.face_zones, result.face_zones, "faceZones",
                         mesh.n_faces());
-        read_zones_into(dir / "cellZones", mesh.cell_zones, result.cell_zones, "cellZones",
+        read_zones_into(faces_dir / "cellZones", mesh.cell_zones, result.cell_zones, "cellZones",
                         mesh.n_cells);
     }
-    result.has_tet_base_pt_is = foam_file_exists(dir / "tetBasePtIs");
+    result.has_tet_base_pt_is = foam_file_exists(faces_dir / "tetBasePtIs");
 }
 
 } // namespace
@@ -339,8 +359,7 @@ FoamPolyMesh read_poly_mesh_dir(const fs::path& dir, const PolyMeshReadOptions& 
     result.points_dir = dir;
     result.faces_dir = dir;
     result.region = options.region;
-    read_points_into(dir / "points", result.mesh, result.points, options.parallel);
-    read_topology(dir, result, options);
+    read_all(dir, dir, result, options);
     return result;
 }
 
@@ -357,8 +376,7 @@ FoamPolyMesh read_poly_mesh(const fs::path& case_dir, const PolyMeshReadOptions&
     result.faces_instance = find_instance(case_dir, times, result.time, "faces", options.region);
     result.points_dir = poly_mesh_dir(case_dir, result.points_instance, options.region);
     result.faces_dir = poly_mesh_dir(case_dir, result.faces_instance, options.region);
-    read_points_into(result.points_dir / "points", result.mesh, result.points, options.parallel);
-    read_topology(result.faces_dir, result, options);
+    read_all(result.points_dir, result.faces_dir, result, options);
     return result;
 }
 
