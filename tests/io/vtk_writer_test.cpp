@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
+#include <regex>
 #include <sstream>
 
 #include <vtkCell.h>
@@ -22,7 +24,10 @@
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include "helpers.h"
+#include "meshmorph/core/cell_shapes.h"
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/io/read_poly_mesh.h"
+#include "openfoam_cases.h"
 #include "shape_meshes.h"
 
 using namespace meshmorph;
@@ -328,4 +333,98 @@ TEST(VtkWriter, bad_input_and_unwritable_path_are_reported)
     io::write_vtu(dir / "m.vtu", test::make_box_mesh(3, 3, 3));
     io::write_vtu(dir / "m.vtu", mesh);
     EXPECT_EQ(read_vtu(dir / "m.vtu")->GetNumberOfCells(), 2);
+}
+
+// Real OpenFOAM meshes (snappyHexMesh flange and motorBike: hexahedra, prisms, pyramids,
+// polyhedra; gmsh tetrahedra): the .vtu has checkMesh's number of cells of each type
+// (polyhedra include OpenFOAM's wedges and tet-wedges), every cell has a positive VTK volume,
+// and polyhedron face streams enclose the mesh cell volume.
+TEST(VtkWriter, openfoam_meshes_keep_checkmesh_cell_types_and_positive_volumes)
+{
+    if (!test::openfoam_available())
+        GTEST_SKIP() << "OpenFOAM not installed: real-mesh VTK export test skipped";
+    for (const std::string name : {"tet-gmsh", "flange", "motorbike-coarse"})
+    {
+        SCOPED_TRACE(name);
+        const std::filesystem::path case_dir = test::openfoam_case(name);
+        const PolyMesh mesh = io::read_poly_mesh(case_dir).mesh;
+
+        // checkMesh's counts, from the log the case script kept.
+        const std::string log = file_text(case_dir / "log.checkMesh");
+        std::map<std::string, long> expected;
+        for (const char* type : {"hexahedra", "prisms", "wedges", "pyramids", "tet wedges",
+                                 "tetrahedra", "polyhedra"})
+        {
+            std::smatch m;
+            ASSERT_TRUE(std::regex_search(log, m, std::regex(std::string("\n    ") + type +
+                                                             ": +([0-9]+)\n")))
+                << type;
+            expected[type] = std::stol(m[1]);
+        }
+        const CompactList cf = cell_faces(mesh);
+        const std::vector<CellShape> shapes = classify_cells(mesh, cf);
+        const CellShapeCounts counts = count_cell_shapes(shapes, cf);
+        EXPECT_EQ(counts.hex, expected["hexahedra"]);
+        EXPECT_EQ(counts.prism, expected["prisms"]);
+        EXPECT_EQ(counts.wedge, expected["wedges"]);
+        EXPECT_EQ(counts.pyramid, expected["pyramids"]);
+        EXPECT_EQ(counts.tet_wedge, expected["tet wedges"]);
+        EXPECT_EQ(counts.tet, expected["tetrahedra"]);
+        EXPECT_EQ(counts.polyhedron, expected["polyhedra"]);
+        std::map<Index, Index> breakdown;
+        const std::size_t table = log.find("Breakdown of polyhedra by number of faces:");
+        if (table != std::string::npos)
+        {
+            std::istringstream rows(log.substr(log.find('\n', log.find("faces   number", table)) + 1));
+            for (std::string row; std::getline(rows, row) && !row.empty();)
+            {
+                std::istringstream fields(row);
+                Index faces = 0, cells = 0;
+                if (!(fields >> faces >> cells))
+                    break;
+                breakdown[faces] = cells;
+            }
+        }
+        EXPECT_EQ(breakdown, counts.polyhedra_by_faces);
+
+        const std::filesystem::path path = test::scratch_dir("vtk_writer_" + name) / "mesh.vtu";
+        io::write_vtu(path, mesh);
+        const vtkSmartPointer<vtkUnstructuredGrid> grid = read_vtu(path);
+        ASSERT_EQ(grid->GetNumberOfCells(), mesh.n_cells);
+        std::map<int, long> by_type;
+        for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+            ++by_type[grid->GetCellType(c)];
+        // Native cells need the full topology walk, so a checkMesh "hexahedron" with a
+        // repeated vertex would become a polyhedron; these meshes have none.
+        EXPECT_EQ(by_type[VTK_HEXAHEDRON], counts.hex);
+        EXPECT_EQ(by_type[VTK_WEDGE], counts.prism);
+        EXPECT_EQ(by_type[VTK_PYRAMID], counts.pyramid);
+        EXPECT_EQ(by_type[VTK_TETRA], counts.tet);
+        EXPECT_EQ(by_type[VTK_POLYHEDRON], counts.wedge + counts.tet_wedge + counts.polyhedron);
+
+        const std::vector<double> volumes = vtk_volumes(grid);
+        long non_positive = 0;
+        vtkNew<vtkIdList> stream;
+        for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+        {
+            non_positive += !(volumes[c] > 0.0);
+            if (grid->GetCellType(c) != VTK_POLYHEDRON)
+                continue;
+            grid->GetFaceStream(c, stream);
+            test::CellLoops loops;
+            vtkIdType i = 1;
+            for (vtkIdType f = 0; f < stream->GetId(0); ++f)
+            {
+                const vtkIdType n = stream->GetId(i++);
+                std::vector<Index> loop;
+                for (vtkIdType j = 0; j < n; ++j)
+                    loop.push_back(static_cast<Index>(stream->GetId(i++)));
+                loops.push_back(loop);
+            }
+            const double v = mesh_cell_volume(mesh, cf, static_cast<Index>(c));
+            EXPECT_NEAR(test::loops_volume(mesh.points, loops), v, 1e-12 * std::abs(v))
+                << "cell " << c;
+        }
+        EXPECT_EQ(non_positive, 0) << "cells with VTK volume <= 0";
+    }
 }
