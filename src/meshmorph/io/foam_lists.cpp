@@ -764,7 +764,7 @@ bool parse_faces_fast(FoamTokenizer& tok, const ListStart& start, CompactList& f
     // can place every vertex label directly, with the flat list allocated once.
     std::vector<std::vector<Index>> sizes(n_chunks);
     std::vector<char> ok(n_chunks, 1);
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) if (n_chunks > 1)
     for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(n_chunks); ++k)
     {
         const char* p = buf.data() + bounds[k];
@@ -849,7 +849,7 @@ bool parse_faces_fast(FoamTokenizer& tok, const ListStart& start, CompactList& f
     faces.values.resize(flat);
 
     // Pass 2: the labels, straight into place (the declared sizes are checked again).
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) if (n_chunks > 1)
     for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(n_chunks); ++k)
     {
         const char* p = buf.data() + bounds[k];
