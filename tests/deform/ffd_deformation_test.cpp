@@ -152,6 +152,13 @@ TEST(FfdDeformation, rejects_bad_input)
     Points bad = Points::Zero(64, 3);
     bad(5, 0) = std::nan("");
     EXPECT_THROW(ffd.set_control_displacements(bad), InvalidInput);
+    ffd.set_control_displacements(Points::Zero(64, 3));
+    Points nan_point = Points::Zero(2, 3);
+    nan_point(1, 2) = std::nan("");
+    EXPECT_THROW(ffd.evaluate(nan_point, out), InvalidInput);
+    EXPECT_THROW(ffd.evaluate(Points::Zero(3, 3), out), InvalidInput); // 3 points, 2 rows out
+    EXPECT_EQ(ffd_outside_from_string("clamp"), FfdOutside::clamp);
+    EXPECT_THROW(ffd_outside_from_string("wrap"), InvalidInput);
 }
 
 TEST(FfdDeformation, evaluation_is_independent_of_thread_count)

@@ -355,3 +355,25 @@ TEST(RbfDeformation, warns_about_a_large_condition_number)
 }
 
 } // namespace meshmorph
+
+namespace meshmorph
+{
+TEST(RbfDeformation, fit_is_independent_of_thread_count)
+{
+    const Points h = test::random_points(1500, 0.0, 1.0, 37);
+    const Points d = test::smooth_field(h);
+    const Points x = test::random_points(300, 0.0, 1.0, 39);
+    const int saved = omp_get_max_threads();
+    Points result[2];
+    for (int t = 1; t <= 2; ++t)
+    {
+        omp_set_num_threads(t);
+        RbfDeformation rbf;
+        rbf.fit(h, d);
+        result[t - 1] = displacements(rbf, x);
+    }
+    omp_set_num_threads(saved);
+    EXPECT_TRUE((result[0].array() == result[1].array()).all())
+        << (result[0] - result[1]).cwiseAbs().maxCoeff();
+}
+} // namespace meshmorph

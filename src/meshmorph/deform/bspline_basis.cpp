@@ -11,6 +11,20 @@
 namespace meshmorph
 {
 
+FfdOutside ffd_outside_from_string(const std::string& name)
+{
+    if (name == "zero")
+        return FfdOutside::zero;
+    if (name == "clamp")
+        return FfdOutside::clamp;
+    throw InvalidInput("unknown FFD outside policy '" + name + "' (expected zero or clamp)");
+}
+
+std::string to_string(FfdOutside outside)
+{
+    return outside == FfdOutside::zero ? "zero" : "clamp";
+}
+
 namespace detail
 {
 void cubic_bspline(double t, int n, int& first, double* w, double* dw)

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 
 #include "meshmorph/core/types.h"
 
@@ -25,6 +26,10 @@ enum class FfdOutside
     clamp //!< use the displacement of the nearest point of the box (continuous, constant
           //!< along the outward box directions)
 };
+
+//! "zero" or "clamp". \throw InvalidInput otherwise.
+FfdOutside ffd_outside_from_string(const std::string& name);
+std::string to_string(FfdOutside outside);
 
 //! Parallelepiped lattice box: x(u) = origin + axes * u, u in [0,1]^3.
 struct FfdBox

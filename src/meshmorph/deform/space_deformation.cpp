@@ -69,6 +69,7 @@ void check_evaluate_arguments(bool is_fitted, const Eigen::Ref<const Points>& po
 {
     if (!is_fitted)
         throw InvalidInput(std::string(method) + ": evaluate() called before fit()");
+    require_finite(points, (std::string(method) + " evaluate: point").c_str());
     if (out.rows() != points.rows())
         throw InvalidInput(std::string(method) + ": evaluate() output has " +
                            std::to_string(out.rows()) + " rows for " +

@@ -43,7 +43,8 @@ public:
                      const Eigen::Ref<const Points>& displacements) = 0;
     //! \brief Write d(x) for every row of points into out (n x 3). Thread-safe, deterministic
     //! (bit-identical for any number of OpenMP threads).
-    //! \pre fit() was called. \throw InvalidInput if not fitted or sizes differ.
+    //! \pre fit() was called. \throw InvalidInput if not fitted, sizes differ or a point is
+    //! not finite.
     virtual void evaluate(const Eigen::Ref<const Points>& points,
                           Eigen::Ref<Points> out) const = 0;
     //! The report of the last fit().
