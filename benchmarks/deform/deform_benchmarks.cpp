@@ -104,8 +104,10 @@ void BM_rbf_evaluate(benchmark::State& state)
                                                    benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_rbf_evaluate)
-    ->Args({500, 1000000, 2})->Args({2000, 100000, 1})->Args({2000, 100000, 2})
-    ->Args({4000, 1000000, 2})->Args({16000, 100000, 2})
+    ->Args({500, 1000000, 1})->Args({500, 1000000, 2})
+    ->Args({2000, 100000, 1})->Args({2000, 100000, 2})
+    ->Args({4000, 1000000, 2})->Args({16000, 100000, 1})->Args({16000, 100000, 2})
+    ->Args({16000, 1000000, 2})
     ->Unit(benchmark::kMillisecond)->UseRealTime();
 
 
