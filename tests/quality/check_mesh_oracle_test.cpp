@@ -1,0 +1,308 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Oracle tests of checkMeshQuality (meshmorph/app/check_mesh_case.h, quality/check_mesh.h):
+// OpenFOAM's own checkMesh runs on real meshes generated at test time (blockMesh with curved
+// edges, gmsh tetrahedra, snappyHexMesh, deliberately damaged meshes, binary and compressed
+// files) and its report is compared, line by line, with ours. Nothing is typed in: the
+// expected text is parsed from checkMesh's output at test time.
+//
+// Comparison rule: the lines from "Mesh stats" to "Mesh OK."/"Failed N mesh checks." must
+// have the same words; numbers that are integers must be equal; other numbers must agree to
+// 1e-6 relative, plus 1e-12 absolute for rounding-noise values near zero (the openness of a
+// closed boundary is a sum of O(1) terms that cancel to 1e-17..1e-15). The cases use
+// writePrecision 15, so checkMesh prints 15 digits.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "helpers.h"
+#include "meshmorph/app/check_mesh_case.h"
+#include "openfoam_cases.h"
+
+namespace fs = std::filesystem;
+using namespace meshmorph;
+
+namespace
+{
+
+std::vector<std::string> split_lines(const std::string& text)
+{
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+        lines.push_back(line);
+    return lines;
+}
+
+//! The report block of a checkMesh(-like) output: "Mesh stats" .. the verdict line, without
+//! "<<Writing" set lines (checkMesh always writes sets; we do only with -writeSets).
+std::vector<std::string> report_block(const std::string& text, bool keep_set_lines = false)
+{
+    std::vector<std::string> block;
+    bool inside = false;
+    for (const std::string& line : split_lines(text))
+    {
+        if (line == "Mesh stats")
+            inside = true;
+        if (!inside)
+            continue;
+        if (!keep_set_lines && line.find("  <<Writing") == 0)
+            continue;
+        block.push_back(line);
+        if (line == "Mesh OK." || line.rfind("Failed ", 0) == 0)
+            break;
+    }
+    return block;
+}
+
+std::vector<std::string> tokens(const std::string& line)
+{
+    std::string spaced;
+    for (char ch : line)
+    {
+        if (ch == '(' || ch == ')' || ch == ',')
+            spaced += ' ';
+        spaced += ch;
+        if (ch == '(' || ch == ')' || ch == ',')
+            spaced += ' ';
+    }
+    std::istringstream in(spaced);
+    std::vector<std::string> result;
+    for (std::string t; in >> t;)
+    {
+        // "0.225." -> number and the sentence's full stop.
+        if (t.size() > 1 && t.back() == '.' && std::isdigit(static_cast<unsigned char>(t[t.size() - 2])))
+        {
+            result.push_back(t.substr(0, t.size() - 1));
+            result.push_back(".");
+        }
+        else
+            result.push_back(t);
+    }
+    return result;
+}
+
+bool parse_number(const std::string& token, double& value, bool& is_integer)
+{
+    static const std::regex number(R"([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)");
+    if (!std::regex_match(token, number))
+        return false;
+    value = std::stod(token);
+    is_integer = token.find_first_of(".eE") == std::string::npos;
+    return true;
+}
+
+//! Compare two report blocks; returns "" when they agree, else a description.
+std::string compare_reports(const std::vector<std::string>& expected,
+                            const std::vector<std::string>& actual)
+{
+    std::ostringstream diff;
+    if (expected.size() != actual.size())
+        diff << "line count " << actual.size() << " != checkMesh's " << expected.size() << "\n";
+    const std::size_t n = std::min(expected.size(), actual.size());
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        const std::vector<std::string> e = tokens(expected[i]), a = tokens(actual[i]);
+        bool same = e.size() == a.size();
+        for (std::size_t k = 0; same && k < e.size(); ++k)
+        {
+            double ve = 0, va = 0;
+            bool ie = false, ia = false;
+            if (parse_number(e[k], ve, ie) && parse_number(a[k], va, ia))
+            {
+                if (ie && ia)
+                    same = ve == va;
+                else
+                    same = std::abs(ve - va) <=
+                           1e-6 * std::max(std::abs(ve), std::abs(va)) + 1e-12;
+            }
+            else
+                same = e[k] == a[k];
+        }
+        if (!same)
+            diff << "line " << i << ":\n  checkMesh: " << expected[i]
+                 << "\n  ours:      " << actual[i] << "\n";
+    }
+    return diff.str();
+}
+
+std::string read_text(const fs::path& path)
+{
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+//! Run OpenFOAM's checkMesh in `case_dir` with `args`; returns its stdout.
+std::string run_checkmesh(const fs::path& case_dir, const std::string& args)
+{
+    const fs::path log = case_dir / "log.checkMesh.oracle";
+    const std::string command = "cd '" + case_dir.string() + "' && checkMesh " + args + " > '" +
+                                log.string() + "' 2>&1";
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    return read_text(log);
+}
+
+struct OurRun
+{
+    int status;
+    std::string out, err;
+};
+
+OurRun run_ours(const fs::path& case_dir, std::vector<std::string> args)
+{
+    args.insert(args.begin(), {"checkMeshQuality", "-case", case_dir.string()});
+    std::vector<const char*> argv;
+    for (const std::string& a : args)
+        argv.push_back(a.c_str());
+    std::ostringstream out, err;
+    const int status = app::run_check_mesh_quality(static_cast<int>(argv.size()), argv.data(),
+                                                   out, err);
+    return {status, out.str(), err.str()};
+}
+
+//! A private copy of a generated case (checkMesh writes sets into the case).
+fs::path copy_case(const std::string& name, const std::string& scratch)
+{
+    const fs::path source = test::openfoam_case(name);
+    const fs::path dir = test::scratch_dir(scratch);
+    fs::copy(source, dir, fs::copy_options::recursive);
+    return dir;
+}
+
+//! Compare checkMesh and checkMeshQuality on `name` with the given options.
+void expect_same_report(const std::string& name, const std::vector<std::string>& options)
+{
+    std::string joined, scratch = "quality_oracle_" + name;
+    for (const std::string& o : options)
+    {
+        joined += " " + o;
+        scratch += o;
+    }
+    const fs::path dir = copy_case(name, scratch);
+    const std::string theirs = run_checkmesh(dir, joined);
+    const OurRun ours = run_ours(dir, options);
+    ASSERT_TRUE(ours.status == 0 || ours.status == 1) << ours.err;
+    const std::vector<std::string> expected = report_block(theirs);
+    ASSERT_GT(expected.size(), 10u) << "no checkMesh report parsed:\n" << theirs;
+    EXPECT_EQ(compare_reports(expected, report_block(ours.out)), "")
+        << "case " << name << ", options" << joined;
+    // Exit status mirrors the verdict.
+    EXPECT_EQ(ours.status == 0, expected.back() == "Mesh OK.");
+}
+
+#define REQUIRE_OPENFOAM(what)                                                                   \
+    if (!test::openfoam_available())                                                             \
+    GTEST_SKIP() << "OpenFOAM not installed: " what " not compared with checkMesh"
+
+const std::vector<std::string> all_checks = {"-allGeometry", "-allTopology"};
+
+} // namespace
+
+TEST(CheckMeshOracle, report_comparison_rejects_a_changed_number)
+{
+    // The comparison itself must notice a 1e-5 relative change and a changed count.
+    const std::vector<std::string> a = {"Mesh stats", "    Max skewness = 0.0435500178548794 OK.",
+                                        "    cells:            336"};
+    std::vector<std::string> b = a;
+    b[1] = "    Max skewness = 0.0435504 OK.";
+    EXPECT_NE(compare_reports(a, b), "");
+    b = a;
+    b[2] = "    cells:            337";
+    EXPECT_NE(compare_reports(a, b), "");
+    b = a;
+    b[1] = "    Max skewness = 0.04355001785488 OK.";
+    EXPECT_EQ(compare_reports(a, b), "");
+}
+
+TEST(CheckMeshOracle, curved_block_hex_mesh)
+{
+    REQUIRE_OPENFOAM("blockMesh case with curved edges");
+    expect_same_report("curved-block", {});
+    expect_same_report("curved-block", all_checks);
+}
+
+TEST(CheckMeshOracle, gmsh_tetrahedra)
+{
+    REQUIRE_OPENFOAM("gmsh tetrahedral mesh");
+    expect_same_report("tet-gmsh", all_checks);
+}
+
+TEST(CheckMeshOracle, damaged_mesh_exercises_failing_checks)
+{
+    REQUIRE_OPENFOAM("damaged mesh");
+    expect_same_report("damaged", all_checks);
+    const OurRun ours = run_ours(test::openfoam_case("damaged"), {"-allGeometry"});
+    EXPECT_EQ(ours.status, app::exit_checks_failed);
+    EXPECT_NE(ours.out.find(" ***Zero or negative cell volume detected."), std::string::npos);
+    EXPECT_NE(ours.out.find(" ***Error in face pyramids"), std::string::npos);
+}
+
+TEST(CheckMeshOracle, snappy_flange)
+{
+    REQUIRE_OPENFOAM("snappyHexMesh flange");
+    expect_same_report("flange", all_checks);
+}
+
+TEST(CheckMeshOracle, snappy_flange_mesh_quality_dict)
+{
+    REQUIRE_OPENFOAM("snappyHexMesh flange with meshQualityDict");
+    const fs::path dir = copy_case("flange", "quality_oracle_flange_meshQuality");
+    // The tutorial's meshQualityDict (it #includeEtc's snappyHexMesh's defaults).
+    std::ofstream(dir / "system" / "meshQualityDict")
+        << "FoamFile { version 2.0; format ascii; class dictionary; object meshQualityDict; }\n"
+        << "#includeEtc \"caseDicts/mesh/generation/meshQualityDict.cfg\"\n"
+        << "maxNonOrtho 30;\nmaxConcave 40;\nminTwist 0.8;\nminTriangleTwist 0.9;\n"
+        << "minFaceFlatness 1.5;\nminDeterminant 0.5;\nminFaceWeight 0.3;\n";
+    const std::string theirs = run_checkmesh(dir, " -meshQuality");
+    const OurRun ours = run_ours(dir, {"-meshQuality"});
+    const std::vector<std::string> expected = report_block(theirs);
+    ASSERT_GT(expected.size(), 10u) << theirs;
+    EXPECT_NE(theirs.find("Checking faces in error"), std::string::npos) << theirs;
+    EXPECT_EQ(compare_reports(expected, report_block(ours.out)), "");
+}
+
+TEST(CheckMeshOracle, binary_and_compressed_files)
+{
+    REQUIRE_OPENFOAM("binary / compressed meshes");
+    expect_same_report("curved-block-binary", all_checks);
+    expect_same_report("tet-gmsh-binary-gz", all_checks);
+    expect_same_report("damaged-ascii-gz", {"-allGeometry"});
+}
+
+TEST(CheckMeshOracle, written_sets_match_checkmesh_sets)
+{
+    REQUIRE_OPENFOAM("set files");
+    const fs::path dir = copy_case("damaged", "quality_oracle_sets");
+    const std::string theirs = run_checkmesh(dir, "-allGeometry");
+    // checkMesh wrote its sets; keep them aside, then write ours in their place.
+    const fs::path sets = dir / "constant" / "polyMesh" / "sets";
+    ASSERT_TRUE(fs::exists(sets)) << theirs;
+    const fs::path openfoam_sets = dir / "openfoam_sets";
+    fs::rename(sets, openfoam_sets);
+    const OurRun ours = run_ours(dir, {"-allGeometry", "-writeSets"});
+    ASSERT_EQ(ours.status, app::exit_checks_failed) << ours.err;
+    // Same "<<Writing" lines as checkMesh (set names and sizes).
+    EXPECT_EQ(compare_reports(report_block(theirs, true), report_block(ours.out, true)), "");
+    // OpenFOAM reads our files: foamToVTK -faceSet converts the set we wrote.
+    for (const auto& entry : fs::directory_iterator(openfoam_sets))
+        EXPECT_TRUE(fs::exists(sets / entry.path().filename()))
+            << "checkMesh wrote set " << entry.path().filename() << ", we did not";
+    ASSERT_TRUE(fs::exists(sets / "wrongOrientedFaces"));
+    const std::string command = "cd '" + dir.string() +
+                                "' && foamToVTK -faceSet wrongOrientedFaces > log.foamToVTK 2>&1";
+    EXPECT_EQ(std::system(command.c_str()), 0) << read_text(dir / "log.foamToVTK");
+    const std::string log = read_text(dir / "log.foamToVTK");
+    EXPECT_EQ(log.find("FOAM FATAL"), std::string::npos) << log;
+    // setsToZones reads every set file we wrote.
+    const std::string zones =
+        "cd '" + dir.string() + "' && setsToZones -noFlipMap > log.setsToZones 2>&1";
+    EXPECT_EQ(std::system(zones.c_str()), 0) << read_text(dir / "log.setsToZones");
+}
