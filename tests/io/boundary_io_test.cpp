@@ -295,3 +295,38 @@ TEST(BoundaryIo, bad_zones_name_file_and_line)
     m = parse_error_of([&] { parse_zones("1\n(\n)", "cellZones"); });
     EXPECT_TRUE(contains(m, "cellZones:1:") && contains(m, "FoamFile")) << m;
 }
+
+// Every truncation of real OpenFOAM files fails cleanly: a ParseError naming the file, never
+// a crash or another exception type. Truncations inside the list must be rejected.
+TEST(BoundaryIo, truncated_files_give_parse_errors)
+{
+    const std::vector<std::string> names = {"boundary_cavity", "zones_ascii/faceZones",
+                                            "zones_binary/cellZones", "zones_binary/faceZones"};
+    for (const std::string& name : names)
+    {
+        const std::string text = read_file(test::data_path("dict/" + name));
+        const std::size_t last_close = text.rfind(')');
+        ASSERT_NE(last_close, std::string::npos);
+        const bool is_boundary = name.find("boundary") != std::string::npos;
+        for (std::size_t len = 0; len < text.size(); ++len)
+        {
+            const std::string cut = text.substr(0, len);
+            try
+            {
+                if (is_boundary)
+                    parse_boundary(cut, name);
+                else
+                    parse_zones(cut, name);
+                EXPECT_GT(len, last_close) << name << " truncated to " << len << " bytes parsed";
+            }
+            catch (const ParseError& e)
+            {
+                EXPECT_EQ(std::string(e.what()).rfind(name + ":", 0), 0u) << e.what();
+            }
+            catch (const std::exception& e)
+            {
+                ADD_FAILURE() << name << " truncated to " << len << ": " << e.what();
+            }
+        }
+    }
+}

@@ -343,7 +343,7 @@ struct detail_dictionary_access
 
     const FoamEntry* lookup(std::string name) const
     {
-        if (scopes.empty())
+        if (scopes.empty() || name.empty())
             return nullptr;
         if (name[0] == ':')
             return find_path(*scopes.front(), name.substr(1));
