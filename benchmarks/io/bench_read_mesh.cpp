@@ -42,6 +42,12 @@ double peak_rss_mb()
     return static_cast<double>(usage.ru_maxrss) / 1024.0; // ru_maxrss is in KiB on Linux
 }
 
+double load_average()
+{
+    double load = 0;
+    return ::getloadavg(&load, 1) == 1 ? load : -1.0;
+}
+
 double mesh_mb(const PolyMesh& m)
 {
     const double bytes = static_cast<double>(m.points.size()) * sizeof(double) +
@@ -95,7 +101,10 @@ int main(int argc, char** argv)
     try
     {
         std::cout << "Case      : " << case_dir.string() << "\n"
-                  << "Threads   : " << (serial ? 1 : omp_get_max_threads()) << "\n"
+                  << "Threads   : " << (serial ? 1 : omp_get_max_threads())
+                  << (serial ? "" : " (used for large ASCII lists when the load allows)") << "\n"
+                  << "Load avg  : " << load_average() << " on " << omp_get_num_procs()
+                  << " cores\n"
                   << "RSS before: " << peak_rss_mb() << " MB\n";
         io::PolyMeshReadOptions options;
         options.parallel = !serial;

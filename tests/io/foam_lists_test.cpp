@@ -205,7 +205,10 @@ TEST(FoamLists, hostile_counts_fail_before_allocating)
         many += "3(0 1 2)\n";
     many += ")\n";
     FoamTokenizer big(many, "test/faces");
-    const std::string big_face = test::error_of([&] { read_face_list(big, ascii_header(), false); });
+    ListReadOptions chunked;
+    chunked.force_parallel = true;
+    const std::string big_face =
+        test::error_of([&] { read_face_list(big, ascii_header(), false, chunked); });
     EXPECT_NE(big_face.find("test/faces:4"), std::string::npos) << big_face;
     FoamTokenizer faces("2(1000000000000(1 2 3) 3(0 1 2))", "test/faces");
     const std::string face = test::error_of([&] { read_face_list(faces, ascii_header(), false); });
@@ -257,6 +260,7 @@ TEST(FoamLists, parallel_ascii_parsing_matches_serial)
     {
         ListReadOptions o;
         o.parallel = parallel;
+        o.force_parallel = parallel;
         FoamTokenizer tp(points_text, "p");
         EXPECT_EQ(read_vector_list(tp, ascii_header(), o), points) << parallel;
         EXPECT_TRUE(tp.at_end());
@@ -277,6 +281,7 @@ TEST(FoamLists, parallel_ascii_parsing_matches_serial)
     {
         ListReadOptions o;
         o.parallel = parallel;
+        o.force_parallel = parallel;
         FoamTokenizer t(broken, "test/owner");
         const std::string msg = test::error_of([&] { read_label_list(t, ascii_header(), o); });
         EXPECT_NE(msg.find("test/owner:" + std::to_string(line) + ":"), std::string::npos)

@@ -38,8 +38,12 @@ struct ListReadOptions
     //! uniform list is a few bytes of text for any N, so N cannot be checked against the
     //! remaining input; this bound keeps a hostile `1000000000000{0}` from allocating.
     std::size_t max_uniform_size = std::size_t(1) << 24;
-    //! Parse ASCII lists with OpenMP threads (results are identical either way).
+    //! Parse large ASCII lists with OpenMP threads when the machine has idle cores (1-minute
+    //! load average below cores - 1). Results are identical either way.
     bool parallel = true;
+    //! Always split ASCII lists into chunks, whatever their size, the load and the number of
+    //! threads (for tests of the chunked path).
+    bool force_parallel = false;
 };
 
 //! \brief Read a label list (ASCII or, if `header.is_binary()`, binary with
