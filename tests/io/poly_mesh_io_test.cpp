@@ -469,3 +469,51 @@ TEST(PolyMeshIo, random_corruptions_give_errors_not_crashes)
     }
     EXPECT_GT(n_errors, 100); // most damage must be detected
 }
+
+TEST(PolyMeshIo, format_conversion_matches_foam_format_convert)
+{
+    // The binary and gz fixtures are foamFormatConvert's conversions of the ASCII one;
+    // meshmorph converting the same mesh must produce the same files.
+    const FoamPolyMesh ascii = read_poly_mesh(test::data_path("io/curved_block/ascii"));
+    const struct
+    {
+        const char* variant;
+        FoamFormat format;
+        bool compress;
+    } targets[] = {{"binary", FoamFormat::binary, false}, {"gz", FoamFormat::ascii, true}};
+    for (const auto& t : targets)
+    {
+        SCOPED_TRACE(t.variant);
+        PolyMeshWriteOptions o;
+        o.format = t.format;
+        o.compress = t.compress;
+        const fs::path out = test::scratch_dir(std::string("pm_convert_") + t.variant);
+        write_poly_mesh(ascii.mesh, ascii, out, "constant", "", o);
+        const std::map<std::string, std::string> theirs =
+            dir_contents(test::data_path(std::string("io/curved_block/") + t.variant) /
+                         "constant/polyMesh");
+        const std::map<std::string, std::string> ours = dir_contents(out / "constant/polyMesh");
+        for (const std::string f : {"points", "faces", "owner", "neighbour"})
+        {
+            if (f == "points" && t.format == FoamFormat::ascii)
+                continue; // OpenFOAM printed 12 digits, meshmorph 17
+            EXPECT_EQ(ours.at(f), theirs.at(f)) << f;
+        }
+        const FoamPolyMesh back = read_poly_mesh(out);
+        expect_same_mesh(ascii.mesh, back.mesh);
+        EXPECT_EQ(back.faces.header.class_name,
+                  t.format == FoamFormat::binary ? "faceCompactList" : "faceList");
+    }
+}
+
+TEST(PolyMeshIo, write_points_warns_about_stale_tet_base_points)
+{
+    const fs::path case_dir = test::scratch_dir("pm_tetbase");
+    test::copy_tree(test::data_path("io/curved_block/ascii"), case_dir);
+    test::write_bytes(case_dir / "constant/polyMesh/tetBasePtIs", "x");
+    const FoamPolyMesh m = read_poly_mesh(case_dir);
+    EXPECT_TRUE(m.has_tet_base_pt_is);
+    log::CaptureScope capture;
+    write_points(m.mesh.points, m.points, case_dir, "constant");
+    EXPECT_NE(capture.text().find("tetBasePtIs"), std::string::npos) << capture.text();
+}
