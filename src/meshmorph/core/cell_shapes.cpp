@@ -391,14 +391,11 @@ bool same_cycle(std::span<const Index> a, std::span<const Index> b)
     return false;
 }
 
-// The cell's face f, oriented out of the cell.
-std::vector<Index> outward_face(const PolyMesh& mesh, Index f, Index cell)
+// Vertex i of the cell's face f, oriented out of the cell: a neighbour's face is reversed
+// keeping vertex 0 (OpenFOAM's face::reverseFace).
+Index outward_vertex(std::span<const Index> face, bool owned, std::size_t i)
 {
-    const std::span<const Index> face = mesh.faces[f];
-    std::vector<Index> out(face.begin(), face.end());
-    if (mesh.owner[f] != cell)
-        std::reverse(out.begin() + 1, out.end()); // keep vertex 0, as OpenFOAM's reverseFace
-    return out;
+    return owned || i == 0 ? face[i] : face[face.size() - i];
 }
 
 // Every outward cell face equals exactly one model face (as an oriented cycle) and vice versa.
@@ -412,20 +409,26 @@ bool faces_match_model(const PolyMesh& mesh, std::span<const Index> faces, Index
         for (int j = i + 1; j < model.n_vert; ++j)
             if (vert[i] == vert[j])
                 return false;
-    std::vector<char> used(model.faces.size(), 0);
-    std::vector<Index> model_face;
+    std::array<char, max_face> used{};
+    std::array<Index, max_face_size> out{};
+    std::array<Index, max_face_size> model_face{};
     for (Index f : faces)
     {
-        const std::vector<Index> out = outward_face(mesh, f, cell);
+        const std::span<const Index> face = mesh.faces[f];
+        if (face.size() > static_cast<std::size_t>(max_face_size))
+            return false;
+        const bool owned = mesh.owner[f] == cell;
+        for (std::size_t i = 0; i < face.size(); ++i)
+            out[i] = outward_vertex(face, owned, i);
+        const std::span<const Index> out_span(out.data(), face.size());
         bool found = false;
         for (std::size_t m = 0; m < model.faces.size() && !found; ++m)
         {
-            if (used[m])
+            if (used[m] || model.faces[m].size() != face.size())
                 continue;
-            model_face.clear();
-            for (int v : model.faces[m])
-                model_face.push_back(vert[v]);
-            if (same_cycle(out, model_face))
+            for (std::size_t i = 0; i < face.size(); ++i)
+                model_face[i] = vert[model.faces[m][i]];
+            if (same_cycle(out_span, std::span<const Index>(model_face.data(), face.size())))
             {
                 used[m] = 1;
                 found = true;
@@ -437,23 +440,24 @@ bool faces_match_model(const PolyMesh& mesh, std::span<const Index> faces, Index
     return true;
 }
 
-VtkCell polyhedron_cell(const PolyMesh& mesh, std::span<const Index> faces, Index cell)
+// VTK_POLYHEDRON: distinct points (first appearance) and the outward face stream.
+void polyhedron_cell(const PolyMesh& mesh, std::span<const Index> faces, Index cell,
+                     std::vector<Index>& points, std::vector<Index>& stream)
 {
-    VtkCell result;
-    result.type = VtkCellType::polyhedron;
-    result.face_stream.push_back(static_cast<Index>(faces.size()));
+    stream.push_back(static_cast<Index>(faces.size()));
     for (Index f : faces)
     {
-        const std::vector<Index> out = outward_face(mesh, f, cell);
-        result.face_stream.push_back(static_cast<Index>(out.size()));
-        for (Index p : out)
+        const std::span<const Index> face = mesh.faces[f];
+        const bool owned = mesh.owner[f] == cell;
+        stream.push_back(static_cast<Index>(face.size()));
+        for (std::size_t i = 0; i < face.size(); ++i)
         {
-            result.face_stream.push_back(p);
-            if (std::find(result.points.begin(), result.points.end(), p) == result.points.end())
-                result.points.push_back(p);
+            const Index p = outward_vertex(face, owned, i);
+            stream.push_back(p);
+            if (std::find(points.begin(), points.end(), p) == points.end())
+                points.push_back(p);
         }
     }
-    return result;
 }
 
 } // namespace
@@ -552,42 +556,40 @@ CellShapeCounts count_cell_shapes(const std::vector<CellShape>& shapes,
     return counts;
 }
 
-VtkCell vtk_cell(const PolyMesh& mesh, const CompactList& cell_faces, Index cell,
-                 CellShape shape)
+VtkCellType vtk_cell(const PolyMesh& mesh, const CompactList& cell_faces, Index cell,
+                     CellShape shape, std::vector<Index>& points, std::vector<Index>& face_stream)
 {
     if (cell < 0 || cell >= cell_faces.size())
         throw InvalidInput("vtk_cell: cell " + std::to_string(cell) + " out of range [0, " +
                            std::to_string(cell_faces.size()) + ")");
+    points.clear();
+    face_stream.clear();
     const std::span<const Index> faces = cell_faces[cell];
     const int n_faces = static_cast<int>(faces.size());
     VertLabels vert{};
     LocalCell lc(mesh, faces, cell);
-    VtkCell result;
     switch (shape)
     {
     case CellShape::hex:
         if (match_hex(lc, vert) && faces_match_model(mesh, faces, cell, vert, hex_model))
         {
-            result.type = VtkCellType::hexahedron;
-            result.points.assign(vert.begin(), vert.begin() + 8);
-            return result;
+            points.assign(vert.begin(), vert.begin() + 8);
+            return VtkCellType::hexahedron;
         }
         break;
     case CellShape::tet:
         if (match_tet(lc, vert) && faces_match_model(mesh, faces, cell, vert, tet_model))
         {
-            result.type = VtkCellType::tetra;
-            result.points.assign(vert.begin(), vert.begin() + 4);
-            return result;
+            points.assign(vert.begin(), vert.begin() + 4);
+            return VtkCellType::tetra;
         }
         break;
     case CellShape::pyramid:
         if (match_pyramid(lc, vert, n_faces) &&
             faces_match_model(mesh, faces, cell, vert, pyramid_model))
         {
-            result.type = VtkCellType::pyramid;
-            result.points.assign(vert.begin(), vert.begin() + 5);
-            return result;
+            points.assign(vert.begin(), vert.begin() + 5);
+            return VtkCellType::pyramid;
         }
         break;
     case CellShape::prism:
@@ -595,15 +597,23 @@ VtkCell vtk_cell(const PolyMesh& mesh, const CompactList& cell_faces, Index cell
             faces_match_model(mesh, faces, cell, vert, prism_model))
         {
             // VTK's wedge has its first triangle wound towards the second (foamToVTK's order).
-            result.type = VtkCellType::wedge;
-            result.points = {vert[0], vert[2], vert[1], vert[3], vert[5], vert[4]};
-            return result;
+            points.assign({vert[0], vert[2], vert[1], vert[3], vert[5], vert[4]});
+            return VtkCellType::wedge;
         }
         break;
     default:
         break;
     }
-    return polyhedron_cell(mesh, faces, cell);
+    polyhedron_cell(mesh, faces, cell, points, face_stream);
+    return VtkCellType::polyhedron;
+}
+
+VtkCell vtk_cell(const PolyMesh& mesh, const CompactList& cell_faces, Index cell,
+                 CellShape shape)
+{
+    VtkCell result;
+    result.type = vtk_cell(mesh, cell_faces, cell, shape, result.points, result.face_stream);
+    return result;
 }
 
 VtkCells vtk_cells(const PolyMesh& mesh, const CompactList& cell_faces,
@@ -618,12 +628,13 @@ VtkCells vtk_cells(const PolyMesh& mesh, const CompactList& cell_faces,
     result.points.values.reserve(static_cast<std::size_t>(n_cells) * 8);
     result.points.offsets.reserve(static_cast<std::size_t>(n_cells) + 1);
     result.face_streams.offsets.reserve(static_cast<std::size_t>(n_cells) + 1);
+    std::vector<Index> points;
+    std::vector<Index> stream;
     for (Index c = 0; c < n_cells; ++c)
     {
-        const VtkCell cell = vtk_cell(mesh, cell_faces, c, shapes[c]);
-        result.types.push_back(cell.type);
-        result.points.push_back(std::span<const Index>(cell.points));
-        result.face_streams.push_back(std::span<const Index>(cell.face_stream));
+        result.types.push_back(vtk_cell(mesh, cell_faces, c, shapes[c], points, stream));
+        result.points.push_back(std::span<const Index>(points));
+        result.face_streams.push_back(std::span<const Index>(stream));
     }
     return result;
 }

