@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <random>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -661,4 +662,60 @@ TEST(FoamDictionary, reads_motorbike_snappy_hex_mesh_dict)
     EXPECT_EQ(layers.sub_dict("motorBike_frt-fairing:001%1").get<int>("nSurfaceLayers"), 1);
     EXPECT_FALSE(layers.found("upperWall"));
     EXPECT_EQ(d.sub_dict("meshQualityControls").get<int>("maxNonOrtho"), 65);
+}
+
+// Random single-byte edits, deletions and truncations of valid dictionaries (ASCII and
+// binary) only ever produce meshmorph errors: no crash, no foreign exception type.
+TEST(FoamDictionary, mutated_input_fails_cleanly)
+{
+    const std::int32_t labels[5] = {0, 1, 2, 3, 4};
+    const double scalars[3] = {0.5, 1.5, 2.5};
+    std::string binary = "FoamFile { version 2.0; format binary; class dictionary; }\n"
+                         "a List<label> " +
+                         binary_block(labels, sizeof labels, 5) + ";\nb List<vector> " +
+                         binary_block(scalars, sizeof scalars, 1) + ";\nc 0;\n";
+    const std::vector<std::string> inputs = {
+        "FoamFile { version 2.0; format ascii; class dictionary; object d; }\n"
+        "a 1; b (1 2 3); c { d 4{0.5}; \"(x|y)\" { e List<label> 3(1 2 3); } }\n"
+        "f $a; g $c.d; h { $c } i ${a}; j List<vector> 2((0 0 0) (1 1 1));\n"
+        "/* comment */ k \"str\\\"ing\"; // tail\n#remove a\n#inputMode merge\n"
+        "l List<bool> 3{1}; m List<word> 2(w1 w2); n [0 1 0 0 0 0 0];\n",
+        binary};
+    log::CaptureScope quiet; // mutated `$var` keywords warn
+    std::mt19937 rng(12345);
+    const std::string alphabet = "(){}[];\"/*$#\n \\0a.-:<>";
+    std::size_t errors = 0;
+    for (const std::string& input : inputs)
+    {
+        for (int trial = 0; trial < 3000; ++trial)
+        {
+            std::string text = input;
+            const std::size_t pos = rng() % text.size();
+            switch (rng() % 3)
+            {
+            case 0:
+                text[pos] = alphabet[rng() % alphabet.size()];
+                break;
+            case 1:
+                text.erase(pos, 1);
+                break;
+            default:
+                text.resize(pos);
+                break;
+            }
+            try
+            {
+                parse_dictionary(text, "mutated", memory_files({}));
+            }
+            catch (const Error&)
+            {
+                ++errors;
+            }
+            catch (const std::exception& e)
+            {
+                ADD_FAILURE() << "foreign exception " << e.what() << " for input:\n" << text;
+            }
+        }
+    }
+    EXPECT_GT(errors, 0u);
 }

@@ -95,6 +95,10 @@ FoamCompound::Kind compound_kind(std::string_view word, bool& ok)
     return FoamCompound::Kind::label;
 }
 
+// A uniform list `N{v}` is expanded in memory; N beyond the label range is malformed input
+// (OpenFOAM could not hold it either), not a reason to exhaust memory.
+constexpr std::int64_t max_uniform_size = std::numeric_limits<Index>::max();
+
 template <class T> T load_le(const char* p)
 {
     T v;
@@ -1057,6 +1061,9 @@ FoamCompound read_compound(FoamTokenizer& tok, const std::string& type_word,
     {
         read_one(0);
         tok.expect('}');
+        if (n > max_uniform_size)
+            throw tok.error_at(start_line, "uniform " + type_word + " of " + std::to_string(n) +
+                                               " elements exceeds the label range of this build");
         const std::size_t count = static_cast<std::size_t>(n);
         if (c.kind == Kind::word)
             c.words.assign(count, c.words.front());
@@ -1361,6 +1368,9 @@ std::vector<T> take_list(Cursor& c, const std::string& what, ReadOne read_one,
             c.take(what);
             const T v = read_one(c);
             c.expect_punct('}', "closing a uniform list N{value}");
+            if (n > max_uniform_size)
+                throw c.entry().error("uniform list of " + std::to_string(n) +
+                                      " elements exceeds the label range of this build");
             out.assign(static_cast<std::size_t>(n), v);
             return out;
         }
