@@ -67,9 +67,15 @@ struct PolyMeshReadOptions
 };
 
 //! \brief Read the polyMesh of `case_dir` at the selected time: points from the points
-//! instance, topology from the faces instance (docs/polymesh-format.md §1), then validate
-//! (see validate_poly_mesh_files). Files may be plain or `.gz`, ASCII or binary, with 32 or
-//! 64-bit labels and scalars.
+//! instance, topology from the faces instance (docs/polymesh-format.md §1). Files may be
+//! plain or `.gz`, ASCII or binary, with 32 or 64-bit labels and scalars.
+//!
+//! Validated (docs/polymesh-format.md §5-6): header class (a different `object` only warns),
+//! every list size against its declaration and the bytes left, owner size == faces size,
+//! neighbour size <= faces size (a legacy neighbour padded with -1 is cut at the first -1),
+//! faces with >= 3 vertices whose labels are in [0, nPoints), non-negative owner and
+//! neighbour, owner < neighbour on internal faces, patches contiguous from nInternalFaces to
+//! nFaces, zone labels in range, finite point coordinates.
 //! \throw IoError if a required file is missing or unreadable (message names the path).
 //! \throw ParseError naming the file and line (ASCII) or byte offset (binary) on malformed
 //! content or an invalid mesh. \throw InvalidInput on a bad time selection.
