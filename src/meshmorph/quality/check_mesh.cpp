@@ -50,11 +50,17 @@ public:
         return "(" + s(x.x) + " " + s(x.y) + " " + s(x.z) + ")";
     }
     std::string v(const Eigen::Vector3d& x) const { return v(FoamVector{x.x(), x.y(), x.z()}); }
-    //! Left-justified in `width` columns (std::setw with ios::left).
-    static std::string w(const std::string& text, std::size_t width)
+    //! Justified in `width` columns (std::setw). checkMesh's tables are left-justified,
+    //! except after a polyhedra breakdown: v1912 sets ios::right there and never resets
+    //! it, so every later table is right-justified (reproduced, see right_justify).
+    std::string w(const std::string& text, std::size_t width) const
     {
-        return text.size() >= width ? text : text + std::string(width - text.size(), ' ');
+        if (text.size() >= width)
+            return text;
+        const std::string fill(width - text.size(), ' ');
+        return right_justify ? fill + text : text + fill;
     }
+    bool right_justify = false;
     std::ostringstream out;
 
 private:
@@ -321,6 +327,7 @@ std::vector<CellShape> mesh_stats(Context& c)
             << "        faces   number of cells\n";
         for (const auto& [n_faces, n] : counts.polyhedra_by_faces)
             out << std::setw(13) << std::right << n_faces << "   " << n << "\n";
+        c.pr.right_justify = true;
     }
     out << "\n";
     return shapes;
@@ -703,15 +710,15 @@ void check_topology(Context& c)
     // Patch topology table.
     const bool all_geometry = c.settings.all_geometry;
     out << "\nChecking patch topology for multiply connected surfaces...\n";
-    out << "    " << Printer::w("Patch", 20) << Printer::w("Faces", 9) << Printer::w("Points", 9)
-        << Printer::w("Surface topology", 34);
+    out << "    " << c.pr.w("Patch", 20) << c.pr.w("Faces", 9) << c.pr.w("Points", 9)
+        << c.pr.w("Surface topology", 34);
     if (all_geometry)
         out << " Bounding box";
     out << "\n";
     const auto row_out = [&](const std::string& name, const std::vector<Index>& faces) {
         const SurfaceTopology t = surface_topology(mesh, faces);
-        out << "    " << Printer::w(name, 20) << Printer::w(std::to_string(faces.size()), 9)
-            << Printer::w(std::to_string(t.n_points), 9) << Printer::w(t.type, 34);
+        out << "    " << c.pr.w(name, 20) << c.pr.w(std::to_string(faces.size()), 9)
+            << c.pr.w(std::to_string(t.n_points), 9) << c.pr.w(t.type, 34);
         if (all_geometry && t.n_points > 0)
             out << ' ' << c.pr.v(t.bb_min) << " " << c.pr.v(t.bb_max);
         out << "\n";
@@ -727,8 +734,8 @@ void check_topology(Context& c)
         out << "    No faceZones found.\n";
     else
     {
-        out << "    " << Printer::w("FaceZone", 20) << Printer::w("Faces", 9)
-            << Printer::w("Points", 9) << Printer::w("Surface topology", 34);
+        out << "    " << c.pr.w("FaceZone", 20) << c.pr.w("Faces", 9)
+            << c.pr.w("Points", 9) << c.pr.w("Surface topology", 34);
         if (all_geometry)
             out << " Bounding box";
         out << "\n";
@@ -740,8 +747,8 @@ void check_topology(Context& c)
         out << "    No cellZones found.\n";
     else
     {
-        out << "    " << Printer::w("CellZone", 20) << Printer::w("Cells", 13)
-            << Printer::w("Points", 13) << Printer::w("Volume", 13) << "BoundingBox\n";
+        out << "    " << c.pr.w("CellZone", 20) << c.pr.w("Cells", 13)
+            << c.pr.w("Points", 13) << c.pr.w("Volume", 13) << "BoundingBox\n";
         std::vector<char> in_zone(static_cast<std::size_t>(mesh.n_points()), 0);
         for (const Zone& z : mesh.cell_zones)
         {
@@ -763,10 +770,10 @@ void check_topology(Context& c)
                             hi = hi.cwiseMax(mesh.points.row(p).transpose());
                         }
             }
-            out << "    " << Printer::w(z.name, 19) << ' '
-                << Printer::w(std::to_string(z.labels.size()), 12) << ' '
-                << Printer::w(std::to_string(n_points), 12) << ' '
-                << Printer::w(c.pr.s(volume), 12) << ' ' << c.pr.v(lo) << " " << c.pr.v(hi)
+            out << "    " << c.pr.w(z.name, 19) << ' '
+                << c.pr.w(std::to_string(z.labels.size()), 12) << ' '
+                << c.pr.w(std::to_string(n_points), 12) << ' '
+                << c.pr.w(c.pr.s(volume), 12) << ' ' << c.pr.v(lo) << " " << c.pr.v(hi)
                 << "\n";
         }
     }
@@ -1647,7 +1654,7 @@ void validate(const PolyMesh& mesh)
 
 void check_mesh_quality_dict(const PolyMesh& mesh, const CompactList& cell_faces,
                              const MeshGeometry& geometry, const MeshQualitySettings& q,
-                             int precision, std::ostringstream& out, QualityReport& report,
+                             int precision, bool right_justify, std::ostringstream& out, QualityReport& report,
                              const std::vector<double>& skewness);
 
 QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
@@ -1683,7 +1690,7 @@ QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
     {
         report.has_mesh_quality = true;
         check_mesh_quality_dict(mesh, cell_faces, geometry, *settings.mesh_quality,
-                                settings.write_precision, printer.out,
+                                settings.write_precision, printer.right_justify, printer.out,
                                 report, fv.skewness);
         if (report.mesh_quality_faces > 0)
         {

@@ -20,9 +20,13 @@ namespace
 constexpr double small = constants::small;
 constexpr double vsmall = constants::vsmall;
 
-std::string w(const std::string& text, std::size_t width)
+//! std::setw: left-justified, or right after a polyhedra breakdown (see check_mesh.cpp).
+std::string justify(const std::string& text, std::size_t width, bool right)
 {
-    return text.size() >= width ? text : text + std::string(width - text.size(), ' ');
+    if (text.size() >= width)
+        return text;
+    const std::string fill(width - text.size(), ' ');
+    return right ? fill + text : text + fill;
 }
 
 FoamVector tri_area_normal(const FoamVector& a, const FoamVector& b, const FoamVector& c)
@@ -37,13 +41,16 @@ FoamVector tri_area_normal(const FoamVector& a, const FoamVector& b, const FoamV
 // newly adds -- OpenFOAM's "faces in error" lines.
 void check_mesh_quality_dict(const PolyMesh& mesh, const CompactList& cell_faces,
                              const MeshGeometry& g, const MeshQualitySettings& q, int precision,
-                             std::ostringstream& out, QualityReport& report,
+                             bool right_justify, std::ostringstream& out, QualityReport& report,
                              const std::vector<double>& skewness)
 {
     const Index n_faces = mesh.n_faces();
     const Index n_int = mesh.n_internal_faces();
     const Points& pts = mesh.points;
     const auto s = [&](double v) { return format_scalar(v, precision); };
+    const auto w = [&](const std::string& text, std::size_t width) {
+        return justify(text, width, right_justify);
+    };
     std::vector<char> in_error(static_cast<std::size_t>(n_faces), 0);
     std::vector<char> flag(static_cast<std::size_t>(n_faces), 0);
     out << "Checking faces in error :\n";
