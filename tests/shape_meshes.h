@@ -44,8 +44,10 @@ inline double loops_volume(const Points& points, const CellLoops& cell)
 //! then outwards (positive loops_volume).
 inline void orient_cell(const Points& points, CellLoops& cell)
 {
-    const auto reverse = [](std::vector<Index>& loop) { std::reverse(loop.begin() + 1, loop.end()); };
-    const auto has_directed_edge = [](const std::vector<Index>& loop, Index a, Index b) {
+    const auto reverse = [](std::vector<Index>& loop)
+    { std::reverse(loop.begin() + 1, loop.end()); };
+    const auto has_directed_edge = [](const std::vector<Index>& loop, Index a, Index b)
+    {
         for (std::size_t i = 0; i < loop.size(); ++i)
             if (loop[i] == a && loop[(i + 1) % loop.size()] == b)
                 return true;
@@ -123,9 +125,9 @@ inline PolyMesh mesh_from_cells(const Points& points, std::vector<CellLoops> cel
             else if (u[0].cell == static_cast<Index>(c) && u[0].loop == l)
                 internal.push_back({u[0].cell, u[1].cell, cells[c][l]});
         }
-    std::stable_sort(internal.begin(), internal.end(), [](const Internal& a, const Internal& b) {
-        return a.own != b.own ? a.own < b.own : a.nei < b.nei;
-    });
+    std::stable_sort(internal.begin(), internal.end(),
+                     [](const Internal& a, const Internal& b)
+                     { return a.own != b.own ? a.own < b.own : a.nei < b.nei; });
 
     PolyMesh mesh;
     mesh.points = points;
@@ -166,13 +168,19 @@ inline CellLoops hex_loops(const std::array<Index, 8>& v)
 }
 inline CellLoops prism_loops(const std::array<Index, 6>& v)
 {
-    return {{v[0], v[2], v[1]}, {v[3], v[4], v[5]}, {v[0], v[3], v[5], v[2]},
-            {v[1], v[2], v[5], v[4]}, {v[0], v[1], v[4], v[3]}};
+    return {{v[0], v[2], v[1]},
+            {v[3], v[4], v[5]},
+            {v[0], v[3], v[5], v[2]},
+            {v[1], v[2], v[5], v[4]},
+            {v[0], v[1], v[4], v[3]}};
 }
 inline CellLoops pyramid_loops(const std::array<Index, 5>& v)
 {
-    return {{v[0], v[3], v[2], v[1]}, {v[0], v[4], v[3]}, {v[3], v[4], v[2]},
-            {v[1], v[2], v[4]}, {v[0], v[1], v[4]}};
+    return {{v[0], v[3], v[2], v[1]},
+            {v[0], v[4], v[3]},
+            {v[3], v[4], v[2]},
+            {v[1], v[2], v[4]},
+            {v[0], v[1], v[4]}};
 }
 inline CellLoops tet_loops(const std::array<Index, 4>& v)
 {
@@ -214,7 +222,7 @@ inline PolyMesh make_wedge_on_hex()
 {
     Points p(11, 3);
     p << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 0.5, 1, 1, // 0..6 (6 = apex)
-        0, 0, -1, 1, 0, -1, 1, 1, -1, 0, 1, -1;                        // 7..10 below
+        0, 0, -1, 1, 0, -1, 1, 1, -1, 0, 1, -1;                           // 7..10 below
     const CellLoops wedge{{0, 4, 6, 3}, {1, 2, 6, 5}, {0, 1, 5, 4},
                           {3, 6, 2},    {0, 3, 2, 1}, {4, 5, 6}};
     return mesh_from_cells(p, {hex_loops({7, 8, 9, 10, 0, 1, 2, 3}), wedge});
@@ -250,12 +258,12 @@ inline PolyMesh make_pentagon_cells()
 {
     Points p(14, 3);
     p << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1, // 0..7
-        0.5, 0, 1, 0.5, 1, 1,                                                   // 8, 9
-        1, 2, 0, 0, 2, 0, 1, 2, 1, 0, 2, 1;                                     // 10..13
-    const CellLoops front{{0, 4, 7, 3}, {1, 2, 6, 5},    {0, 1, 5, 8, 4}, {3, 7, 9, 6, 2},
-                          {0, 3, 2, 1}, {4, 8, 9, 7},    {8, 5, 6, 9}};
-    const CellLoops back{{3, 7, 9, 6, 2}, {11, 10, 12, 13}, {3, 2, 10, 11},
-                         {7, 9, 6, 12, 13}, {3, 11, 13, 7}, {2, 6, 12, 10}};
+        0.5, 0, 1, 0.5, 1, 1,                                                    // 8, 9
+        1, 2, 0, 0, 2, 0, 1, 2, 1, 0, 2, 1;                                      // 10..13
+    const CellLoops front{{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 8, 4}, {3, 7, 9, 6, 2},
+                          {0, 3, 2, 1}, {4, 8, 9, 7}, {8, 5, 6, 9}};
+    const CellLoops back{{3, 7, 9, 6, 2},   {11, 10, 12, 13}, {3, 2, 10, 11},
+                         {7, 9, 6, 12, 13}, {3, 11, 13, 7},   {2, 6, 12, 10}};
     return mesh_from_cells(p, {front, back});
 }
 
@@ -266,7 +274,8 @@ inline void write_foam_case(const PolyMesh& mesh, const std::filesystem::path& c
     const std::filesystem::path dir = case_dir / "constant" / "polyMesh";
     std::filesystem::create_directories(dir);
     std::filesystem::create_directories(case_dir / "system");
-    const auto header = [](std::ofstream& os, const std::string& cls, const std::string& obj) {
+    const auto header = [](std::ofstream& os, const std::string& cls, const std::string& obj)
+    {
         os << "FoamFile\n{\n    version 2.0;\n    format ascii;\n    class " << cls
            << ";\n    location \"constant/polyMesh\";\n    object " << obj << ";\n}\n\n";
     };
@@ -296,8 +305,8 @@ inline void write_foam_case(const PolyMesh& mesh, const std::filesystem::path& c
         header(os, "vectorField", "points");
         os << mesh.n_points() << "\n(\n";
         for (Index i = 0; i < mesh.n_points(); ++i)
-            os << "(" << mesh.points(i, 0) << " " << mesh.points(i, 1) << " "
-               << mesh.points(i, 2) << ")\n";
+            os << "(" << mesh.points(i, 0) << " " << mesh.points(i, 1) << " " << mesh.points(i, 2)
+               << ")\n";
         os << ")\n";
     }
     {
@@ -314,7 +323,8 @@ inline void write_foam_case(const PolyMesh& mesh, const std::filesystem::path& c
         }
         os << ")\n";
     }
-    const auto write_labels = [&](const std::string& name, const std::vector<Index>& labels) {
+    const auto write_labels = [&](const std::string& name, const std::vector<Index>& labels)
+    {
         std::ofstream os(dir / name);
         header(os, "labelList", name);
         os << labels.size() << "\n(\n";
@@ -329,8 +339,8 @@ inline void write_foam_case(const PolyMesh& mesh, const std::filesystem::path& c
         header(os, "polyBoundaryMesh", "boundary");
         os << mesh.patches.size() << "\n(\n";
         for (const Patch& patch : mesh.patches)
-            os << patch.name << "\n{\n    type " << patch.type << ";\n    nFaces "
-               << patch.n_faces << ";\n    startFace " << patch.start_face << ";\n}\n";
+            os << patch.name << "\n{\n    type " << patch.type << ";\n    nFaces " << patch.n_faces
+               << ";\n    startFace " << patch.start_face << ";\n}\n";
         os << ")\n";
     }
 }

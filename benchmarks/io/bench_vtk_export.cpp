@@ -10,9 +10,9 @@
 // also times `foamToVTK -case <copy> -constant -noFunctionObjects` on a copy of the case for
 // comparison (it writes legacy or XML VTK of the same mesh).
 #include <chrono>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -96,9 +96,8 @@ int main(int argc, char** argv)
         fs::create_directories(out);
         const double t0 = now();
         const PolyMesh mesh = io::read_poly_mesh(case_dir).mesh;
-        std::printf("case %s: %d points, %d faces, %d cells (read %.2f s)\n",
-                    case_dir.c_str(), int(mesh.n_points()), int(mesh.n_faces()),
-                    int(mesh.n_cells), now() - t0);
+        std::printf("case %s: %d points, %d faces, %d cells (read %.2f s)\n", case_dir.c_str(),
+                    int(mesh.n_points()), int(mesh.n_faces()), int(mesh.n_cells), now() - t0);
 
         const CompactList cf = cell_faces(mesh);
         std::vector<CellShape> shapes;
@@ -118,20 +117,24 @@ int main(int argc, char** argv)
         const double t_h = best_of(repeat, [&] { h = patch_mean_curvature(mesh); });
         const double c_h = last_cpu;
         const Points displacement = 1e-3 * mesh.points;
-        const double t_vtu = best_of(repeat, [&] {
-            io::write_vtu(out / "mesh.vtu", mesh, {{"displacement", displacement}},
-                          {{"scaledJacobian", sj}});
-        });
+        const double t_vtu =
+            best_of(repeat,
+                    [&]
+                    {
+                        io::write_vtu(out / "mesh.vtu", mesh, {{"displacement", displacement}},
+                                      {{"scaledJacobian", sj}});
+                    });
         const double c_vtu = last_cpu;
-        const double t_vtp = best_of(repeat, [&] {
-            io::write_vtp_patches(out / "boundary.vtp", mesh, {}, {{"meanCurvature", h}});
-        });
+        const double t_vtp = best_of(
+            repeat,
+            [&] {
+                io::write_vtp_patches(out / "boundary.vtp", mesh, {}, {{"meanCurvature", h}});
+            });
         const double c_vtp = last_cpu;
         const auto per_cell = [&](double t) { return 1e9 * t / double(mesh.n_cells); };
         std::printf("  stage                 wall [s]   cpu [s]   cpu ns/cell\n");
-        const auto row = [&](const char* name, double wall, double cpu) {
-            std::printf("  %-20s %9.4f %9.4f %10.1f\n", name, wall, cpu, per_cell(cpu));
-        };
+        const auto row = [&](const char* name, double wall, double cpu)
+        { std::printf("  %-20s %9.4f %9.4f %10.1f\n", name, wall, cpu, per_cell(cpu)); };
         row("classify_cells", t_classify, c_classify);
         row("vtk_cells", t_vtk_cells, c_vtk_cells);
         row("scaled_jacobian", t_sj, c_sj);
@@ -153,11 +156,13 @@ int main(int argc, char** argv)
             const std::string cmd = "foamToVTK -case '" + copy.string() +
                                     "' -constant -noFunctionObjects > '" +
                                     (out / "log.foamToVTK").string() + "' 2>&1";
-            const double t = best_of(1, [&] {
-                if (std::system(cmd.c_str()) != 0)
-                    std::printf("  foamToVTK failed (see %s)\n",
-                                (out / "log.foamToVTK").c_str());
-            });
+            const double t = best_of(1,
+                                     [&]
+                                     {
+                                         if (std::system(cmd.c_str()) != 0)
+                                             std::printf("  foamToVTK failed (see %s)\n",
+                                                         (out / "log.foamToVTK").c_str());
+                                     });
             std::printf("  foamToVTK (whole run) %8.4f s\n", t);
         }
     }

@@ -26,7 +26,6 @@ CellShapeCounts counts_of(const PolyMesh& mesh)
     return count_cell_shapes(classify_cells(mesh, cf), cf);
 }
 
-
 // VTK's own face lists (vtkTetra/vtkPyramid/vtkWedge/vtkHexahedron::GetFaceArray), used to
 // check that a native cell's vertices really span the mesh cell's faces.
 std::vector<std::vector<int>> vtk_faces(VtkCellType type)
@@ -147,9 +146,10 @@ TEST(CellShapes, box_mesh_is_all_hexahedra)
 
 TEST(CellShapes, distorted_block_hexes_keep_vtk_orientation)
 {
-    const PolyMesh mesh = test::make_block_mesh(3, 3, 2, [](double u, double v, double w) {
-        return Vector3(u + 0.2 * v * v, v + 0.1 * std::sin(3 * u), w * (1 + 0.3 * u));
-    });
+    const PolyMesh mesh = test::make_block_mesh(
+        3, 3, 2,
+        [](double u, double v, double w)
+        { return Vector3(u + 0.2 * v * v, v + 0.1 * std::sin(3 * u), w * (1 + 0.3 * u)); });
     EXPECT_EQ(counts_of(mesh).hex, 18);
     expect_vtk_cells_consistent(mesh);
 }
@@ -303,14 +303,10 @@ TEST(CellShapes, counts_match_openfoam_checkmesh)
     if (!test::openfoam_available())
         GTEST_SKIP() << "OpenFOAM not installed: checkMesh cell-type comparison skipped";
     const std::vector<std::pair<std::string, PolyMesh>> cases{
-        {"hex", test::make_box_mesh(2, 2, 1)},
-        {"tet", test::make_tet_cube()},
-        {"pyramid", test::make_pyramid_cube()},
-        {"prism", test::make_prism_cube()},
-        {"wedge", test::make_wedge_on_hex()},
-        {"tetwedge", test::make_tet_wedge()},
-        {"split", test::make_split_top_cube()},
-        {"pentagon", test::make_pentagon_cells()}};
+        {"hex", test::make_box_mesh(2, 2, 1)},  {"tet", test::make_tet_cube()},
+        {"pyramid", test::make_pyramid_cube()}, {"prism", test::make_prism_cube()},
+        {"wedge", test::make_wedge_on_hex()},   {"tetwedge", test::make_tet_wedge()},
+        {"split", test::make_split_top_cube()}, {"pentagon", test::make_pentagon_cells()}};
     const std::filesystem::path root = test::scratch_dir("cell_shapes_checkmesh");
     for (const auto& [name, mesh] : cases)
     {
@@ -325,9 +321,9 @@ TEST(CellShapes, counts_match_openfoam_checkmesh)
         text << in.rdbuf();
         const std::string out = text.str();
         const CellShapeCounts counts = counts_of(mesh);
-        for (CellShape shape : {CellShape::hex, CellShape::prism, CellShape::wedge,
-                                CellShape::pyramid, CellShape::tet_wedge, CellShape::tet,
-                                CellShape::polyhedron})
+        for (CellShape shape :
+             {CellShape::hex, CellShape::prism, CellShape::wedge, CellShape::pyramid,
+              CellShape::tet_wedge, CellShape::tet, CellShape::polyhedron})
         {
             const std::regex re("\n    " + std::string(checkmesh_name(shape)) + ": +([0-9]+)\n");
             std::smatch m;

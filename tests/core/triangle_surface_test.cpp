@@ -93,8 +93,7 @@ double enclosed_volume(const TriangleSurface& s)
     return v;
 }
 
-template <class F>
-std::string error_of(F&& f)
+template <class F> std::string error_of(F&& f)
 {
     try
     {
@@ -181,7 +180,8 @@ TEST(TriangleSurface, stl_errors_name_file_and_line_or_byte)
     std::string number = ascii_stl(cube_triangles());
     number.replace(number.find("vertex 0 0 0") + 9, 1, "nan");
     write_text(dir / "nan.stl", number);
-    EXPECT_NE(error_of([&] { read_stl(dir / "nan.stl"); }).find("finite number"), std::string::npos);
+    EXPECT_NE(error_of([&] { read_stl(dir / "nan.stl"); }).find("finite number"),
+              std::string::npos);
 
     std::string binary = binary_stl(cube_triangles(), "binary");
     binary.resize(binary.size() - 7);
@@ -254,12 +254,12 @@ TEST(TriangleSurface, tree_matches_brute_force)
         const Vector3 x = queries.row(q).transpose();
         double best = std::numeric_limits<double>::infinity();
         for (Index t = 0; t < s.n_triangles(); ++t)
-            best = std::min(best, (closest_point_on_triangle(
-                                       x, s.vertices.row(s.triangles(t, 0)).transpose(),
-                                       s.vertices.row(s.triangles(t, 1)).transpose(),
-                                       s.vertices.row(s.triangles(t, 2)).transpose()) -
-                                   x)
-                                      .norm());
+            best = std::min(
+                best, (closest_point_on_triangle(x, s.vertices.row(s.triangles(t, 0)).transpose(),
+                                                 s.vertices.row(s.triangles(t, 1)).transpose(),
+                                                 s.vertices.row(s.triangles(t, 2)).transpose()) -
+                       x)
+                          .norm());
         const SurfacePoint sp = tree.closest_point(x);
         EXPECT_EQ(sp.distance, best) << "query " << q; // same arithmetic, exact
         EXPECT_NEAR((sp.point - x).norm(), sp.distance, 1e-15 * (1 + sp.distance));
@@ -316,10 +316,10 @@ TEST(TriangleSurface, tutorial_surfaces_match_openfoam_surface_check)
         ASSERT_TRUE(std::regex_search(out, m, std::regex("Vertices +: +([0-9]+)"))) << log;
         EXPECT_EQ(std::stol(m[1]), s.n_vertices());
         const std::string num = "(-?[0-9.eE+-]+)";
-        ASSERT_TRUE(std::regex_search(
-            out, m,
-            std::regex("Bounding Box : \\(" + num + " " + num + " " + num + "\\) \\(" + num +
-                       " " + num + " " + num + "\\)")))
+        ASSERT_TRUE(
+            std::regex_search(out, m,
+                              std::regex("Bounding Box : \\(" + num + " " + num + " " + num +
+                                         "\\) \\(" + num + " " + num + " " + num + "\\)")))
             << log;
         const Eigen::RowVector3d lo = s.vertices.colwise().minCoeff();
         const Eigen::RowVector3d hi = s.vertices.colwise().maxCoeff();

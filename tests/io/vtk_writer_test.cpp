@@ -99,10 +99,14 @@ std::string file_text(const std::filesystem::path& path)
 
 TEST(VtkWriter, vtu_round_trip_points_cells_and_arrays)
 {
-    const PolyMesh mesh = test::make_block_mesh(3, 2, 2, [](double u, double v, double w) {
-        // Affine (sheared, stretched): planar faces, so every volume formula agrees exactly.
-        return Vector3(u + 0.3 * v, v + 0.2 * w, 2 * w + 0.1 * u);
-    });
+    const PolyMesh mesh =
+        test::make_block_mesh(3, 2, 2,
+                              [](double u, double v, double w)
+                              {
+                                  // Affine (sheared, stretched): planar faces, so every volume
+                                  // formula agrees exactly.
+                                  return Vector3(u + 0.3 * v, v + 0.2 * w, 2 * w + 0.1 * u);
+                              });
     Points displacement(mesh.n_points(), 3);
     for (Index p = 0; p < mesh.n_points(); ++p)
         displacement.row(p) << 0.1 * p, -1.0 / (p + 1), std::sqrt(double(p));
@@ -352,12 +356,12 @@ TEST(VtkWriter, openfoam_meshes_keep_checkmesh_cell_types_and_positive_volumes)
         // checkMesh's counts, from the log the case script kept.
         const std::string log = file_text(case_dir / "log.checkMesh");
         std::map<std::string, long> expected;
-        for (const char* type : {"hexahedra", "prisms", "wedges", "pyramids", "tet wedges",
-                                 "tetrahedra", "polyhedra"})
+        for (const char* type :
+             {"hexahedra", "prisms", "wedges", "pyramids", "tet wedges", "tetrahedra", "polyhedra"})
         {
             std::smatch m;
-            ASSERT_TRUE(std::regex_search(log, m, std::regex(std::string("\n    ") + type +
-                                                             ": +([0-9]+)\n")))
+            ASSERT_TRUE(std::regex_search(
+                log, m, std::regex(std::string("\n    ") + type + ": +([0-9]+)\n")))
                 << type;
             expected[type] = std::stol(m[1]);
         }
@@ -375,7 +379,8 @@ TEST(VtkWriter, openfoam_meshes_keep_checkmesh_cell_types_and_positive_volumes)
         const std::size_t table = log.find("Breakdown of polyhedra by number of faces:");
         if (table != std::string::npos)
         {
-            std::istringstream rows(log.substr(log.find('\n', log.find("faces   number", table)) + 1));
+            std::istringstream rows(
+                log.substr(log.find('\n', log.find("faces   number", table)) + 1));
             for (std::string row; std::getline(rows, row) && !row.empty();)
             {
                 std::istringstream fields(row);

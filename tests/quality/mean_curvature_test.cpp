@@ -21,19 +21,20 @@ namespace
 TriangleSurface icosphere(int levels, double r)
 {
     const double g = (1.0 + std::sqrt(5.0)) / 2.0;
-    std::vector<Vector3> v{{-1, g, 0}, {1, g, 0},  {-1, -g, 0}, {1, -g, 0},
-                           {0, -1, g}, {0, 1, g},  {0, -1, -g}, {0, 1, -g},
-                           {g, 0, -1}, {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
-    std::vector<std::array<Index, 3>> f{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                                        {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                        {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                                        {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+    std::vector<Vector3> v{{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
+                           {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
+                           {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    std::vector<std::array<Index, 3>> f{
+        {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+        {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+        {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
     for (Vector3& p : v)
         p.normalize();
     for (int level = 0; level < levels; ++level)
     {
         std::map<std::pair<Index, Index>, Index> mid;
-        const auto midpoint = [&](Index a, Index b) {
+        const auto midpoint = [&](Index a, Index b)
+        {
             const std::pair<Index, Index> k{std::min(a, b), std::max(a, b)};
             const auto it = mid.find(k);
             if (it != mid.end())
@@ -228,7 +229,8 @@ TEST(MeanCurvature, single_flat_patch_and_box_faces)
     {
         const Vector3 x = mesh.points.row(p).transpose();
         const bool on_top = std::find(pts.begin(), pts.end(), p) != pts.end();
-        const bool on_rim = x.x() < 1e-12 || x.x() > 1 - 1e-12 || x.y() < 1e-12 || x.y() > 1 - 1e-12;
+        const bool on_rim =
+            x.x() < 1e-12 || x.x() > 1 - 1e-12 || x.y() < 1e-12 || x.y() > 1 - 1e-12;
         if (!on_top || on_rim)
             EXPECT_TRUE(std::isnan(h[p])) << "point " << p;
         else

@@ -110,8 +110,7 @@ TEST(ScaledJacobian, ideal_prism_and_pyramid_are_one)
                                        Vector3(0, 0, 1), Vector3(0.5, h, 1), Vector3(1, 0, 1)};
     EXPECT_NEAR(prism_scaled_jacobian(prism), 1.0, 1e-14);
     const std::array<Vector3, 5> pyramid{Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(1, 1, 0),
-                                         Vector3(0, 1, 0),
-                                         Vector3(0.5, 0.5, 1 / std::sqrt(2.0))};
+                                         Vector3(0, 1, 0), Vector3(0.5, 0.5, 1 / std::sqrt(2.0))};
     EXPECT_NEAR(pyramid_scaled_jacobian(pyramid), 1.0, 1e-14);
     std::array<Vector3, 5> inverted = pyramid;
     inverted[4].z() *= -1;
@@ -184,7 +183,8 @@ TEST(ScaledJacobian, tets_match_vtk_mesh_quality)
     for (int trial = 0; trial < 20; ++trial)
     {
         for (Index p = 0; p < mesh.n_points(); ++p)
-            mesh.points.row(p) = test::cube_points().row(p) + Eigen::RowVector3d(u(rng), u(rng), u(rng));
+            mesh.points.row(p) =
+                test::cube_points().row(p) + Eigen::RowVector3d(u(rng), u(rng), u(rng));
         const CompactList cf = cell_faces(mesh);
         const std::vector<CellShape> shapes = classify_cells(mesh, cf);
         const Eigen::VectorXd sj = scaled_jacobian(mesh, cf, shapes);

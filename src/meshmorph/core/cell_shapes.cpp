@@ -48,7 +48,8 @@ public:
             face_size_[lf] = static_cast<int>(f.size());
             for (int fp = 0; fp < face_size_[lf]; ++fp)
             {
-                const Index* found = std::find(point_map_.data(), point_map_.data() + num_vert_, f[fp]);
+                const Index* found =
+                    std::find(point_map_.data(), point_map_.data() + num_vert_, f[fp]);
                 int local = static_cast<int>(found - point_map_.data());
                 if (local == num_vert_)
                 {
@@ -367,9 +368,8 @@ struct Model
     std::vector<std::vector<int>> faces;
 };
 
-const Model hex_model{8,
-                      {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 3, 2, 1},
-                       {4, 5, 6, 7}}};
+const Model hex_model{
+    8, {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}}};
 const Model prism_model{6, {{0, 2, 1}, {3, 4, 5}, {0, 3, 5, 2}, {1, 2, 5, 4}, {0, 1, 4, 3}}};
 const Model pyramid_model{5, {{0, 3, 2, 1}, {0, 4, 3}, {3, 4, 2}, {1, 2, 4}, {0, 1, 4}}};
 const Model tet_model{4, {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
@@ -522,8 +522,8 @@ CellShapeCounts count_cell_shapes(const std::vector<CellShape>& shapes,
                                   const CompactList& cell_faces)
 {
     if (static_cast<Index>(shapes.size()) != cell_faces.size())
-        throw InvalidInput("count_cell_shapes: " + std::to_string(shapes.size()) +
-                           " shapes for " + std::to_string(cell_faces.size()) + " cells");
+        throw InvalidInput("count_cell_shapes: " + std::to_string(shapes.size()) + " shapes for " +
+                           std::to_string(cell_faces.size()) + " cells");
     CellShapeCounts counts;
     for (std::size_t c = 0; c < shapes.size(); ++c)
     {
@@ -608,8 +608,7 @@ VtkCellType vtk_cell(const PolyMesh& mesh, const CompactList& cell_faces, Index 
     return VtkCellType::polyhedron;
 }
 
-VtkCell vtk_cell(const PolyMesh& mesh, const CompactList& cell_faces, Index cell,
-                 CellShape shape)
+VtkCell vtk_cell(const PolyMesh& mesh, const CompactList& cell_faces, Index cell, CellShape shape)
 {
     VtkCell result;
     result.type = vtk_cell(mesh, cell_faces, cell, shape, result.points, result.face_stream);

@@ -109,8 +109,7 @@ struct VtkCell
 //! \param mesh the mesh. \param cell_faces from meshmorph::cell_faces(mesh).
 //! \param cell cell label in [0, nCells). \param shape classify_cells()'s result for the cell.
 //! \throw InvalidInput if cell is out of range.
-VtkCell vtk_cell(const PolyMesh& mesh, const CompactList& cell_faces, Index cell,
-                 CellShape shape);
+VtkCell vtk_cell(const PolyMesh& mesh, const CompactList& cell_faces, Index cell, CellShape shape);
 
 //! \brief vtk_cell() into caller-owned buffers (cleared first), for loops over many cells
 //! without allocating. \return the cell type.

@@ -52,10 +52,12 @@ std::string read_file(const std::filesystem::path& path)
 bool iequals(std::string_view a, std::string_view b)
 {
     return a.size() == b.size() &&
-           std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-               return std::tolower(static_cast<unsigned char>(x)) ==
-                      std::tolower(static_cast<unsigned char>(y));
-           });
+           std::equal(a.begin(), a.end(), b.begin(),
+                      [](char x, char y)
+                      {
+                          return std::tolower(static_cast<unsigned char>(x)) ==
+                                 std::tolower(static_cast<unsigned char>(y));
+                      });
 }
 
 bool parse_double(std::string_view text, double& value)
@@ -156,16 +158,17 @@ TriangleSurface read_ascii_stl(const std::filesystem::path& path, std::string_vi
     Tokens tokens(text);
     VertexMerger merger;
     std::vector<std::array<Index, 3>> triangles;
-    const auto fail = [&](const std::string& message) -> void {
-        throw ParseError(path.string(), tokens.line(), message);
-    };
-    const auto expect = [&](std::string_view keyword) {
+    const auto fail = [&](const std::string& message) -> void
+    { throw ParseError(path.string(), tokens.line(), message); };
+    const auto expect = [&](std::string_view keyword)
+    {
         const std::string_view t = tokens.next();
         if (!iequals(t, keyword))
             fail("expected '" + std::string(keyword) + "', found " +
                  (t.empty() ? std::string("end of file") : "'" + std::string(t) + "'"));
     };
-    const auto number = [&]() {
+    const auto number = [&]()
+    {
         const std::string_view t = tokens.next();
         double v = 0;
         if (!parse_double(t, v))
@@ -193,7 +196,8 @@ TriangleSurface read_ascii_stl(const std::filesystem::path& path, std::string_vi
                      (t.empty() ? std::string("end of file") : "'" + std::string(t) + "'"));
             expect("normal");
             for (int k = 0; k < 3; ++k)
-                tokens.next(); // normals are recomputed from the vertex order; some writers emit nan
+                tokens
+                    .next(); // normals are recomputed from the vertex order; some writers emit nan
             expect("outer");
             expect("loop");
             std::vector<Index> loop;
@@ -308,8 +312,8 @@ TriangleSurface read_stl(const std::filesystem::path& path)
     throw ParseError(path.string(), 0,
                      "byte 80: not an STL file: no 'solid' keyword, and a binary STL with " +
                          std::to_string(n) + " triangles would have " +
-                         std::to_string(84 + 50 * static_cast<std::uint64_t>(n)) +
-                         " bytes, not " + std::to_string(data.size()) + " (truncated?)");
+                         std::to_string(84 + 50 * static_cast<std::uint64_t>(n)) + " bytes, not " +
+                         std::to_string(data.size()) + " (truncated?)");
 }
 
 TriangleSurface read_obj(const std::filesystem::path& path)
@@ -332,9 +336,8 @@ TriangleSurface read_obj(const std::filesystem::path& path)
             line = line.substr(0, hash);
         Tokens tokens(line);
         const std::string_view kind = tokens.next();
-        const auto fail = [&](const std::string& message) {
-            throw ParseError(path.string(), line_no, message);
-        };
+        const auto fail = [&](const std::string& message)
+        { throw ParseError(path.string(), line_no, message); };
         if (kind == "v")
         {
             Vector3 p;

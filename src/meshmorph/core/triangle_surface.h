@@ -53,8 +53,8 @@ TriangleSurface read_surface(const std::filesystem::path& path);
 //! The result of a closest-point query.
 struct SurfacePoint
 {
-    Vector3 point = Vector3::Zero(); //!< closest point on the surface
-    Index triangle = -1;             //!< triangle containing it
+    Vector3 point = Vector3::Zero();                           //!< closest point on the surface
+    Index triangle = -1;                                       //!< triangle containing it
     double distance = std::numeric_limits<double>::infinity(); //!< |query - point|
 };
 

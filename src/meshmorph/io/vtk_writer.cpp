@@ -42,7 +42,8 @@ void check_fields(const std::filesystem::path& path, const std::vector<VtkField>
     std::set<std::string> names;
     for (const VtkField& f : fields)
     {
-        const std::string where = path.string() + ": " + std::string(what) + " array '" + f.name + "'";
+        const std::string where =
+            path.string() + ": " + std::string(what) + " array '" + f.name + "'";
         if (f.name.empty())
             throw InvalidInput(path.string() + ": " + std::string(what) + " array with empty name");
         if (std::find(reserved.begin(), reserved.end(), f.name) != reserved.end())
@@ -76,7 +77,8 @@ vtkSmartPointer<vtkDoubleArray> to_vtk(const VtkField& f, const std::vector<Inde
     return array;
 }
 
-vtkSmartPointer<vtkIdTypeArray> id_array(const std::vector<Index>& values, const char* name = nullptr)
+vtkSmartPointer<vtkIdTypeArray> id_array(const std::vector<Index>& values,
+                                         const char* name = nullptr)
 {
     vtkNew<vtkIdTypeArray> array;
     if (name)
@@ -86,7 +88,8 @@ vtkSmartPointer<vtkIdTypeArray> id_array(const std::vector<Index>& values, const
     return array;
 }
 
-vtkSmartPointer<vtkPoints> to_vtk_points(const Points& points, const std::vector<Index>* rows = nullptr)
+vtkSmartPointer<vtkPoints> to_vtk_points(const Points& points,
+                                         const std::vector<Index>* rows = nullptr)
 {
     vtkNew<vtkDoubleArray> xyz;
     xyz->SetNumberOfComponents(3);
@@ -254,8 +257,8 @@ void write_vtp_patches(const std::filesystem::path& path, const PolyMesh& mesh,
             {
                 if (v < 0 || v >= mesh.n_points())
                     throw InvalidInput(path.string() + ": face " + std::to_string(f) +
-                                       " has point label " + std::to_string(v) +
-                                       " outside [0, " + std::to_string(mesh.n_points()) + ")");
+                                       " has point label " + std::to_string(v) + " outside [0, " +
+                                       std::to_string(mesh.n_points()) + ")");
                 if (local[v] < 0)
                 {
                     local[v] = static_cast<Index>(point_ids.size());

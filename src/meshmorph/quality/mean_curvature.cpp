@@ -31,7 +31,8 @@ std::vector<char> border_vertices(Index n_vertices, const Triangles& triangles)
 {
     std::unordered_map<std::uint64_t, int> edge_count;
     edge_count.reserve(static_cast<std::size_t>(triangles.rows()) * 3);
-    const auto key = [](Index a, Index b) {
+    const auto key = [](Index a, Index b)
+    {
         const auto lo = static_cast<std::uint64_t>(std::min(a, b));
         const auto hi = static_cast<std::uint64_t>(std::max(a, b));
         return (hi << 32) | lo;
@@ -118,8 +119,7 @@ Points laplace_beltrami(const Eigen::Ref<const Points>& vertices, const Triangle
     return sum;
 }
 
-Eigen::VectorXd mean_curvature(const Eigen::Ref<const Points>& vertices,
-                               const Triangles& triangles)
+Eigen::VectorXd mean_curvature(const Eigen::Ref<const Points>& vertices, const Triangles& triangles)
 {
     const Points lb = laplace_beltrami(vertices, triangles);
     return 0.5 * lb.rowwise().norm();
@@ -210,8 +210,7 @@ TriangleSurface triangulate_patches(const PolyMesh& mesh, const std::vector<Inde
                     if (!ok)
                         continue;
                     for (std::size_t i = 1; i + 1 < n; ++i)
-                        triangles.push_back(
-                            {face[s0], face[(s0 + i) % n], face[(s0 + i + 1) % n]});
+                        triangles.push_back({face[s0], face[(s0 + i) % n], face[(s0 + i + 1) % n]});
                     fanned = true;
                 }
                 if (fanned)

@@ -44,8 +44,9 @@ enum class PolygonSplit
 {
     //! No new vertices: a quad along its shorter diagonal, a larger polygon as a fan from the
     //! first vertex from which every fan triangle faces the same way as the polygon (convex
-    //! and star-shaped polygons), otherwise (no such vertex) a fan around its vertex average. Every vertex then lies on the surface
-    //! sampled by the mesh, so curvature converges with refinement (default).
+    //! and star-shaped polygons), otherwise (no such vertex) a fan around its vertex average. Every
+    //! vertex then lies on the surface sampled by the mesh, so curvature converges with refinement
+    //! (default).
     diagonals,
     //! Every polygon as a fan around its vertex average (an extra vertex per face). On a
     //! curved surface the average lies off the surface by O(h^2), which bends the fan by

@@ -42,8 +42,8 @@ double hex_scaled_jacobian(const std::array<Vector3, 8>& p)
     static constexpr int corners[8][4] = {{0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7},
                                           {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}};
     for (const auto& c : corners)
-        result = std::min(result, normalized_det(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]],
-                                                 p[c[3]] - p[c[0]]));
+        result = std::min(result,
+                          normalized_det(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]], p[c[3]] - p[c[0]]));
     return result;
 }
 
@@ -63,8 +63,7 @@ double tet_scaled_jacobian(const std::array<Vector3, 4>& p)
     const double l4 = side4.squaredNorm();
     const double l5 = side5.squaredNorm();
     // The corner with the longest edges has the smallest normalised Jacobian.
-    const double largest =
-        std::max({l0 * l2 * l3, l0 * l1 * l4, l1 * l2 * l5, l3 * l4 * l5});
+    const double largest = std::max({l0 * l2 * l3, l0 * l1 * l4, l1 * l2 * l5, l3 * l4 * l5});
     double length_product = std::sqrt(largest);
     length_product = std::max(length_product, std::abs(jacobian));
     if (length_product < std::numeric_limits<double>::min())
@@ -104,8 +103,8 @@ Eigen::VectorXd scaled_jacobian(const PolyMesh& mesh, const CompactList& cell_fa
                                 const std::vector<CellShape>& shapes)
 {
     if (static_cast<Index>(shapes.size()) != cell_faces.size())
-        throw InvalidInput("scaled_jacobian: " + std::to_string(shapes.size()) +
-                           " shapes for " + std::to_string(cell_faces.size()) + " cells");
+        throw InvalidInput("scaled_jacobian: " + std::to_string(shapes.size()) + " shapes for " +
+                           std::to_string(cell_faces.size()) + " cells");
     const Index n_cells = cell_faces.size();
     Eigen::VectorXd result(n_cells);
     const auto point = [&](Index label) -> Vector3 { return mesh.points.row(label).transpose(); };
