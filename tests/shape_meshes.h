@@ -267,6 +267,29 @@ inline PolyMesh make_pentagon_cells()
     return mesh_from_cells(p, {front, back});
 }
 
+//! The unit cube with vertex 7 merged into 6 while every face keeps 4 labels (two faces
+//! repeat vertex 6): 6 "quads", 7 distinct vertices. checkMesh counts it as a hexahedron
+//! (hexMatcher::isA looks at face sizes only).
+inline PolyMesh make_collapsed_hex()
+{
+    PolyMesh mesh;
+    mesh.points = cube_points();
+    for (const auto& f : std::vector<std::vector<Index>>{
+             {0, 4, 6, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 6, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 6}})
+    {
+        mesh.faces.push_back(std::span<const Index>(f));
+        mesh.owner.push_back(0);
+    }
+    Patch walls;
+    walls.name = "walls";
+    walls.type = "wall";
+    walls.start_face = 0;
+    walls.n_faces = 6;
+    mesh.patches.push_back(walls);
+    mesh.finalize();
+    return mesh;
+}
+
 //! Writes mesh as an ASCII OpenFOAM case (constant/polyMesh and a minimal system/controlDict)
 //! so that checkMesh can read it.
 inline void write_foam_case(const PolyMesh& mesh, const std::filesystem::path& case_dir)

@@ -232,17 +232,8 @@ TEST(CellShapes, polyhedra_breakdown_by_face_count)
 TEST(CellShapes, six_quads_with_repeated_vertex_count_as_hex_but_export_as_polyhedron)
 {
     // OpenFOAM's hexMatcher::isA tests face sizes only, so checkMesh counts this collapsed
-    // cube (vertex 7 merged into 6, faces keep 4 labels) as a hexahedron.
-    PolyMesh mesh;
-    mesh.points = test::cube_points();
-    for (const auto& f : std::vector<std::vector<Index>>{
-             {0, 4, 6, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 6, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 6}})
-    {
-        mesh.faces.push_back(std::span<const Index>(f));
-        mesh.owner.push_back(0);
-    }
-    mesh.patches.push_back({"walls", "wall", 0, 6, {}, {}});
-    mesh.finalize();
+    // cube as a hexahedron (counts_match_openfoam_checkmesh checks that with checkMesh).
+    const PolyMesh mesh = test::make_collapsed_hex();
     const CompactList cf = cell_faces(mesh);
     const std::vector<CellShape> shapes = classify_cells(mesh, cf);
     EXPECT_EQ(shapes[0], CellShape::hex);
