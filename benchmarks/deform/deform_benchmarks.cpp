@@ -8,6 +8,8 @@
 
 #include <omp.h>
 
+#include <time.h>
+
 #include <cmath>
 #include <random>
 
@@ -24,6 +26,16 @@ extern "C" void dgemm_(const char* transa, const char* transb, const int* m, con
 namespace
 {
 using meshmorph::Points;
+
+//! CPU seconds of the whole process (all threads). Rates per CPU-second show the per-core
+//! throughput even when other jobs share the cores (spin-waiting threads count as busy, so
+//! these rates are conservative).
+double process_cpu_seconds()
+{
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
 
 Points random_points(Eigen::Index n, unsigned seed)
 {
@@ -52,13 +64,17 @@ void BM_dgemm(benchmark::State& state)
     const Eigen::MatrixXd a = Eigen::MatrixXd::Random(n, n), b = Eigen::MatrixXd::Random(n, n);
     Eigen::MatrixXd c(n, n);
     const double one = 1.0, zero = 0.0;
+    const double c0 = process_cpu_seconds();
     for (auto _ : state)
     {
         dgemm_("N", "N", &n, &n, &n, &one, a.data(), &n, b.data(), &n, &zero, c.data(), &n);
         benchmark::DoNotOptimize(c.data());
     }
+    const double cpu = process_cpu_seconds() - c0;
     state.counters["GFLOP/s"] = benchmark::Counter(2.0 * n * double(n) * n * 1e-9,
                                                    benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["GFLOP/cpu-s"] =
+        2.0 * n * double(n) * n * 1e-9 * double(state.iterations()) / cpu;
 }
 BENCHMARK(BM_dgemm)->Arg(2000)->Arg(4000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -68,6 +84,7 @@ void BM_rbf_fit(benchmark::State& state)
     const Points h = random_points(m, 1);
     const Points d = field(h);
     double cond = 0.0;
+    const double c0 = process_cpu_seconds();
     for (auto _ : state)
     {
         meshmorph::RbfDeformation rbf;
@@ -77,11 +94,20 @@ void BM_rbf_fit(benchmark::State& state)
     // Rate of the dominant m^3/3 Cholesky flops over the whole fit (assembly, QR, residual).
     state.counters["GFLOP/s"] = benchmark::Counter(double(m) * m * m / 3.0 * 1e-9,
                                                    benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["GFLOP/cpu-s"] =
+        double(m) * m * m / 3.0 * 1e-9 * double(state.iterations()) / (process_cpu_seconds() - c0);
     state.counters["cond"] = cond;
 }
 BENCHMARK(BM_rbf_fit)
-    ->Arg(500)->Arg(1000)->Arg(2000)->Arg(4000)->Arg(8000)->Arg(16000)
-    ->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+    ->Arg(500)
+    ->Arg(1000)
+    ->Arg(2000)
+    ->Arg(4000)
+    ->Arg(8000)
+    ->Arg(16000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 void BM_rbf_evaluate(benchmark::State& state)
 {
@@ -94,22 +120,30 @@ void BM_rbf_evaluate(benchmark::State& state)
     Points out(n, 3);
     const int saved = omp_get_max_threads();
     omp_set_num_threads(threads);
+    const double c0 = process_cpu_seconds();
     for (auto _ : state)
     {
         rbf.evaluate(x, out);
         benchmark::DoNotOptimize(out.data());
     }
+    const double cpu = process_cpu_seconds() - c0;
     omp_set_num_threads(saved);
+    // Per CPU-second times threads: the rate if each thread had a core to itself.
+    state.counters["Geval/cpu-s*threads"] =
+        double(m) * double(n) * 1e-9 * double(state.iterations()) / cpu * threads;
     state.counters["Geval/s"] = benchmark::Counter(double(m) * double(n) * 1e-9,
                                                    benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_rbf_evaluate)
-    ->Args({500, 1000000, 1})->Args({500, 1000000, 2})
-    ->Args({2000, 100000, 1})->Args({2000, 100000, 2})
-    ->Args({4000, 1000000, 2})->Args({16000, 100000, 1})->Args({16000, 100000, 2})
-    ->Args({16000, 1000000, 2})
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
-
+    ->Args({500, 1000000, 1})
+    ->Args({500, 1000000, 2})
+    ->Args({2000, 100000, 1})
+    ->Args({2000, 100000, 2})
+    ->Args({4000, 1000000, 2})
+    ->Args({16000, 100000, 1})
+    ->Args({16000, 100000, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 //! Paper Fig. 6: 427 handles on a sphere, k deformable points in the unit box; the precomputed
 //! handle basis B (k x 427) for RBF, DM-FFD (8^3 lattice) and FFD (8^3: B = M), on 1 or 2
@@ -164,7 +198,8 @@ void BM_fig6_handle_basis(benchmark::State& state)
 }
 BENCHMARK(BM_fig6_handle_basis)
     ->ArgsProduct({{0, 1, 2}, {1, 2}})
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 //! Fig. 6 deformation by fit + evaluate (no basis) on 1e5 points. range(0): method, (1) threads.
 void BM_fig6_fit_evaluate(benchmark::State& state)
@@ -208,7 +243,8 @@ void BM_fig6_fit_evaluate(benchmark::State& state)
 }
 BENCHMARK(BM_fig6_fit_evaluate)
     ->ArgsProduct({{0, 1, 2}, {1, 2}})
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 //! FFD evaluation on 1e6 points, axis-aligned (direct local coordinates) vs a parallelepiped
 //! (Newton). range(0): 0 axis-aligned, 1 skewed; range(1): threads.
@@ -230,10 +266,13 @@ void BM_ffd_evaluate(benchmark::State& state)
         benchmark::DoNotOptimize(out.data());
     }
     omp_set_num_threads(saved);
-    state.counters["Mpoints/s"] = benchmark::Counter(double(x.rows()) * 1e-6,
-                                                     benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["Mpoints/s"] =
+        benchmark::Counter(double(x.rows()) * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
 }
-BENCHMARK(BM_ffd_evaluate)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ffd_evaluate)
+    ->ArgsProduct({{0, 1}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 //! Greedy refinement on 20000 sphere points (tolerance 1e-2 / 1e-3 of the max displacement).
 void BM_greedy_fit(benchmark::State& state)

@@ -32,8 +32,8 @@ Points points_in(const FfdBox& box, Eigen::Index n)
     for (Eigen::Index i = 0; i < n; ++i)
         x.row(i) = (box.origin + box.axes * u.row(i).transpose()).transpose();
     for (int c = 0; c < 8; ++c)
-        x.row(n + c) = (box.origin + box.axes * Vector3(c & 1, (c >> 1) & 1, (c >> 2) & 1))
-                           .transpose();
+        x.row(n + c) =
+            (box.origin + box.axes * Vector3(c & 1, (c >> 1) & 1, (c >> 2) & 1)).transpose();
     for (int f = 0; f < 6; ++f)
     {
         Vector3 u0(0.5, 0.5, 0.5);
@@ -100,10 +100,9 @@ TEST(FfdDeformation, reproduces_affine_control_motion_everywhere_including_the_b
             FfdDeformation ffd(lattice);
             ffd.fit(lattice.control_points(),
                     test::affine_displacements(lattice.control_points(), L, t));
-            EXPECT_LE((displacements(ffd, x) - test::affine_displacements(x, L, t))
-                          .cwiseAbs()
-                          .maxCoeff(),
-                      1e-12);
+            EXPECT_LE(
+                (displacements(ffd, x) - test::affine_displacements(x, L, t)).cwiseAbs().maxCoeff(),
+                1e-12);
         }
     }
 }

@@ -72,12 +72,14 @@ TEST(HandleBasis, broken_files_give_clear_errors)
         std::ifstream in(good, std::ios::binary);
         bytes.assign(std::istreambuf_iterator<char>(in), {});
     }
-    const auto write = [&](const std::string& name, const std::string& content) {
+    const auto write = [&](const std::string& name, const std::string& content)
+    {
         const std::string p = (dir / name).string();
         std::ofstream(p, std::ios::binary) << content;
         return p;
     };
-    const auto expect_parse_error = [](const std::string& path, const std::string& words) {
+    const auto expect_parse_error = [](const std::string& path, const std::string& words)
+    {
         try
         {
             HandleBasis::load(path);

@@ -26,9 +26,9 @@ RbfSettings settings_for(RbfKernel kernel)
     return s;
 }
 
-const RbfKernel all_kernels[] = {RbfKernel::triharmonic,   RbfKernel::biharmonic,
-                                 RbfKernel::polyharmonic,  RbfKernel::gaussian,
-                                 RbfKernel::multiquadric,  RbfKernel::inverse_multiquadric,
+const RbfKernel all_kernels[] = {RbfKernel::triharmonic,  RbfKernel::biharmonic,
+                                 RbfKernel::polyharmonic, RbfKernel::gaussian,
+                                 RbfKernel::multiquadric, RbfKernel::inverse_multiquadric,
                                  RbfKernel::wendland_c2};
 
 Eigen::Matrix3d test_linear_map()
@@ -60,8 +60,8 @@ TEST(RbfDeformation, interpolates_without_polynomial_for_definite_kernels)
 {
     const Points h = test::random_points(80);
     const Points d = test::smooth_field(h);
-    for (RbfKernel k : {RbfKernel::gaussian, RbfKernel::inverse_multiquadric,
-                        RbfKernel::wendland_c2})
+    for (RbfKernel k :
+         {RbfKernel::gaussian, RbfKernel::inverse_multiquadric, RbfKernel::wendland_c2})
     {
         RbfSettings s = settings_for(k);
         s.polynomial = false;
@@ -140,8 +140,9 @@ TEST(RbfDeformation, coplanar_handles_reproduce_in_plane_affine_motion)
         Points x = test::random_points(100, -0.5, 1.5, 9);
         for (Eigen::Index i = 0; i < x.rows(); ++i)
             x.row(i) -= (n.dot(x.row(i).transpose()) - 0.4) * n.transpose();
-        EXPECT_LE((displacements(rbf, x) - test::affine_displacements(x, L, t)).cwiseAbs().maxCoeff(),
-                  1e-9)
+        EXPECT_LE(
+            (displacements(rbf, x) - test::affine_displacements(x, L, t)).cwiseAbs().maxCoeff(),
+            1e-9)
             << to_string(k);
     }
 }
@@ -151,8 +152,8 @@ TEST(RbfDeformation, collinear_and_tiny_handle_sets_work)
     Points line(5, 3);
     for (int i = 0; i < 5; ++i)
         line.row(i) = Eigen::RowVector3d(i, 2.0 * i, -i) * 0.1;
-    const Points d = test::affine_displacements(line, Eigen::Matrix3d::Identity() * 1.2,
-                                                Vector3(0, 0.1, 0));
+    const Points d =
+        test::affine_displacements(line, Eigen::Matrix3d::Identity() * 1.2, Vector3(0, 0.1, 0));
     RbfDeformation rbf;
     rbf.fit(line, d);
     EXPECT_EQ(rbf.report().polynomial_terms, 2);
@@ -296,13 +297,18 @@ TEST(RbfDeformation, matches_a_direct_solve_of_eq8)
         s.kernel = k;
         s.shape_parameter = 1.5;
         s.support_radius = 1.5;
-        const auto phi = [&](double r) {
+        const auto phi = [&](double r)
+        {
             switch (k)
             {
-            case RbfKernel::triharmonic: return r * r * r;
-            case RbfKernel::biharmonic: return r;
-            case RbfKernel::multiquadric: return std::sqrt(1.0 + 2.25 * r * r);
-            case RbfKernel::gaussian: return std::exp(-2.25 * r * r);
+            case RbfKernel::triharmonic:
+                return r * r * r;
+            case RbfKernel::biharmonic:
+                return r;
+            case RbfKernel::multiquadric:
+                return std::sqrt(1.0 + 2.25 * r * r);
+            case RbfKernel::gaussian:
+                return std::exp(-2.25 * r * r);
             default:
             {
                 const double t = r / 1.5;

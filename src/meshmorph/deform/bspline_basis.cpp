@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <sstream>
 
 #include "meshmorph/core/exceptions.h"
@@ -122,8 +123,14 @@ Vector3 FfdLattice::local_coordinates(const Vector3& x) const
     Vector3 t = (inverse_axes_ * (x - box_.origin)).cwiseProduct(spans);
     if (axis_aligned_)
         return t;
+    // Outside the box the spline map is not defined (the basis is clamped): keep the affine
+    // coordinates, the outside policy decides.
+    for (int a = 0; a < 3; ++a)
+        if (!(t[a] >= 0.0 && t[a] <= spans[a]))
+            return t;
     // Newton on x(t) = sum c_p N_p(t); exact after one step for an undeformed lattice, kept
     // general so that a pre-deformed lattice works too.
+    const double tolerance = 1e-13 * box_.axes.cwiseAbs().maxCoeff();
     for (int it = 0; it < 20; ++it)
     {
         Vector3 f = -x;
@@ -133,6 +140,25 @@ Vector3 FfdLattice::local_coordinates(const Vector3& x) const
         for (int a = 0; a < 3; ++a)
             detail::cubic_bspline(std::clamp(t[a], 0.0, spans[a]), counts_[a], first[a], w[a],
                                   dw[a]);
+        // Residual first: the usual case (undeformed lattice) stops here without a Jacobian.
+        const double* cp = control_.data();
+        for (int c = 0; c < 4; ++c)
+            for (int b = 0; b < 4; ++b)
+            {
+                const double wbc = w[1][b] * w[2][c];
+                const double* row =
+                    cp + 3 * std::ptrdiff_t(index(first[0], first[1] + b, first[2] + c));
+                for (int a = 0; a < 4; ++a)
+                {
+                    const double wa = w[0][a] * wbc;
+                    f[0] += wa * row[3 * a];
+                    f[1] += wa * row[3 * a + 1];
+                    f[2] += wa * row[3 * a + 2];
+                }
+            }
+        if (f.cwiseAbs().maxCoeff() <= tolerance)
+            break;
+        f = -x;
         for (int c = 0; c < 4; ++c)
             for (int b = 0; b < 4; ++b)
                 for (int a = 0; a < 4; ++a)
@@ -152,8 +178,7 @@ Vector3 FfdLattice::local_coordinates(const Vector3& x) const
     return t;
 }
 
-int FfdLattice::basis(const Vector3& x, FfdOutside outside, Index* index_out,
-                      double* weight) const
+int FfdLattice::basis(const Vector3& x, FfdOutside outside, Index* index_out, double* weight) const
 {
     Vector3 t = local_coordinates(x);
     constexpr double snap = 1e-9;

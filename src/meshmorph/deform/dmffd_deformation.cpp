@@ -54,8 +54,8 @@ void DmffdDeformation::fit(const Eigen::Ref<const Points>& handles,
     int info = 0, lwork = -1;
     double query = 0.0;
     std::vector<int> iwork(static_cast<std::size_t>(8 * r));
-    dgesdd_("S", &im, &in, Phi.data(), &im, sigma.data(), U_.data(), &im, Vt_.data(), &ir,
-            &query, &lwork, iwork.data(), &info);
+    dgesdd_("S", &im, &in, Phi.data(), &im, sigma.data(), U_.data(), &im, Vt_.data(), &ir, &query,
+            &lwork, iwork.data(), &info);
     lwork = static_cast<int>(query) + 1;
     std::vector<double> work(static_cast<std::size_t>(lwork));
     dgesdd_("S", &im, &in, Phi.data(), &im, sigma.data(), U_.data(), &im, Vt_.data(), &ir,

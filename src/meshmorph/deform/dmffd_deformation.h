@@ -24,7 +24,7 @@ struct DmffdSettings
 //! Lattice refinement for DM-FFD (paper Sec. 3.4, simplified, see fit_refined()).
 struct DmffdRefinement
 {
-    double tolerance = 1e-3;        //!< stop when max residual <= tolerance * max |dh|
+    double tolerance = 1e-3;          //!< stop when max residual <= tolerance * max |dh|
     Index max_control_points = 20000; //!< never refine beyond this lattice size
 };
 
@@ -74,9 +74,9 @@ private:
     DmffdSettings settings_;
     std::optional<FfdDeformation> ffd_;
     Points handles_;
-    Eigen::MatrixXd U_;  // m x r
+    Eigen::MatrixXd U_;         // m x r
     Eigen::VectorXd inv_sigma_; // r, zero where clamped
-    Eigen::MatrixXd Vt_; // r x n
+    Eigen::MatrixXd Vt_;        // r x n
     FitReport report_;
 };
 

@@ -267,12 +267,14 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
     // Farthest-point sampling for the initial centres, seeded by U (or the largest
     // displacement when there is no polynomial).
     const Eigen::Index budget = std::max<Eigen::Index>(s.max_centres, p);
-    Eigen::Index n0 = s.initial_centres > 0 ? s.initial_centres
-                                            : std::max<Eigen::Index>(p, std::min<Eigen::Index>(20, N));
+    Eigen::Index n0 = s.initial_centres > 0
+                          ? s.initial_centres
+                          : std::max<Eigen::Index>(p, std::min<Eigen::Index>(20, N));
     n0 = std::min({n0, N, budget});
     std::vector<Eigen::Index> initial;
     Eigen::VectorXd mind = Eigen::VectorXd::Constant(N, std::numeric_limits<double>::infinity());
-    const auto update = [&](Eigen::Index c) {
+    const auto update = [&](Eigen::Index c)
+    {
         for (Eigen::Index i = 0; i < N; ++i)
             mind[i] = std::min(mind[i], (X.row(i) - X.row(c)).squaredNorm());
     };
@@ -300,7 +302,8 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
     }
 
     IncrementalSystem system(d.model, d.setup.sign, X, Pall, U);
-    const auto add = [&](const std::vector<Eigen::Index>& cand) {
+    const auto add = [&](const std::vector<Eigen::Index>& cand)
+    {
         std::vector<Eigen::Index> rest = cand;
         while (!rest.empty())
         {
@@ -354,13 +357,12 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
         const Eigen::Index centres = p + system.size();
         if (centres >= budget)
             break;
-        Eigen::Index b = s.batch_size > 0 ? s.batch_size
-                                          : std::clamp<Eigen::Index>(centres / 4, 1, 256);
+        Eigen::Index b =
+            s.batch_size > 0 ? s.batch_size : std::clamp<Eigen::Index>(centres / 4, 1, 256);
         b = std::min({b, Eigen::Index(cand.size()), budget - centres});
         std::partial_sort(cand.begin(), cand.begin() + b, cand.end(),
-                          [&](Eigen::Index a, Eigen::Index c) {
-                              return err[a] > err[c] || (err[a] == err[c] && a < c);
-                          });
+                          [&](Eigen::Index a, Eigen::Index c)
+                          { return err[a] > err[c] || (err[a] == err[c] && a < c); });
         cand.resize(std::size_t(b));
         for (Eigen::Index j : cand)
             is_centre[std::size_t(j)] = 1;
@@ -394,13 +396,25 @@ void GreedyRbfDeformation::evaluate(const Eigen::Ref<const Points>& points,
     impl_->model.evaluate(points, out);
 }
 
-const FitReport& GreedyRbfDeformation::report() const { return impl_->report; }
-bool GreedyRbfDeformation::is_fitted() const { return impl_->fitted; }
-bool GreedyRbfDeformation::converged() const { return impl_->converged; }
+const FitReport& GreedyRbfDeformation::report() const
+{
+    return impl_->report;
+}
+bool GreedyRbfDeformation::is_fitted() const
+{
+    return impl_->fitted;
+}
+bool GreedyRbfDeformation::converged() const
+{
+    return impl_->converged;
+}
 const std::vector<Index>& GreedyRbfDeformation::centre_indices() const
 {
     return impl_->centre_indices;
 }
-const std::vector<double>& GreedyRbfDeformation::history() const { return impl_->history; }
+const std::vector<double>& GreedyRbfDeformation::history() const
+{
+    return impl_->history;
+}
 
 } // namespace meshmorph

@@ -111,14 +111,15 @@ HandleBasis HandleBasis::read(std::istream& in, const std::string& name)
     if (!in)
         throw ParseError(name, 0, "truncated handle basis header");
     if (ver != version)
-        throw ParseError(name, 0, "unsupported handle basis version " + std::to_string(ver) +
-                                      " (expected " + std::to_string(version) + ")");
+        throw ParseError(name, 0,
+                         "unsupported handle basis version " + std::to_string(ver) + " (expected " +
+                             std::to_string(version) + ")");
     if (method < 1 || method > 3)
         throw ParseError(name, 0, "unknown handle basis method " + std::to_string(method));
     constexpr std::int64_t limit = std::int64_t(1) << 40;
     if (k < 0 || m < 0 || k > limit || m > limit || (m > 0 && k > limit / m))
-        throw ParseError(name, 0, "invalid handle basis size " + std::to_string(k) + " x " +
-                                      std::to_string(m));
+        throw ParseError(
+            name, 0, "invalid handle basis size " + std::to_string(k) + " x " + std::to_string(m));
     // Check the size before allocating, when the stream can tell.
     const std::streampos here = in.tellg();
     const std::uint64_t want = std::uint64_t(k) * std::uint64_t(m) * sizeof(double);
@@ -129,12 +130,14 @@ HandleBasis HandleBasis::read(std::istream& in, const std::string& name)
         in.seekg(here);
         const std::uint64_t have = std::uint64_t(end - here);
         if (have < want)
-            throw ParseError(name, 0, "truncated handle basis: " + std::to_string(k) + " x " +
-                                          std::to_string(m) + " needs " + std::to_string(want) +
-                                          " bytes of data, file has " + std::to_string(have));
+            throw ParseError(name, 0,
+                             "truncated handle basis: " + std::to_string(k) + " x " +
+                                 std::to_string(m) + " needs " + std::to_string(want) +
+                                 " bytes of data, file has " + std::to_string(have));
         if (have > want)
-            throw ParseError(name, 0, "handle basis has " + std::to_string(have - want) +
-                                          " unexpected trailing bytes");
+            throw ParseError(name, 0,
+                             "handle basis has " + std::to_string(have - want) +
+                                 " unexpected trailing bytes");
     }
     Eigen::MatrixXd B(k, m);
     in.read(reinterpret_cast<char*>(B.data()), static_cast<std::streamsize>(want));

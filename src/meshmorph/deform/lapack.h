@@ -3,25 +3,27 @@
 //! them; Debian ships no LAPACKE/CBLAS headers by default, so we declare the symbols).
 #pragma once
 
-extern "C" {
-void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info);
-void dpotrs_(const char* uplo, const int* n, const int* nrhs, const double* a, const int* lda,
-             double* b, const int* ldb, int* info);
-void dpocon_(const char* uplo, const int* n, const double* a, const int* lda, const double* anorm,
-             double* rcond, double* work, int* iwork, int* info);
-double dlansy_(const char* norm, const char* uplo, const int* n, const double* a, const int* lda,
-               double* work);
-void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag,
-            const int* m, const int* n, const double* alpha, const double* a, const int* lda,
-            double* b, const int* ldb);
-void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha,
-            const double* a, const int* lda, const double* beta, double* c, const int* ldc);
-void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
-            const double* alpha, const double* a, const int* lda, const double* b,
-            const int* ldb, const double* beta, double* c, const int* ldc);
-void dgesdd_(const char* jobz, const int* m, const int* n, double* a, const int* lda, double* s,
-             double* u, const int* ldu, double* vt, const int* ldvt, double* work,
-             const int* lwork, int* iwork, int* info);
+extern "C"
+{
+    void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info);
+    void dpotrs_(const char* uplo, const int* n, const int* nrhs, const double* a, const int* lda,
+                 double* b, const int* ldb, int* info);
+    void dpocon_(const char* uplo, const int* n, const double* a, const int* lda,
+                 const double* anorm, double* rcond, double* work, int* iwork, int* info);
+    double dlansy_(const char* norm, const char* uplo, const int* n, const double* a,
+                   const int* lda, double* work);
+    void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag,
+                const int* m, const int* n, const double* alpha, const double* a, const int* lda,
+                double* b, const int* ldb);
+    void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k,
+                const double* alpha, const double* a, const int* lda, const double* beta, double* c,
+                const int* ldc);
+    void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
+                const double* alpha, const double* a, const int* lda, const double* b,
+                const int* ldb, const double* beta, double* c, const int* ldc);
+    void dgesdd_(const char* jobz, const int* m, const int* n, double* a, const int* lda, double* s,
+                 double* u, const int* ldu, double* vt, const int* ldvt, double* work,
+                 const int* lwork, int* iwork, int* info);
 }
 
 namespace meshmorph::detail

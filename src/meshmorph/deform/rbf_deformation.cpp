@@ -27,13 +27,20 @@ std::string to_string(RbfKernel kernel)
 {
     switch (kernel)
     {
-    case RbfKernel::triharmonic: return "triharmonic";
-    case RbfKernel::biharmonic: return "biharmonic";
-    case RbfKernel::polyharmonic: return "polyharmonic";
-    case RbfKernel::gaussian: return "gaussian";
-    case RbfKernel::multiquadric: return "multiquadric";
-    case RbfKernel::inverse_multiquadric: return "inverseMultiquadric";
-    case RbfKernel::wendland_c2: return "wendlandC2";
+    case RbfKernel::triharmonic:
+        return "triharmonic";
+    case RbfKernel::biharmonic:
+        return "biharmonic";
+    case RbfKernel::polyharmonic:
+        return "polyharmonic";
+    case RbfKernel::gaussian:
+        return "gaussian";
+    case RbfKernel::multiquadric:
+        return "multiquadric";
+    case RbfKernel::inverse_multiquadric:
+        return "inverseMultiquadric";
+    case RbfKernel::wendland_c2:
+        return "wendlandC2";
     }
     return "unknown";
 }
@@ -65,12 +72,14 @@ namespace detail
 RbfKernelSetup rbf_kernel_setup(const RbfSettings& s)
 {
     RbfKernelSetup k;
-    const auto need_polynomial = [&](const char* why) {
+    const auto need_polynomial = [&](const char* why)
+    {
         if (!s.polynomial)
             throw InvalidInput("RBF kernel " + to_string(s.kernel) +
                                " needs the polynomial term (" + why + ")");
     };
-    const auto positive = [](double v, const char* what) {
+    const auto positive = [](double v, const char* what)
+    {
         if (!(v > 0.0) || !std::isfinite(v))
         {
             std::ostringstream m;
@@ -81,22 +90,26 @@ RbfKernelSetup rbf_kernel_setup(const RbfSettings& s)
     int order = 0;
     switch (s.kernel)
     {
-    case RbfKernel::triharmonic: order = 3; break;
-    case RbfKernel::biharmonic: order = 2; break;
+    case RbfKernel::triharmonic:
+        order = 3;
+        break;
+    case RbfKernel::biharmonic:
+        order = 2;
+        break;
     case RbfKernel::polyharmonic:
         order = s.polyharmonic_order;
         if (order < 2)
             throw InvalidInput("RBF polyharmonic order k must be >= 2 (phi = r^(2k-3); got k = " +
                                std::to_string(order) + ")");
         if (order > 6)
-            throw InvalidInput("RBF polyharmonic order k must be <= 6 (got k = " +
-                               std::to_string(order) + ")");
+            throw InvalidInput(
+                "RBF polyharmonic order k must be <= 6 (got k = " + std::to_string(order) + ")");
         break;
     case RbfKernel::gaussian:
     case RbfKernel::inverse_multiquadric:
         positive(s.shape_parameter, "shape parameter");
         k.params.type = s.kernel == RbfKernel::gaussian ? KernelType::gaussian
-                                                         : KernelType::inverse_multiquadric;
+                                                        : KernelType::inverse_multiquadric;
         k.params.eps = s.shape_parameter;
         k.degree = s.polynomial ? 1 : -1;
         break;
@@ -172,7 +185,8 @@ MergedHandles merge_duplicates(const Eigen::Ref<const Points>& handles,
     {
         Eigen::Index dup = -1;
         grid.for_each_near(normalised(i, 0), normalised(i, 1), normalised(i, 2),
-                           [&](Eigen::Index j) {
+                           [&](Eigen::Index j)
+                           {
                                if (j < i && dup < 0 &&
                                    (normalised.row(i) - normalised.row(j)).norm() <= tolerance)
                                    dup = j;
@@ -247,16 +261,16 @@ struct RbfDeformation::Impl
     detail::RbfModel model;
     FitReport report;
     bool fitted = false;
-    Points handles;          // as given to fit (for residual reports)
+    Points handles; // as given to fit (for residual reports)
     detail::MergedHandles merged;
-    Eigen::MatrixXd P;       // m x p polynomial matrix at the centres
+    Eigen::MatrixXd P; // m x p polynomial matrix at the centres
     // dense
-    Eigen::MatrixXd A;       // Q^T A Q, lower trailing block holds the Cholesky factor
+    Eigen::MatrixXd A; // Q^T A Q, lower trailing block holds the Cholesky factor
     Eigen::HouseholderQR<Eigen::MatrixXd> qr;
     // sparse (Wendland)
     bool sparse = false;
     Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
-    Eigen::MatrixXd U;       // A^-1 P
+    Eigen::MatrixXd U; // A^-1 P
     Eigen::LLT<Eigen::MatrixXd> schur;
 
     void factor_dense();
@@ -338,8 +352,7 @@ void RbfDeformation::Impl::factor_dense()
     }
     double rcond = 0.0;
     dpocon_("L", &n, B, &lda, &anorm, &rcond, work.data(), iwork.data(), &info);
-    report.condition_estimate =
-        rcond > 0.0 ? 1.0 / rcond : std::numeric_limits<double>::infinity();
+    report.condition_estimate = rcond > 0.0 ? 1.0 / rcond : std::numeric_limits<double>::infinity();
 }
 
 void RbfDeformation::Impl::factor_sparse()
@@ -349,11 +362,13 @@ void RbfDeformation::Impl::factor_sparse()
     std::vector<Eigen::Triplet<double>> triplets;
     const Points& c = merged.centres;
     for (Eigen::Index i = 0; i < m; ++i)
-        model.grid.for_each_near(c(i, 0), c(i, 1), c(i, 2), [&](Eigen::Index j) {
-            const double r2 = (c.row(i) - c.row(j)).squaredNorm();
-            if (r2 < rho * rho)
-                triplets.emplace_back(i, j, model.kernel.value(r2));
-        });
+        model.grid.for_each_near(c(i, 0), c(i, 1), c(i, 2),
+                                 [&](Eigen::Index j)
+                                 {
+                                     const double r2 = (c.row(i) - c.row(j)).squaredNorm();
+                                     if (r2 < rho * rho)
+                                         triplets.emplace_back(i, j, model.kernel.value(r2));
+                                 });
     Eigen::SparseMatrix<double> K(m, m);
     K.setFromTriplets(triplets.begin(), triplets.end());
     llt.compute(K);
@@ -477,8 +492,7 @@ void RbfDeformation::fit(const Eigen::Ref<const Points>& handles,
     d.report.polynomial_terms = static_cast<Index>(d.P.cols());
     if (d.report.condition_estimate > d.settings.condition_warning)
         log::warning() << "RBF (" << to_string(d.settings.kernel) << "): condition estimate "
-                       << d.report.condition_estimate << " exceeds "
-                       << d.settings.condition_warning
+                       << d.report.condition_estimate << " exceeds " << d.settings.condition_warning
                        << "; the interpolation may be inaccurate";
     detail::residual_report(*this, handles, displacements, d.report);
 }
@@ -515,9 +529,18 @@ void RbfDeformation::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref
     impl_->model.evaluate(points, out);
 }
 
-const FitReport& RbfDeformation::report() const { return impl_->report; }
-bool RbfDeformation::is_fitted() const { return impl_->fitted; }
-const RbfSettings& RbfDeformation::settings() const { return impl_->settings; }
+const FitReport& RbfDeformation::report() const
+{
+    return impl_->report;
+}
+bool RbfDeformation::is_fitted() const
+{
+    return impl_->fitted;
+}
+const RbfSettings& RbfDeformation::settings() const
+{
+    return impl_->settings;
+}
 
 Points RbfDeformation::centres() const
 {

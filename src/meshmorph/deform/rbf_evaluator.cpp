@@ -76,10 +76,18 @@ template <class F> void with_kernel(const KernelParams& k, F&& f)
         else
             f(PolyharmonicOdd{(k.power - 1) / 2});
         return;
-    case KernelType::gaussian: f(Gaussian{k.eps * k.eps}); return;
-    case KernelType::multiquadric: f(Multiquadric{k.eps * k.eps}); return;
-    case KernelType::inverse_multiquadric: f(InverseMultiquadric{k.eps * k.eps}); return;
-    case KernelType::wendland_c2: f(WendlandC2{1.0 / k.support}); return;
+    case KernelType::gaussian:
+        f(Gaussian{k.eps * k.eps});
+        return;
+    case KernelType::multiquadric:
+        f(Multiquadric{k.eps * k.eps});
+        return;
+    case KernelType::inverse_multiquadric:
+        f(InverseMultiquadric{k.eps * k.eps});
+        return;
+    case KernelType::wendland_c2:
+        f(WendlandC2{1.0 / k.support});
+        return;
     }
 }
 
@@ -202,21 +210,23 @@ Eigen::MatrixXd RbfModel::kernel_matrix(const Eigen::Ref<const Points>& x) const
     const Eigen::Index m = num_centres;
     Eigen::MatrixXd K(k, m);
     const Eigen::VectorXd xs = x.col(0), ys = x.col(1), zs = x.col(2);
-    with_kernel(kernel, [&](const auto& phi) {
+    with_kernel(kernel,
+                [&](const auto& phi)
+                {
 #pragma omp parallel for schedule(static) if (k * m > 20000)
-        for (Eigen::Index j = 0; j < m; ++j)
-        {
-            const double xj = cx[std::size_t(j)], yj = cy[std::size_t(j)],
-                         zj = cz[std::size_t(j)];
-            double* col = K.col(j).data();
+                    for (Eigen::Index j = 0; j < m; ++j)
+                    {
+                        const double xj = cx[std::size_t(j)], yj = cy[std::size_t(j)],
+                                     zj = cz[std::size_t(j)];
+                        double* col = K.col(j).data();
 #pragma omp simd
-            for (Eigen::Index i = 0; i < k; ++i)
-            {
-                const double dx = xs[i] - xj, dy = ys[i] - yj, dz = zs[i] - zj;
-                col[i] = phi(dx * dx + dy * dy + dz * dz);
-            }
-        }
-    });
+                        for (Eigen::Index i = 0; i < k; ++i)
+                        {
+                            const double dx = xs[i] - xj, dy = ys[i] - yj, dz = zs[i] - zj;
+                            col[i] = phi(dx * dx + dy * dy + dz * dz);
+                        }
+                    }
+                });
     return K;
 }
 
@@ -229,70 +239,77 @@ void RbfModel::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Point
     const bool compact = kernel.type == KernelType::wendland_c2;
     const double support2 = kernel.support * kernel.support;
 
-    with_kernel(kernel, [&](const auto& phi) {
-#pragma omp parallel for schedule(dynamic, 8) if (n * std::max<Eigen::Index>(num_centres, 64) > 50000)
-        for (Eigen::Index b = 0; b < nblocks; ++b)
+    with_kernel(
+        kernel,
+        [&](const auto& phi)
         {
-            alignas(64) double px[point_block], py[point_block], pz[point_block];
-            alignas(64) double ax[point_block], ay[point_block], az[point_block];
-            const Eigen::Index i0 = b * point_block;
-            const int count = static_cast<int>(std::min<Eigen::Index>(point_block, n - i0));
-            for (int i = 0; i < point_block; ++i)
+#pragma omp parallel for schedule(dynamic,                                                         \
+                                  8) if (n * std::max <Eigen::Index>(num_centres, 64) > 50000)
+            for (Eigen::Index b = 0; b < nblocks; ++b)
             {
-                const Eigen::Index src = i0 + std::min(i, count - 1);
-                px[i] = (points(src, 0) - centre[0]) * inv;
-                py[i] = (points(src, 1) - centre[1]) * inv;
-                pz[i] = (points(src, 2) - centre[2]) * inv;
-            }
-            if (compact)
-            {
-                for (int i = 0; i < count; ++i)
+                alignas(64) double px[point_block], py[point_block], pz[point_block];
+                alignas(64) double ax[point_block], ay[point_block], az[point_block];
+                const Eigen::Index i0 = b * point_block;
+                const int count = static_cast<int>(std::min<Eigen::Index>(point_block, n - i0));
+                for (int i = 0; i < point_block; ++i)
                 {
-                    double sx = 0.0, sy = 0.0, sz = 0.0;
-                    grid.for_each_near(px[i], py[i], pz[i], [&](Eigen::Index j) {
-                        const std::size_t u = std::size_t(j);
-                        const double dx = px[i] - cx[u], dy = py[i] - cy[u], dz = pz[i] - cz[u];
-                        const double r2 = dx * dx + dy * dy + dz * dz;
-                        if (r2 < support2)
-                        {
-                            const double f = phi(r2);
-                            sx += f * wx[u];
-                            sy += f * wy[u];
-                            sz += f * wz[u];
-                        }
-                    });
-                    ax[i] = sx;
-                    ay[i] = sy;
-                    az[i] = sz;
+                    const Eigen::Index src = i0 + std::min(i, count - 1);
+                    px[i] = (points(src, 0) - centre[0]) * inv;
+                    py[i] = (points(src, 1) - centre[1]) * inv;
+                    pz[i] = (points(src, 2) - centre[2]) * inv;
                 }
-            }
-            else
-            {
-                sum_block(phi, *this, px, py, pz, ax, ay, az);
-            }
-            for (int i = 0; i < count; ++i)
-            {
-                double dx = ax[i], dy = ay[i], dz = az[i];
-                if (p > 0)
+                if (compact)
                 {
-                    const Vector3 xh(px[i], py[i], pz[i]);
-                    const Vector3 t = rotation.transpose() * xh;
-                    for (Eigen::Index k = 0; k < p; ++k)
+                    for (int i = 0; i < count; ++i)
                     {
-                        const std::array<int, 3>& e = exponents[std::size_t(k)];
-                        const double v = power_int(t[0], e[0]) * power_int(t[1], e[1]) *
-                                         power_int(t[2], e[2]);
-                        dx += v * q(k, 0);
-                        dy += v * q(k, 1);
-                        dz += v * q(k, 2);
+                        double sx = 0.0, sy = 0.0, sz = 0.0;
+                        grid.for_each_near(px[i], py[i], pz[i],
+                                           [&](Eigen::Index j)
+                                           {
+                                               const std::size_t u = std::size_t(j);
+                                               const double dx = px[i] - cx[u], dy = py[i] - cy[u],
+                                                            dz = pz[i] - cz[u];
+                                               const double r2 = dx * dx + dy * dy + dz * dz;
+                                               if (r2 < support2)
+                                               {
+                                                   const double f = phi(r2);
+                                                   sx += f * wx[u];
+                                                   sy += f * wy[u];
+                                                   sz += f * wz[u];
+                                               }
+                                           });
+                        ax[i] = sx;
+                        ay[i] = sy;
+                        az[i] = sz;
                     }
                 }
-                out(i0 + i, 0) = dx;
-                out(i0 + i, 1) = dy;
-                out(i0 + i, 2) = dz;
+                else
+                {
+                    sum_block(phi, *this, px, py, pz, ax, ay, az);
+                }
+                for (int i = 0; i < count; ++i)
+                {
+                    double dx = ax[i], dy = ay[i], dz = az[i];
+                    if (p > 0)
+                    {
+                        const Vector3 xh(px[i], py[i], pz[i]);
+                        const Vector3 t = rotation.transpose() * xh;
+                        for (Eigen::Index k = 0; k < p; ++k)
+                        {
+                            const std::array<int, 3>& e = exponents[std::size_t(k)];
+                            const double v = power_int(t[0], e[0]) * power_int(t[1], e[1]) *
+                                             power_int(t[2], e[2]);
+                            dx += v * q(k, 0);
+                            dy += v * q(k, 1);
+                            dz += v * q(k, 2);
+                        }
+                    }
+                    out(i0 + i, 0) = dx;
+                    out(i0 + i, 1) = dy;
+                    out(i0 + i, 2) = dz;
+                }
             }
-        }
-    });
+        });
 }
 
 } // namespace meshmorph::detail

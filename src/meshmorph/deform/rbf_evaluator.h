@@ -25,9 +25,9 @@ enum class KernelType
 struct KernelParams
 {
     KernelType type = KernelType::polyharmonic;
-    int power = 3;          //!< polyharmonic exponent (odd)
-    double eps = 1.0;       //!< shape parameter (normalised units)
-    double support = 1.0;   //!< Wendland support radius (normalised units)
+    int power = 3;                 //!< polyharmonic exponent (odd)
+    double eps = 1.0;              //!< shape parameter (normalised units)
+    double support = 1.0;          //!< Wendland support radius (normalised units)
     double value(double r2) const; //!< phi as a function of r^2 (scalar reference)
 };
 
@@ -38,7 +38,7 @@ struct RbfModel
     Vector3 centre = Vector3::Zero();
     double scale = 1.0;
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity(); //!< polynomial frame (columns)
-    std::vector<std::array<int, 3>> exponents;             //!< kept monomials
+    std::vector<std::array<int, 3>> exponents;              //!< kept monomials
     Index num_centres = 0;
     //! Centres and weights as structure of arrays, padded to a multiple of the block with
     //! zero-weight copies of the last centre.

@@ -13,9 +13,9 @@ namespace meshmorph::detail
 
 struct RbfKernelSetup
 {
-    KernelParams params;  //!< in input units (eps, support), converted at fit time
-    int degree = -1;      //!< polynomial degree, -1: none
-    double sign = 1.0;    //!< sign making the reduced matrix positive definite
+    KernelParams params; //!< in input units (eps, support), converted at fit time
+    int degree = -1;     //!< polynomial degree, -1: none
+    double sign = 1.0;   //!< sign making the reduced matrix positive definite
 };
 
 //! Validates settings. \throw InvalidInput.
@@ -31,10 +31,10 @@ Normalisation normalisation_of(const Eigen::Ref<const Points>& x);
 
 struct MergedHandles
 {
-    Points centres;                   //!< normalised, kept handles
-    Points displacements;             //!< their displacements
+    Points centres;                    //!< normalised, kept handles
+    Points displacements;              //!< their displacements
     std::vector<Index> representative; //!< input handle -> kept index
-    std::vector<Index> first;         //!< kept index -> first input handle
+    std::vector<Index> first;          //!< kept index -> first input handle
 };
 //! Merges coincident handles (normalised distance <= tolerance) with equal displacements.
 //! \throw InvalidInput naming both handles when displacements differ.

@@ -46,8 +46,8 @@ void require_finite(const Eigen::Ref<const Points>& p, const char* what)
             if (!std::isfinite(p(i, c)))
             {
                 std::ostringstream s;
-                s << what << " row " << i << " is not finite: (" << p(i, 0) << ' ' << p(i, 1)
-                  << ' ' << p(i, 2) << ')';
+                s << what << " row " << i << " is not finite: (" << p(i, 0) << ' ' << p(i, 1) << ' '
+                  << p(i, 2) << ')';
                 throw InvalidInput(s.str());
             }
 }

@@ -13,14 +13,14 @@ namespace meshmorph
 //! What a fit did; retrievable with SpaceDeformation::report() after fit().
 struct FitReport
 {
-    std::string method;            //!< "rbf", "ffd", "dmffd", "greedy-rbf", ...
-    std::string solver;            //!< factorisation used, e.g. "null-space + dpotrf"
-    Index num_handles = 0;         //!< constraints after merging duplicates
+    std::string method;    //!< "rbf", "ffd", "dmffd", "greedy-rbf", ...
+    std::string solver;    //!< factorisation used, e.g. "null-space + dpotrf"
+    Index num_handles = 0; //!< constraints after merging duplicates
     Index num_merged_duplicates = 0;
-    Index num_centres = 0;         //!< RBF centres or FFD/DM-FFD control points (DoFs / 3)
-    Index polynomial_terms = 0;    //!< polynomial terms kept after the rank test (RBF)
-    Index rank = 0;                //!< numerical rank after clamping (DM-FFD), else 0
-    Index iterations = 0;          //!< refinement iterations (greedy), else 0
+    Index num_centres = 0;      //!< RBF centres or FFD/DM-FFD control points (DoFs / 3)
+    Index polynomial_terms = 0; //!< polynomial terms kept after the rank test (RBF)
+    Index rank = 0;             //!< numerical rank after clamping (DM-FFD), else 0
+    Index iterations = 0;       //!< refinement iterations (greedy), else 0
     //! 1-norm condition-number estimate of the factored matrix (dpocon). 0: not estimated.
     //! For the sparse Wendland solve it is max(L_ii^2)/min(L_ii^2), a lower bound.
     //! For DM-FFD: sigma_max / smallest kept sigma.
@@ -45,8 +45,7 @@ public:
     //! (bit-identical for any number of OpenMP threads).
     //! \pre fit() was called. \throw InvalidInput if not fitted, sizes differ or a point is
     //! not finite.
-    virtual void evaluate(const Eigen::Ref<const Points>& points,
-                          Eigen::Ref<Points> out) const = 0;
+    virtual void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const = 0;
     //! The report of the last fit().
     virtual const FitReport& report() const = 0;
     //! True once fit() succeeded.
