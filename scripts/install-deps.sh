@@ -52,8 +52,22 @@ missing_of() {
 
 mapfile -t missing < <(missing_of "${required[@]}" "${optional[@]}")
 
+# Debian's openfoam-examples puts the tutorials under /usr/share/doc, which slim container
+# images exclude from installation (dpkg path-exclude): the package is then "installed"
+# but empty, and the snappyHexMesh test cases cannot be made.
+check_tutorials() {
+    if [[ $with_openfoam == 1 ]] &&
+       [[ ! -d /usr/share/doc/openfoam-examples/examples/mesh/snappyHexMesh ]]; then
+        echo "install-deps: warning: openfoam-examples has no tutorials in" \
+             "/usr/share/doc/openfoam-examples/examples (a dpkg path-exclude of" \
+             "/usr/share/doc in /etc/dpkg/dpkg.cfg.d?); remove it, then" \
+             "apt-get install --reinstall openfoam-examples" >&2
+    fi
+}
+
 if [[ ${#missing[@]} -eq 0 ]]; then
     echo "install-deps: all ${#required[@]} required and ${#optional[@]} optional packages are installed"
+    check_tutorials
     exit 0
 fi
 
@@ -84,4 +98,5 @@ if [[ ${#still_missing[@]} -ne 0 ]]; then
     echo "install-deps: still missing after apt-get install: ${still_missing[*]}" >&2
     exit 1
 fi
+check_tutorials
 echo "install-deps: done"
