@@ -260,7 +260,7 @@ TEST(CheckMeshOracle, snappy_flange_mesh_quality_dict)
         << "FoamFile { version 2.0; format ascii; class dictionary; object meshQualityDict; }\n"
         << "#includeEtc \"caseDicts/mesh/generation/meshQualityDict.cfg\"\n"
         << "maxNonOrtho 30;\nmaxConcave 40;\nminTwist 0.8;\nminTriangleTwist 0.9;\n"
-        << "minFaceFlatness 1.5;\nminDeterminant 0.5;\nminFaceWeight 0.3;\n";
+        << "minFaceFlatness 0.9;\nminDeterminant 0.5;\nminFaceWeight 0.3;\n";
     const std::string theirs = run_checkmesh(dir, " -meshQuality");
     const OurRun ours = run_ours(dir, {"-meshQuality"});
     const std::vector<std::string> expected = report_block(theirs);

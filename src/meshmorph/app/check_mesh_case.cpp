@@ -79,6 +79,11 @@ MeshQualitySettings read_mesh_quality_dict(const fs::path& path)
     q.min_twist = dict.get<double>("minTwist");
     q.min_triangle_twist = dict.get<double>("minTriangleTwist");
     q.min_face_flatness = dict.get_or<double>("minFaceFlatness", -1.0);
+    // OpenFOAM aborts on an enabled flatness limit outside [0, 1]; so do we.
+    if (q.min_face_flatness > -constants::small &&
+        (q.min_face_flatness < 0 || q.min_face_flatness > 1))
+        throw dict.entry("minFaceFlatness").error("should be in [0..1] but is " +
+                                                  format_scalar(q.min_face_flatness, 6));
     q.min_determinant = dict.get<double>("minDeterminant");
     return q;
 }

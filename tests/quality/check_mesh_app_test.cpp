@@ -1,0 +1,195 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Tests of the checkMeshQuality application (meshmorph/app/check_mesh_case.h) and of the
+// JSON report (meshmorph/quality/quality_json.h) on generated cases written by meshmorph's
+// own writer: options, exit codes, set files, JSON keys, meshQualityDict errors.
+// No OpenFOAM installation is needed (check_mesh_oracle_test.cpp compares with checkMesh).
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "helpers.h"
+#include "meshmorph/app/check_mesh_case.h"
+#include "meshmorph/io/write_poly_mesh.h"
+#include "meshmorph/quality/quality_json.h"
+
+namespace fs = std::filesystem;
+using namespace meshmorph;
+
+namespace
+{
+
+fs::path write_case(const std::string& name, const PolyMesh& mesh)
+{
+    const fs::path dir = test::scratch_dir(name);
+    io::write_poly_mesh(mesh, io::default_poly_mesh_files(io::FoamFormat::ascii), dir,
+                        "constant");
+    fs::create_directories(dir / "system");
+    std::ofstream(dir / "system" / "controlDict")
+        << "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
+        << "writePrecision 10;\n";
+    return dir;
+}
+
+struct AppRun
+{
+    int status;
+    std::string out, err;
+};
+
+AppRun run(std::vector<std::string> args)
+{
+    args.insert(args.begin(), "checkMeshQuality");
+    std::vector<const char*> argv;
+    for (const std::string& a : args)
+        argv.push_back(a.c_str());
+    std::ostringstream out, err;
+    const int status =
+        app::run_check_mesh_quality(static_cast<int>(argv.size()), argv.data(), out, err);
+    return {status, out.str(), err.str()};
+}
+
+std::string read_text(const fs::path& path)
+{
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+PolyMesh damaged_box()
+{
+    PolyMesh mesh = test::make_box_mesh(3, 3, 3);
+    mesh.points.row(1 + 4 * (1 + 4 * 1)) = Eigen::RowVector3d(0.9, 0.9, 0.9);
+    return mesh;
+}
+
+} // namespace
+
+TEST(CheckMeshQualityApp, good_mesh_exits_0_and_writes_json)
+{
+    const fs::path dir = write_case("app_good", test::make_box_mesh(4, 3, 2));
+    const AppRun r = run({"-case", dir.string(), "-allGeometry", "-json", (dir / "q.json").string()});
+    ASSERT_EQ(r.status, app::exit_mesh_ok) << r.err;
+    EXPECT_NE(r.out.find("Time = constant\n\nMesh stats\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\nMesh OK.\n"), std::string::npos);
+    EXPECT_NE(r.out.find("\nEnd\n"), std::string::npos);
+    const nlohmann::json j = nlohmann::json::parse(read_text(dir / "q.json"));
+    EXPECT_EQ(j["cells"], 24);
+    EXPECT_EQ(j["cellTypes"]["hexahedra"], 24);
+    EXPECT_EQ(j["meshOK"], true);
+    EXPECT_EQ(j["failedChecks"], 0);
+    EXPECT_DOUBLE_EQ(j["totalVolume"].get<double>(), 1.0);
+    EXPECT_DOUBLE_EQ(j["minScaledJacobian"].get<double>(), 1.0);
+    for (const char* key :
+         {"points", "faces", "internalFaces", "patches", "boundingBox", "maxCellOpenness",
+          "maxAspectRatio", "minFaceArea", "maxFaceArea", "minVolume", "maxVolume",
+          "negativeVolumeCells", "maxNonOrthogonality", "avgNonOrthogonality",
+          "severelyNonOrthogonalFaces", "nonOrthogonalityErrors",
+          "incorrectlyOrientedFacePyramids", "maxSkewness", "highlySkewedFaces", "minFaceWeight",
+          "minVolumeRatio", "smallDeterminantCells", "concaveCells", "warpedFaces",
+          "faceTetErrors"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    EXPECT_FALSE(j.contains("meshQualityFailures"));
+}
+
+TEST(CheckMeshQualityApp, damaged_mesh_exits_1_and_writes_openfoam_sets)
+{
+    const fs::path dir = write_case("app_damaged", damaged_box());
+    const AppRun r = run({"-case", dir.string(), "-allGeometry", "-writeSets"});
+    ASSERT_EQ(r.status, app::exit_checks_failed) << r.err;
+    EXPECT_NE(r.out.find("  <<Writing "), std::string::npos);
+    const fs::path set = dir / "constant" / "polyMesh" / "sets" / "zeroVolumeCells";
+    ASSERT_TRUE(fs::exists(set));
+    const std::string text = read_text(set);
+    EXPECT_NE(text.find("class       cellSet;"), std::string::npos);
+    EXPECT_NE(text.find("location    \"constant/polyMesh/sets\";"), std::string::npos);
+    EXPECT_NE(text.find("object      zeroVolumeCells;"), std::string::npos);
+    // The line printed for the set names its size, which is the list size in the file.
+    const std::string marker = "  <<Writing ";
+    const std::size_t at = r.out.find(" zero volume cells to set zeroVolumeCells");
+    ASSERT_NE(at, std::string::npos);
+    const std::size_t begin = r.out.rfind(marker, at) + marker.size();
+    const std::string count = r.out.substr(begin, at - begin);
+    EXPECT_NE(text.find("\n" + count + "\n(\n"), std::string::npos) << text;
+}
+
+TEST(CheckMeshQualityApp, without_write_sets_nothing_is_written)
+{
+    const fs::path dir = write_case("app_nosets", damaged_box());
+    const AppRun r = run({"-case", dir.string()});
+    EXPECT_EQ(r.status, app::exit_checks_failed);
+    EXPECT_EQ(r.out.find("<<Writing"), std::string::npos);
+    EXPECT_FALSE(fs::exists(dir / "constant" / "polyMesh" / "sets"));
+}
+
+TEST(CheckMeshQualityApp, usage_and_input_errors_exit_2)
+{
+    AppRun r = run({"-bogus"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("unknown option '-bogus'"), std::string::npos);
+    r = run({"-case"});
+    EXPECT_EQ(r.status, 2);
+    r = run({"-case", "/nonexistent/case"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("/nonexistent/case"), std::string::npos);
+    const fs::path empty = test::scratch_dir("app_empty");
+    r = run({"-case", empty.string()});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("polyMesh"), std::string::npos) << r.err;
+    r = run({"-help"});
+    EXPECT_EQ(r.status, 0);
+    for (const char* option : {"-case", "-time", "-latestTime", "-allGeometry", "-allTopology",
+                               "-meshQuality", "-writeSets", "-vtk", "-json"})
+        EXPECT_NE(r.out.find(option), std::string::npos) << option;
+    EXPECT_NE(r.out.find("Exit status"), std::string::npos);
+}
+
+TEST(CheckMeshQualityApp, mesh_quality_dict_errors_name_file_and_line)
+{
+    const fs::path dir = write_case("app_mqd", test::make_box_mesh(2, 2, 2));
+    AppRun r = run({"-case", dir.string(), "-meshQuality"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("meshQualityDict"), std::string::npos) << r.err;
+    std::ofstream(dir / "system" / "meshQualityDict")
+        << "FoamFile { version 2.0; format ascii; class dictionary; object meshQualityDict; }\n"
+        << "maxNonOrtho 65;\nmaxBoundarySkewness 20;\nmaxInternalSkewness 4;\n"
+        << "maxConcave 80;\nminVol 1e-13;\nminTetQuality 1e-15;\nminArea -1;\n"
+        << "minTwist 0.02;\nminDeterminant 0.001;\nminFaceWeight 0.05;\nminVolRatio 0.01;\n";
+    r = run({"-case", dir.string(), "-meshQuality"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("minTriangleTwist"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("meshQualityDict:"), std::string::npos) << r.err;
+    std::ofstream(dir / "system" / "meshQualityDict", std::ios::app) << "minTriangleTwist -1;\n";
+    r = run({"-case", dir.string(), "-meshQuality", "-json", (dir / "q.json").string()});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("Checking faces in error :\n"), std::string::npos);
+    EXPECT_NE(r.out.find("    non-orthogonality > 65  degrees                        : 0\n"),
+              std::string::npos)
+        << r.out;
+    const nlohmann::json j = nlohmann::json::parse(read_text(dir / "q.json"));
+    EXPECT_EQ(j["meshQualityFailures"]["maxNonOrtho"], 0);
+    // Enabled: all but minArea (-1), minTriangleTwist (-1) and minFaceFlatness (absent).
+    EXPECT_EQ(j["meshQualityFailures"].size(), 9u);
+    std::ofstream(dir / "system" / "meshQualityDict", std::ios::app) << "minFaceFlatness 1.5;\n";
+    r = run({"-case", dir.string(), "-meshQuality"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("minFaceFlatness"), std::string::npos) << r.err;
+}
+
+TEST(QualityJson, summary_prints_before_and_after)
+{
+    CheckMeshSettings settings;
+    const nlohmann::json before = quality_json(check_mesh(test::make_box_mesh(2, 2, 2), settings));
+    const nlohmann::json after = quality_json(check_mesh(damaged_box(), settings));
+    std::ostringstream out;
+    print_quality_summary(out, before, after);
+    EXPECT_NE(out.str().find("before"), std::string::npos);
+    EXPECT_NE(out.str().find("max non-orthogonality [deg]"), std::string::npos);
+    EXPECT_NE(out.str().find("Mesh OK"), std::string::npos);
+    EXPECT_NE(out.str().find("mesh checks failed"), std::string::npos);
+    EXPECT_EQ(after["meshOK"], false);
+    EXPECT_GT(after["negativeVolumeCells"].get<int>(), 0);
+}
