@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 
 #include <ostream>
 #include <sstream>
@@ -19,7 +20,9 @@
 #include "meshmorph/core/log.h"
 #include "meshmorph/core/progress.h"
 #include "meshmorph/io/foam_dictionary.h"
+#include "meshmorph/core/triangle_surface.h"
 #include "meshmorph/io/foam_file.h"
+#include "meshmorph/io/point_field.h"
 #include "meshmorph/io/read_poly_mesh.h"
 #include "meshmorph/io/write_poly_mesh.h"
 #include "meshmorph/quality/quality_json.h"
@@ -185,20 +188,31 @@ std::string fmt(double v, int precision = 3)
     return o.str();
 }
 
-//! Reads target surfaces once per file; paths relative to the case.
+//! Reads target surfaces once per file (paths relative to the case) and projects points
+//! onto them (exact closest point, AABB tree).
 class SurfaceProjector
 {
 public:
     explicit SurfaceProjector(fs::path case_dir) : case_dir_(std::move(case_dir)) {}
-    Points operator()(const std::string& file, const Points& query) const
+    Points operator()(const std::string& file, const Points& query)
     {
-        (void)query;
-        throw IoError((case_dir_ / file).string() +
-                      ": boundary type surface needs the STL/OBJ reader, not built yet");
+        auto it = trees_.find(file);
+        if (it == trees_.end())
+        {
+            fs::path path = file;
+            if (path.is_relative())
+                path = case_dir_ / path;
+            TriangleSurface surface = read_surface(path);
+            log::info() << "Read target surface " << path.string() << ": "
+                        << surface.n_triangles() << " triangles";
+            it = trees_.emplace(file, std::make_shared<SurfaceTree>(std::move(surface))).first;
+        }
+        return it->second->closest_points(query);
     }
 
 private:
     fs::path case_dir_;
+    std::map<std::string, std::shared_ptr<SurfaceTree>> trees_;
 };
 
 } // namespace
@@ -230,7 +244,24 @@ MorphResult morph_case(const MorphOptions& options)
                 << " patches";
 
     ConstraintInputs inputs;
-    inputs.project_to_surface = SurfaceProjector(case_dir);
+    auto projector = std::make_shared<SurfaceProjector>(case_dir);
+    inputs.project_to_surface = [projector](const std::string& file, const Points& query) {
+        return (*projector)(file, query);
+    };
+    Points point_displacement;
+    const std::vector<PatchAssignment> assignment = assign_patches(mesh, setup);
+    if (std::any_of(assignment.begin(), assignment.end(), [](const PatchAssignment& a) {
+            return a.motion == MotionType::point_displacement;
+        }))
+    {
+        // <time>/pointDisplacement of the time read (0/ when the mesh came from constant/).
+        const std::string time = foam.time == "constant" ? "0" : foam.time;
+        const io::PointVectorField field =
+            io::read_point_vector_field(case_dir, time, "pointDisplacement", mesh);
+        point_displacement = io::apply_patch_values(field, mesh);
+        inputs.point_displacement = &point_displacement;
+        log::info() << "Read " << field.path.string();
+    }
     result.constraints = build_constraints(mesh, setup, inputs);
     const Constraints& c = result.constraints;
 

@@ -590,6 +590,8 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
     // Collect claims per point.
     std::vector<Claim> claims;
     std::map<std::string, std::vector<std::pair<Index, Index>>> surface_requests; // file -> (claim, point)
+    std::map<std::string, std::string> surface_entries; // file -> "boundary entry ..." for messages
+    std::map<std::string, std::size_t> surface_lines;
     for (std::size_t pi = 0; pi < mesh.patches.size(); ++pi)
     {
         const Patch& patch = mesh.patches[pi];
@@ -644,6 +646,8 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
             if (!inputs.project_to_surface)
                 throw ParseError(dict, line, what + ": type surface needs a target surface "
                                                     "reader, none was given");
+            surface_entries.try_emplace(motion.file, what);
+            surface_lines.try_emplace(motion.file, line);
             for (Index p : pts)
             {
                 surface_requests[motion.file].emplace_back(static_cast<Index>(claims.size()), p);
@@ -670,7 +674,18 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
         Points query(static_cast<Eigen::Index>(requests.size()), 3);
         for (std::size_t i = 0; i < requests.size(); ++i)
             query.row(static_cast<Eigen::Index>(i)) = mesh.points.row(requests[i].second);
-        const Points closest = inputs.project_to_surface(file, query);
+        Points closest;
+        try
+        {
+            closest = inputs.project_to_surface(file, query);
+        }
+        catch (const Error& e)
+        {
+            // Name the dictionary entry as well as the surface file.
+            throw ParseError(dict, surface_lines[file],
+                             surface_entries[file] + ": cannot use surface \"" + file +
+                                 "\": " + e.what());
+        }
         if (closest.rows() != query.rows())
             throw std::logic_error("project_to_surface returned a wrong number of points");
         for (std::size_t i = 0; i < requests.size(); ++i)

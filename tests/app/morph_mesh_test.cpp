@@ -1,0 +1,323 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Integration tests of morphMesh (src/meshmorph/app/morph_mesh.*, run in-process through
+// run_morph_mesh): what is written where, exactness at constraints, dictionary errors that
+// write nothing, refusal of invalid morphs, JSON, and OpenFOAM's checkMesh on the result.
+#include "meshmorph/app/morph_mesh.h"
+#include "meshmorph/app/options.h"
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "helpers.h"
+#include "meshmorph/core/log.h"
+#include "meshmorph/io/read_poly_mesh.h"
+#include "meshmorph/io/write_poly_mesh.h"
+
+namespace meshmorph::app
+{
+namespace
+{
+
+namespace fs = std::filesystem;
+
+const char* const dict_header =
+    "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n";
+
+void write_text(const fs::path& path, const std::string& text)
+{
+    fs::create_directories(path.parent_path());
+    std::ofstream(path) << text;
+}
+
+std::string read_text(const fs::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+//! A case with `mesh` in constant/polyMesh and `morph_dict` as system/morphDict.
+fs::path make_case(const std::string& name, const PolyMesh& mesh, const std::string& morph_dict,
+                   io::FoamFormat format = io::FoamFormat::ascii)
+{
+    const fs::path dir = test::scratch_dir("morph_mesh/" + name);
+    io::write_poly_mesh(mesh, io::default_poly_mesh_files(format), dir, "constant");
+    write_text(dir / "system/controlDict",
+               "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
+               "application morphMesh; startFrom latestTime; startTime 0; stopAt endTime;\n"
+               "endTime 1; deltaT 1; writeControl timeStep; writeInterval 1;\n"
+               "writePrecision 15;\n");
+    write_text(dir / "system/morphDict", std::string(dict_header) + morph_dict);
+    // OpenFOAM's checkMesh needs these two to start.
+    const fs::path pipe_system = fs::path(MESHMORPH_SOURCE_DIR) / "tutorials/pipe/system";
+    for (const char* f : {"fvSchemes", "fvSolution"})
+        fs::copy_file(pipe_system / f, dir / "system" / f, fs::copy_options::overwrite_existing);
+    return dir;
+}
+
+struct RunResult
+{
+    int code = -1;
+    std::string out, err, log;
+};
+
+RunResult run(const std::vector<std::string>& args)
+{
+    std::vector<const char*> argv{"morphMesh"};
+    for (const std::string& a : args)
+        argv.push_back(a.c_str());
+    std::ostringstream out, err;
+    RunResult r;
+    {
+        log::CaptureScope capture;
+        r.code = run_morph_mesh(static_cast<int>(argv.size()), argv.data(), out, err);
+        r.log = capture.text();
+    }
+    r.out = out.str();
+    r.err = err.str();
+    return r;
+}
+
+//! Time directories of a case (names).
+std::vector<std::string> times(const fs::path& dir)
+{
+    std::vector<std::string> out;
+    for (const io::TimeDir& t : io::list_times(dir))
+        out.push_back(t.name);
+    return out;
+}
+
+const char* const lift_top = R"(
+method rbf;
+conflicts last;
+boundary
+{
+    zMax { type translate; vector (0 0 0.05); }
+}
+)";
+
+TEST(MorphMesh, writes_only_points_in_the_next_time_and_constraints_are_exact)
+{
+    const PolyMesh mesh = test::make_box_mesh(6, 5, 4);
+    const fs::path dir = make_case("next_time", mesh, lift_top);
+    const std::string original = read_text(dir / "constant/polyMesh/points");
+    const RunResult r = run({"-case", dir.string()});
+    ASSERT_EQ(r.code, 0) << r.err << r.log;
+    EXPECT_EQ(read_text(dir / "constant/polyMesh/points"), original) << "input must not change";
+    ASSERT_EQ(times(dir), std::vector<std::string>{"1"});
+    std::vector<std::string> files;
+    for (const auto& e : fs::directory_iterator(dir / "1/polyMesh"))
+        files.push_back(e.path().filename().string());
+    EXPECT_EQ(files, std::vector<std::string>{"points"}) << "topology stays in constant/";
+
+    const Points moved = io::read_points_file(dir / "1/polyMesh/points");
+    ASSERT_EQ(moved.rows(), mesh.n_points());
+    const std::vector<char> boundary = boundary_point_mask(mesh);
+    const double lift = 0.05;
+    for (Index p = 0; p < mesh.n_points(); ++p)
+    {
+        if (!boundary[p])
+            continue;
+        const Eigen::RowVector3d d = moved.row(p) - mesh.points.row(p);
+        const bool top = mesh.points(p, 2) == 1.0;
+        // Prescriptions: top (edges included, rule last) lifted, everything else fixed.
+        // Tolerance 1e-9 relative to the lift plus the 17-digit round trip of the file.
+        const Eigen::RowVector3d want(0, 0, top ? lift : 0.0);
+        EXPECT_LE((d - want).norm(), 1e-9 * lift + 1e-15) << "point " << p;
+    }
+    EXPECT_NE(r.log.find("Max constraint error"), std::string::npos);
+}
+
+TEST(MorphMesh, overwrite_replaces_points_in_place_keeping_binary_format)
+{
+    const PolyMesh mesh = test::make_box_mesh(4, 4, 4);
+    const fs::path dir = make_case("overwrite_binary", mesh, lift_top, io::FoamFormat::binary);
+    const RunResult r = run({"-case", dir.string(), "-overwrite"});
+    ASSERT_EQ(r.code, 0) << r.err << r.log;
+    EXPECT_TRUE(times(dir).empty()) << "-overwrite writes no time directory";
+    io::FoamFileInfo info;
+    const Points moved = io::read_points_file(dir / "constant/polyMesh/points", &info);
+    EXPECT_TRUE(info.header.is_binary());
+    EXPECT_GT((moved - mesh.points).cwiseAbs().maxCoeff(), 0.01);
+}
+
+TEST(MorphMesh, json_has_the_interface_keys)
+{
+    const fs::path dir = make_case("json", test::make_box_mesh(3, 3, 3), lift_top);
+    const RunResult r = run({"-case", dir.string(), "-json", (dir / "morph.json").string()});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(read_text(dir / "morph.json"));
+    for (const char* key : {"method", "constraints", "centres", "maxConstraintError", "timings",
+                            "before", "after"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    for (const char* key : {"read", "fit", "evaluate", "check", "write"})
+        EXPECT_TRUE(j["timings"].contains(key)) << key;
+    EXPECT_EQ(j["method"], "rbf");
+    EXPECT_EQ(j["constraints"].get<int>(), 4 * 4 * 4 - 2 * 2 * 2);
+    EXPECT_TRUE(j["after"].contains("maxNonOrthogonality"));
+    EXPECT_TRUE(j["before"].contains("negativeVolumeCells"));
+    EXPECT_LE(j["maxConstraintError"].get<double>(), 1e-9 * 0.05);
+}
+
+TEST(MorphMesh, a_morph_that_inverts_cells_is_refused_unless_forced)
+{
+    // The top pushed through the bottom: cells turn inside out.
+    const fs::path dir = make_case("refuse", test::make_box_mesh(3, 3, 3), R"(
+conflicts last;
+boundary { zMax { type translate; vector (0 0 -1.6); } }
+)");
+    const RunResult refused = run({"-case", dir.string()});
+    EXPECT_EQ(refused.code, exit_morph_refused) << refused.err;
+    EXPECT_NE(refused.err.find("negative-volume"), std::string::npos) << refused.err;
+    EXPECT_TRUE(times(dir).empty()) << "nothing may be written";
+
+    const RunResult forced = run({"-case", dir.string(), "-force"});
+    EXPECT_EQ(forced.code, 0) << forced.err;
+    EXPECT_EQ(times(dir), std::vector<std::string>{"1"});
+}
+
+struct BadDict
+{
+    std::string name;
+    std::string text;
+    std::vector<std::string> expected; //!< substrings of the error message
+};
+
+TEST(MorphMesh, every_dictionary_error_names_file_and_entry_and_writes_nothing)
+{
+    const std::vector<BadDict> cases{
+        {"unknown_patch", "boundary { wing { type fixed; } }", {"wing", "no patch"}},
+        {"regex_matches_nothing", "boundary { \"motorBike_.*\" { type translate; vector (0 0 1); } }",
+         {"motorBike_.*", "matches no patch"}},
+        {"unknown_type", "boundary { zMax { type glide; } }", {"glide", "zMax"}},
+        {"unknown_method", "method spline;", {"spline", "method"}},
+        {"missing_key", "boundary { zMax { type translate; } }", {"vector", "zMax"}},
+        {"extra_key", "boundary { zMax { type fixed; vector (0 0 1); } }", {"vector", "zMax"}},
+        {"syntax_error", "boundary { zMax { type fixed; }", {"morphDict:"}},
+        {"bad_vector", "boundary { zMax { type translate; vector (0 0); } }", {"vector"}},
+        {"unknown_top_level", "boundry { zMax { type fixed; } }", {"boundry"}},
+        {"unreadable_surface",
+         "boundary { zMax { type surface; file \"constant/triSurface/nothere.stl\"; } }",
+         {"nothere.stl"}},
+        {"missing_point_zone",
+         "handles { roof { pointZone roofPoints; displacement (0 0 0.1); } }",
+         {"roofPoints", "roof"}},
+        {"bad_conflict_rule", "conflicts maybe;", {"maybe", "conflicts"}},
+    };
+    for (const BadDict& c : cases)
+    {
+        const fs::path dir = make_case("bad_" + c.name, test::make_box_mesh(2, 2, 2), c.text);
+        const std::string original = read_text(dir / "constant/polyMesh/points");
+        const RunResult r = run({"-case", dir.string(), "-json", (dir / "out.json").string()});
+        EXPECT_EQ(r.code, exit_morph_input_error) << c.name << ": " << r.err;
+        EXPECT_NE(r.err.find((dir / "system/morphDict").string()), std::string::npos)
+            << c.name << ": the message must name the file: " << r.err;
+        for (const std::string& s : c.expected)
+            EXPECT_NE(r.err.find(s), std::string::npos) << c.name << ": '" << s << "' not in " << r.err;
+        EXPECT_TRUE(times(dir).empty()) << c.name << ": a time directory was written";
+        EXPECT_FALSE(fs::exists(dir / "out.json")) << c.name;
+        EXPECT_EQ(read_text(dir / "constant/polyMesh/points"), original) << c.name;
+    }
+}
+
+TEST(MorphMesh, missing_dictionary_and_bad_options_are_errors)
+{
+    const fs::path dir = make_case("no_dict", test::make_box_mesh(2, 2, 2), "");
+    fs::remove(dir / "system/morphDict");
+    RunResult r = run({"-case", dir.string()});
+    EXPECT_EQ(r.code, exit_morph_input_error);
+    EXPECT_NE(r.err.find("morphDict"), std::string::npos) << r.err;
+    r = run({"-case", dir.string(), "-method", "spline"});
+    EXPECT_EQ(r.code, exit_usage_error);
+    r = run({"-case", dir.string(), "-time", "1", "-latestTime"});
+    EXPECT_EQ(r.code, exit_usage_error);
+    EXPECT_TRUE(times(dir).empty());
+}
+
+TEST(MorphMesh, dmffd_and_ffd_methods_run_and_report_their_residual)
+{
+    const fs::path dir = make_case("methods", test::make_box_mesh(4, 4, 4), std::string(lift_top) + R"(
+dmffd { lattice (6 6 6); clamping 1e-2; }
+ffd   { lattice (4 4 4); displacements ( ((1 1 3) (0 0 0.02)) ((2 2 3) (0 0 0.02)) ); }
+)");
+    for (const std::string method : {"dmffd", "ffd"})
+    {
+        const RunResult r = run({"-case", dir.string(), "-method", method, "-overwrite", "-json",
+                           (dir / (method + ".json")).string()});
+        ASSERT_EQ(r.code, 0) << method << r.err;
+        const nlohmann::json j = nlohmann::json::parse(read_text(dir / (method + ".json")));
+        EXPECT_EQ(j["method"], method);
+        // Neither method interpolates: their residual must show up (not be hidden).
+        EXPECT_GT(j["maxConstraintError"].get<double>(), 1e-6) << method;
+    }
+}
+
+//! Runs OpenFOAM's checkMesh at the latest time; returns the number of failed checks
+//! (0 for "Mesh OK."), -1 if the output has neither.
+int openfoam_failed_checks(const fs::path& dir, std::string& output)
+{
+    const std::string cmd = "checkMesh -case '" + dir.string() + "' -latestTime 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (pipe == nullptr)
+        return -1;
+    std::array<char, 4096> buf{};
+    output.clear();
+    while (fgets(buf.data(), buf.size(), pipe) != nullptr)
+        output += buf.data();
+    pclose(pipe);
+    if (output.find("\nMesh OK.") != std::string::npos)
+        return 0;
+    std::smatch m;
+    if (std::regex_search(output, m, std::regex(R"(Failed (\d+) mesh checks)")))
+        return std::stoi(m[1]);
+    return -1;
+}
+
+TEST(MorphMesh, openfoam_checkmesh_reads_the_squeezed_pipe_ascii_and_binary)
+{
+    if (!test::openfoam_available())
+        GTEST_SKIP() << "OpenFOAM not installed: checkMesh on the morphed pipe is skipped";
+    const fs::path pipe = fs::path(MESHMORPH_SOURCE_DIR) / "tutorials/pipe";
+    const io::FoamPolyMesh shipped = io::read_poly_mesh(pipe);
+    // Radial squeeze of the whole wall by 0.3 R about the axis; inlet/outlet slide.
+    const std::string dict = R"D(
+boundary
+{
+    wall   { type scale; origin (0 0 0); factor (0.7 0.7 1); }
+    "(inlet|outlet)" { type slip; }
+}
+)D";
+    for (const io::FoamFormat format : {io::FoamFormat::ascii, io::FoamFormat::binary})
+    {
+        const std::string name = format == io::FoamFormat::ascii ? "pipe_ascii" : "pipe_binary";
+        const fs::path dir = make_case(name, shipped.mesh, dict, format);
+        std::string before_text;
+        const int before = openfoam_failed_checks(dir, before_text);
+        ASSERT_GE(before, 0) << before_text;
+        const RunResult r = run({"-case", dir.string()});
+        ASSERT_EQ(r.code, 0) << r.err << r.log;
+        std::string after_text;
+        const int after = openfoam_failed_checks(dir, after_text);
+        ASSERT_NE(after_text.find("Time = 1"), std::string::npos)
+            << "checkMesh must read the morphed time: " << after_text;
+        EXPECT_LE(after, before) << after_text;
+        // checkMesh sees the squeeze: scaling radially by 0.7 is affine, which the RBF's
+        // linear term reproduces exactly, so the volume shrinks by 0.49 (to round-off).
+        const std::regex volume(R"(Total volume = ([0-9.eE+-]+[0-9])\.\s)");
+        std::smatch mb, ma;
+        ASSERT_TRUE(std::regex_search(before_text, mb, volume)) << before_text;
+        ASSERT_TRUE(std::regex_search(after_text, ma, volume)) << after_text;
+        // checkMesh prints 15 significant digits (writePrecision 15).
+        EXPECT_NEAR(std::stod(ma[1]) / std::stod(mb[1]), 0.49, 1e-9);
+    }
+}
+
+} // namespace
+} // namespace meshmorph::app
