@@ -123,6 +123,9 @@ TEST(FoamDictionary, typed_getters_on_nested_dictionaries)
     EXPECT_EQ(wing.path(), "system/morphDict");
     EXPECT_DOUBLE_EQ(wing.get_or<double>("relax", 0.7), 0.7);
     EXPECT_EQ(wing.get_or<std::string>("type", "x"), "fixedValue");
+    EXPECT_EQ(wing.get_or("type", "x"), "fixedValue");
+    EXPECT_EQ(wing.get_or("kind", "rbf"), "rbf");
+    EXPECT_EQ(wing.get_or("n", 3), 3);
     EXPECT_EQ(d.keys().front(), "scale");
     EXPECT_EQ(d.keys().back(), "boundary");
     EXPECT_EQ(d.size(), 18u);

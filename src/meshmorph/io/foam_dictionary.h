@@ -199,6 +199,11 @@ public:
         const FoamEntry* e = find(key);
         return e ? e->get<T>() : fallback;
     }
+    //! get_or for a string literal fallback: `dict.get_or("method", "rbf")`.
+    std::string get_or(const std::string& key, const char* fallback) const
+    {
+        return get_or<std::string>(key, std::string(fallback));
+    }
 
     //! \brief Add or merge an entry with the given input mode semantics (`merge`: a later
     //! entry replaces an earlier one; two sub-dictionaries merge recursively).
