@@ -312,14 +312,18 @@ void RbfDeformation::Impl::factor_dense()
                 T.col(i).head(i) = -tau[i] * tv;
             }
         }
-        const Eigen::MatrixXd Y = A * V;
+        Eigen::MatrixXd Y(m, p);
+        const int im = detail::lapack_int(m), ip = detail::lapack_int(p), i2p = 2 * ip;
+        const double one = 1.0, zero = 0.0, minus_one = -1.0;
+        dgemm_("N", "N", &im, &ip, &im, &one, A.data(), &im, V.data(), &im, &zero, Y.data(), &im);
         const Eigen::MatrixXd Z = V.transpose() * Y;
         Eigen::MatrixXd WV(m, 2 * p), VW(m, 2 * p);
         WV.leftCols(p) = Y * T - 0.5 * V * (T.transpose() * Z * T);
         WV.rightCols(p) = V;
         VW.leftCols(p) = V;
         VW.rightCols(p) = WV.leftCols(p);
-        A.noalias() -= WV * VW.transpose();
+        dgemm_("N", "T", &im, &im, &i2p, &minus_one, WV.data(), &im, VW.data(), &im, &one, A.data(),
+               &im);
     }
     report.solver = p > 0 ? "null-space QR + LAPACK dpotrf" : "LAPACK dpotrf";
     report.condition_estimate = 1.0;
