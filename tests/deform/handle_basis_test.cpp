@@ -9,6 +9,7 @@
 #include "helpers.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/deform/dmffd_deformation.h"
+#include "meshmorph/deform/greedy_rbf_deformation.h"
 #include "meshmorph/deform/handle_basis.h"
 #include "meshmorph/deform/rbf_deformation.h"
 
@@ -49,6 +50,27 @@ TEST(HandleBasis, product_equals_a_fresh_fit_for_every_method)
         const HandleBasis B = HandleBasis::compute(ffd, x);
         EXPECT_LE((B.apply(C) - displacements(ffd, x)).cwiseAbs().maxCoeff(), 1e-14);
     }
+}
+
+TEST(HandleBasis, greedy_basis_reproduces_the_greedy_deformation)
+{
+    const Points c = test::sphere_points(800, Vector3(0.5, 0.5, 0.5), 0.4);
+    const Points d = test::smooth_field(c);
+    const Points x = test::random_points(300, 0.0, 1.0, 5);
+    GreedySettings s;
+    s.tolerance = 1e-2;
+    s.rms_tolerance = 1e-3;
+    GreedyRbfDeformation greedy(s);
+    greedy.fit(c, d);
+    const HandleBasis B = HandleBasis::compute(greedy, x);
+    EXPECT_EQ(B.cols(), 800);
+    EXPECT_EQ(B.method(), BasisMethod::greedy_rbf);
+    EXPECT_LE((B.apply(d) - displacements(greedy, x)).cwiseAbs().maxCoeff(), 1e-11);
+    // Only centre columns are nonzero.
+    Eigen::Index nonzero = 0;
+    for (Eigen::Index j = 0; j < B.cols(); ++j)
+        nonzero += B.matrix().col(j).cwiseAbs().maxCoeff() > 0.0;
+    EXPECT_EQ(nonzero, greedy.report().num_centres);
 }
 
 TEST(HandleBasis, save_load_round_trip_is_bit_identical)

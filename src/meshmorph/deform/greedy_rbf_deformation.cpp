@@ -20,18 +20,6 @@
 namespace meshmorph
 {
 
-struct GreedyRbfDeformation::Impl
-{
-    GreedySettings settings;
-    detail::RbfKernelSetup setup;
-    detail::RbfModel model;
-    FitReport report;
-    bool fitted = false;
-    bool converged = false;
-    std::vector<Index> centre_indices;
-    std::vector<double> history;
-};
-
 namespace
 {
 
@@ -138,10 +126,11 @@ public:
     void solve(const Eigen::MatrixXd& H, Eigen::MatrixXd& W, Eigen::MatrixXd& Q) const
     {
         const Eigen::Index p = P_.cols();
-        Eigen::MatrixXd HU(p, 3);
+        const Eigen::Index nc = H.cols();
+        Eigen::MatrixXd HU(p, nc);
         for (Eigen::Index a = 0; a < p; ++a)
             HU.row(a) = H.row(U_[std::size_t(a)]);
-        Eigen::MatrixXd Y(r_, 3);
+        Eigen::MatrixXd Y(r_, nc);
         for (Eigen::Index i = 0; i < r_; ++i)
             Y.row(i) = H.row(sel_[std::size_t(i)]);
         if (p > 0)
@@ -149,13 +138,14 @@ public:
         Y *= sign_;
         if (r_ > 0)
         {
-            const int n = detail::lapack_int(r_), ld = detail::lapack_int(L_.rows()), nrhs = 3;
+            const int n = detail::lapack_int(r_), ld = detail::lapack_int(L_.rows()),
+                      nrhs = detail::lapack_int(nc);
             int info = 0;
             dpotrs_("L", &n, &nrhs, L_.data(), &ld, Y.data(), &n, &info);
             if (info != 0)
                 throw SolverError("greedy RBF: dpotrs failed");
         }
-        W.resize(p + r_, 3);
+        W.resize(p + r_, nc);
         W.bottomRows(r_) = Y;
         if (p > 0)
         {
@@ -164,7 +154,7 @@ public:
         }
         else
         {
-            Q.resize(0, 3);
+            Q.resize(0, nc);
         }
     }
 
@@ -205,6 +195,23 @@ private:
 
 } // namespace
 
+struct GreedyRbfDeformation::Impl
+{
+    GreedySettings settings;
+    detail::RbfKernelSetup setup;
+    detail::RbfModel model;
+    FitReport report;
+    bool fitted = false;
+    bool converged = false;
+    std::vector<Index> centre_indices;
+    std::vector<double> history;
+    // Kept after fit for handle_basis(); system refers to model, merged.centres and P.
+    Index num_inputs = 0;
+    detail::MergedHandles merged;
+    Eigen::MatrixXd P;
+    std::unique_ptr<IncrementalSystem> system;
+};
+
 GreedyRbfDeformation::GreedyRbfDeformation(const GreedySettings& settings)
     : impl_(std::make_unique<Impl>())
 {
@@ -240,8 +247,11 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
     d.model.scale = nrm.scale;
     d.model.kernel.eps = d.setup.params.eps * nrm.scale;
     d.model.kernel.support = d.setup.params.support / nrm.scale;
-    const detail::MergedHandles merged = detail::merge_duplicates(
-        constraints, d.model.normalise(constraints), displacements, s.rbf.duplicate_tolerance);
+    d.system.reset();
+    d.merged = detail::merge_duplicates(constraints, d.model.normalise(constraints), displacements,
+                                        s.rbf.duplicate_tolerance);
+    const detail::MergedHandles& merged = d.merged;
+    d.num_inputs = Index(constraints.rows());
     const Points& X = merged.centres;
     const Eigen::MatrixXd H = merged.displacements;
     const Eigen::Index N = X.rows();
@@ -250,7 +260,8 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
         Xphys.row(i) = constraints.row(merged.first[std::size_t(i)]);
 
     detail::choose_polynomial(d.model, d.setup.degree, X, s.rbf.polynomial_rank_tolerance);
-    const Eigen::MatrixXd Pall = d.model.polynomial_matrix(X);
+    d.P = d.model.polynomial_matrix(X);
+    const Eigen::MatrixXd& Pall = d.P;
     const Eigen::Index p = Pall.cols();
     std::vector<Eigen::Index> U;
     if (p > 0)
@@ -301,7 +312,8 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
         update(best);
     }
 
-    IncrementalSystem system(d.model, d.setup.sign, X, Pall, U);
+    d.system = std::make_unique<IncrementalSystem>(d.model, d.setup.sign, X, Pall, U);
+    IncrementalSystem& system = *d.system;
     const auto add = [&](const std::vector<Eigen::Index>& cand)
     {
         std::vector<Eigen::Index> rest = cand;
@@ -415,6 +427,33 @@ const std::vector<Index>& GreedyRbfDeformation::centre_indices() const
 const std::vector<double>& GreedyRbfDeformation::history() const
 {
     return impl_->history;
+}
+
+Eigen::MatrixXd GreedyRbfDeformation::handle_basis(const Eigen::Ref<const Points>& points) const
+{
+    const Impl& d = *impl_;
+    if (!d.fitted)
+        throw InvalidInput("greedy RBF: handle_basis() called before fit()");
+    detail::require_finite(points, "greedy RBF handle basis: point");
+    const IncrementalSystem& system = *d.system;
+    const Eigen::Index p = d.P.cols();
+    const Eigen::Index c = p + system.size();
+    // Unit displacement of each centre in turn (rows of the merged constraints).
+    std::vector<Eigen::Index> rows(system.unisolvent());
+    rows.insert(rows.end(), system.selected().begin(), system.selected().end());
+    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(d.merged.centres.rows(), c);
+    for (Eigen::Index i = 0; i < c; ++i)
+        E(rows[std::size_t(i)], i) = 1.0;
+    Eigen::MatrixXd W, Q;
+    system.solve(E, W, Q);
+    const Points xn = d.model.normalise(points);
+    Eigen::MatrixXd Bc = d.model.kernel_matrix(xn) * W;
+    if (p > 0)
+        Bc.noalias() += d.model.polynomial_matrix(xn) * Q;
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(points.rows(), d.num_inputs);
+    for (Eigen::Index i = 0; i < c; ++i)
+        B.col(d.merged.first[std::size_t(rows[std::size_t(i)])]) = Bc.col(i);
+    return B;
 }
 
 } // namespace meshmorph

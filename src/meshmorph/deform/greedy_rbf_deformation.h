@@ -64,6 +64,10 @@ public:
     bool converged() const;
     //! Indices (into the constraints given to fit) of the selected centres.
     const std::vector<Index>& centre_indices() const;
+    //! \brief Handle basis B (k x m, m = constraints given to fit) with d(points) = B H for
+    //! displacements H (m x 3) of the constraints, for the centres selected by the last fit;
+    //! columns of constraints that are not centres are zero. \throw InvalidInput.
+    Eigen::MatrixXd handle_basis(const Eigen::Ref<const Points>& points) const;
     //! Max residual after each iteration (absolute), for convergence plots.
     const std::vector<double>& history() const;
 

@@ -10,6 +10,7 @@
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/deform/dmffd_deformation.h"
 #include "meshmorph/deform/ffd_deformation.h"
+#include "meshmorph/deform/greedy_rbf_deformation.h"
 #include "meshmorph/deform/lapack.h"
 #include "meshmorph/deform/rbf_deformation.h"
 
@@ -36,6 +37,12 @@ HandleBasis HandleBasis::compute(const DmffdDeformation& dmffd,
                                  const Eigen::Ref<const Points>& points)
 {
     return HandleBasis(dmffd.handle_basis(points), BasisMethod::dmffd);
+}
+
+HandleBasis HandleBasis::compute(const GreedyRbfDeformation& greedy,
+                                 const Eigen::Ref<const Points>& points)
+{
+    return HandleBasis(greedy.handle_basis(points), BasisMethod::greedy_rbf);
 }
 
 HandleBasis HandleBasis::compute(const FfdDeformation& ffd, const Eigen::Ref<const Points>& points)
@@ -114,7 +121,7 @@ HandleBasis HandleBasis::read(std::istream& in, const std::string& name)
         throw ParseError(name, 0,
                          "unsupported handle basis version " + std::to_string(ver) + " (expected " +
                              std::to_string(version) + ")");
-    if (method < 1 || method > 3)
+    if (method < 1 || method > 4)
         throw ParseError(name, 0, "unknown handle basis method " + std::to_string(method));
     constexpr std::int64_t limit = std::int64_t(1) << 40;
     if (k < 0 || m < 0 || k > limit || m > limit || (m > 0 && k > limit / m))

@@ -16,13 +16,15 @@ namespace meshmorph
 class RbfDeformation;
 class DmffdDeformation;
 class FfdDeformation;
+class GreedyRbfDeformation;
 
 //! Which deformation produced a basis (stored in the file header).
 enum class BasisMethod : std::uint32_t
 {
     rbf = 1,
     ffd = 2,
-    dmffd = 3
+    dmffd = 3,
+    greedy_rbf = 4
 };
 
 //! k x m handle basis.
@@ -40,6 +42,9 @@ public:
     static HandleBasis compute(const RbfDeformation& rbf, const Eigen::Ref<const Points>& points);
     //! B = M Phi^+ of a fitted DM-FFD at points (k x 3).
     static HandleBasis compute(const DmffdDeformation& dmffd,
+                               const Eigen::Ref<const Points>& points);
+    //! B of a greedy RBF (columns of non-centre constraints are zero).
+    static HandleBasis compute(const GreedyRbfDeformation& greedy,
                                const Eigen::Ref<const Points>& points);
     //! B = M of an FFD (handles = its control points) at points (k x 3).
     static HandleBasis compute(const FfdDeformation& ffd, const Eigen::Ref<const Points>& points);
