@@ -23,8 +23,8 @@ double seconds_since(Clock::time_point t0)
 
 void report(const char* what, std::size_t bytes, double s, double checksum)
 {
-    std::printf("%-42s %8.1f MB in %6.3f s = %7.1f MB/s   (checksum %.6g)\n", what,
-                bytes / 1e6, s, bytes / 1e6 / s, checksum);
+    std::printf("%-42s %8.1f MB in %6.3f s = %7.1f MB/s   (checksum %.6g)\n", what, bytes / 1e6, s,
+                bytes / 1e6 / s, checksum);
 }
 
 } // namespace
@@ -44,8 +44,8 @@ int main(int argc, char** argv)
     char buf[128];
     while (body.size() < target_mb * 1e6)
     {
-        const int len = std::snprintf(buf, sizeof buf, "(%.17g %.17g %.17g)\n", u(rng), u(rng),
-                                      u(rng));
+        const int len =
+            std::snprintf(buf, sizeof buf, "(%.17g %.17g %.17g)\n", u(rng), u(rng), u(rng));
         body.append(buf, static_cast<std::size_t>(len));
         ++n;
     }

@@ -70,12 +70,9 @@ std::vector<Patch> sample_patches()
     p[3].start_face = 32;
     p[3].n_faces = 2;
     p[3].in_groups = {"cyclic", "myGroup"};
-    p[3].entries = {{"inGroups", "2 ( cyclic myGroup )"},
-                    {"matchTolerance", "0.0001"},
-                    {"transform", "rotational"},
-                    {"rotationAxis", "(0 0 1)"},
-                    {"rotationCentre", "(0 0 0)"},
-                    {"neighbourPatch", "cyc_half1"}};
+    p[3].entries = {{"inGroups", "2 ( cyclic myGroup )"}, {"matchTolerance", "0.0001"},
+                    {"transform", "rotational"},          {"rotationAxis", "(0 0 1)"},
+                    {"rotationCentre", "(0 0 0)"},        {"neighbourPatch", "cyc_half1"}};
     p[4].name = "cyc_half1";
     p[4].type = "cyclic";
     p[4].start_face = 34;
@@ -126,8 +123,8 @@ TEST(BoundaryIo, reads_foam_format_convert_spelling)
     // foamFormatConvert rewrites the same boundary with `1 ( wall )` and blank lines.
     const std::vector<Patch> a =
         parse_boundary(read_file(test::data_path("dict/boundary_cavity")), "boundary_cavity");
-    const std::vector<Patch> b = parse_boundary(
-        read_file(test::data_path("dict/boundary_converted")), "boundary_converted");
+    const std::vector<Patch> b =
+        parse_boundary(read_file(test::data_path("dict/boundary_converted")), "boundary_converted");
     ASSERT_EQ(a.size(), b.size());
     for (std::size_t i = 0; i < a.size(); ++i)
     {
@@ -157,8 +154,8 @@ TEST(BoundaryIo, all_patch_types_round_trip)
 
 TEST(BoundaryIo, in_groups_in_all_spellings)
 {
-    for (const char* spelling : {"1(wall)", "1 ( wall )", "List<word> 1(wall)", "(wall)",
-                                 "1\n(\nwall\n)"})
+    for (const char* spelling :
+         {"1(wall)", "1 ( wall )", "List<word> 1(wall)", "(wall)", "1\n(\nwall\n)"})
     {
         const std::string body = std::string("1\n(\nw\n{\ntype wall;\ninGroups ") + spelling +
                                  ";\nnFaces 0;\nstartFace 0;\n}\n)";
@@ -184,21 +181,28 @@ TEST(BoundaryIo, builds_in_groups_when_no_verbatim_entry)
 
 TEST(BoundaryIo, missing_or_bad_entries_name_patch_and_line)
 {
-    std::string m = parse_error_of([] {
-        parse_boundary("2\n(\na\n{\ntype patch;\nnFaces 1;\nstartFace 0;\n}\n"
-                       "bad\n{\n    type wall;\n    startFace 1;\n}\n)",
-                       "constant/polyMesh/boundary");
-    });
+    std::string m = parse_error_of(
+        []
+        {
+            parse_boundary("2\n(\na\n{\ntype patch;\nnFaces 1;\nstartFace 0;\n}\n"
+                           "bad\n{\n    type wall;\n    startFace 1;\n}\n)",
+                           "constant/polyMesh/boundary");
+        });
     EXPECT_TRUE(contains(m, "constant/polyMesh/boundary:10:") && contains(m, "'bad'") &&
                 contains(m, "nFaces"))
         << m;
-    m = parse_error_of([] { parse_boundary("1\n(\na\n{\ntype patch;\nnFaces -1;\nstartFace 0;\n}\n)", "b"); });
+    m = parse_error_of(
+        [] { parse_boundary("1\n(\na\n{\ntype patch;\nnFaces -1;\nstartFace 0;\n}\n)", "b"); });
     EXPECT_TRUE(contains(m, "b:6:") && contains(m, "negative")) << m;
-    m = parse_error_of([] { parse_boundary("3\n(\na\n{\ntype patch;\nnFaces 1;\nstartFace 0;\n}\n)", "b"); });
+    m = parse_error_of(
+        [] { parse_boundary("3\n(\na\n{\ntype patch;\nnFaces 1;\nstartFace 0;\n}\n)", "b"); });
     EXPECT_TRUE(contains(m, "b:9:") && contains(m, "3")) << m;
-    m = parse_error_of([] { parse_boundary("1\n(\na\n{\ntype patch;\nnFaces 1;\nstartFace 0;\n}\nb {}\n)", "b"); });
+    m = parse_error_of(
+        []
+        { parse_boundary("1\n(\na\n{\ntype patch;\nnFaces 1;\nstartFace 0;\n}\nb {}\n)", "b"); });
     EXPECT_TRUE(contains(m, "b:9:")) << m;
-    m = parse_error_of([] { parse_boundary("1\n(\na\n{\ntype patch;\nnFaces 1;\nstartFace 0;\n", "b"); });
+    m = parse_error_of(
+        [] { parse_boundary("1\n(\na\n{\ntype patch;\nnFaces 1;\nstartFace 0;\n", "b"); });
     EXPECT_TRUE(contains(m, "b:4:") && contains(m, "unterminated")) << m;
 }
 
@@ -206,7 +210,8 @@ TEST(BoundaryIo, zones_from_openfoam_round_trip_in_ascii_and_binary)
 {
     for (const char* name : {"cellZones", "faceZones", "pointZones"})
     {
-        const std::string ascii = read_file(test::data_path(std::string("dict/zones_ascii/") + name));
+        const std::string ascii =
+            read_file(test::data_path(std::string("dict/zones_ascii/") + name));
         const std::string binary =
             read_file(test::data_path(std::string("dict/zones_binary/") + name));
         const std::vector<Zone> za = parse_zones(ascii, name);
@@ -279,18 +284,24 @@ TEST(BoundaryIo, zones_round_trip_with_64bit_labels_and_uniform_lists)
 TEST(BoundaryIo, bad_zones_name_file_and_line)
 {
     const std::string head = "FoamFile { version 2.0; format ascii; class regIOobject; }\n";
-    std::string m = parse_error_of([&] {
-        parse_zones(head + "1\n(\nz\n{\n    type faceZone;\nfaceLabels List<label> 2(1 2);\n"
-                           "flipMap List<bool> 3{0};\n}\n)",
-                    "faceZones");
-    });
+    std::string m = parse_error_of(
+        [&]
+        {
+            parse_zones(head + "1\n(\nz\n{\n    type faceZone;\nfaceLabels List<label> 2(1 2);\n"
+                               "flipMap List<bool> 3{0};\n}\n)",
+                        "faceZones");
+        });
     EXPECT_TRUE(contains(m, "faceZones:8:") && contains(m, "flipMap")) << m;
-    m = parse_error_of([&] {
-        parse_zones(head + "1\n(\nz\n{\n    type cellZone;\ncellLabels List<label> 2(1 -2);\n}\n)",
-                    "cellZones");
-    });
+    m = parse_error_of(
+        [&]
+        {
+            parse_zones(head +
+                            "1\n(\nz\n{\n    type cellZone;\ncellLabels List<label> 2(1 -2);\n}\n)",
+                        "cellZones");
+        });
     EXPECT_TRUE(contains(m, "cellZones:7:") && contains(m, "negative")) << m;
-    m = parse_error_of([&] { parse_zones(head + "1\n(\nz\n{\ncellLabels 0();\n}\n)", "cellZones"); });
+    m = parse_error_of([&]
+                       { parse_zones(head + "1\n(\nz\n{\ncellLabels 0();\n}\n)", "cellZones"); });
     EXPECT_TRUE(contains(m, "cellZones:5:") && contains(m, "type")) << m;
     m = parse_error_of([&] { parse_zones("1\n(\n)", "cellZones"); });
     EXPECT_TRUE(contains(m, "cellZones:1:") && contains(m, "FoamFile")) << m;

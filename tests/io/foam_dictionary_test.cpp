@@ -53,7 +53,8 @@ bool contains(const std::string& text, const std::string& part)
 ParseOptions memory_files(std::map<std::string, std::string> files)
 {
     ParseOptions o;
-    o.read_file = [files](const fs::path& p) -> std::optional<std::string> {
+    o.read_file = [files](const fs::path& p) -> std::optional<std::string>
+    {
         const auto it = files.find(p.lexically_normal().string());
         if (it == files.end())
             return std::nullopt;
@@ -189,8 +190,8 @@ TEST(FoamDictionary, regex_keys_exact_match_wins_then_last_regex)
     const FoamDictionary e = parse_dictionary("\"wal.*\" 1;", "f");
     EXPECT_FALSE(e.found("xwall"));
     EXPECT_TRUE(e.found("wall"));
-    EXPECT_TRUE(contains(parse_error_of([] { parse_dictionary("\n\"(unclosed\" 1;", "f"); }),
-                         "f:2:"));
+    EXPECT_TRUE(
+        contains(parse_error_of([] { parse_dictionary("\n\"(unclosed\" 1;", "f"); }), "f:2:"));
 }
 
 TEST(FoamDictionary, duplicate_keys_merge_recursively_by_default)
@@ -229,8 +230,8 @@ TEST(FoamDictionary, input_modes)
     const std::string m =
         parse_error_of([] { parse_dictionary("#inputMode error\na 1;\n\na 2;\n", "f"); });
     EXPECT_TRUE(contains(m, "f:4:") && contains(m, "duplicate")) << m;
-    EXPECT_TRUE(contains(parse_error_of([] { parse_dictionary("\n#inputMode bogus\n", "f"); }),
-                         "f:2:"));
+    EXPECT_TRUE(
+        contains(parse_error_of([] { parse_dictionary("\n#inputMode bogus\n", "f"); }), "f:2:"));
 }
 
 TEST(FoamDictionary, include_relative_to_including_file_on_disk)
@@ -281,14 +282,17 @@ TEST(FoamDictionary, include_from_memory_with_env_and_case_paths)
     o.case_dir = "/case";
     EXPECT_EQ(parse_dictionary("#include \"<constant>/d\"", "/elsewhere/f", o).get<int>("w"), 4);
     const std::string m = parse_error_of(
-        [&] { parse_dictionary("\n#include \"$MESHMORPH_UNDEFINED_VAR_X/c\"", "/case/system/top", o); });
+        [&] {
+            parse_dictionary("\n#include \"$MESHMORPH_UNDEFINED_VAR_X/c\"", "/case/system/top", o);
+        });
     EXPECT_TRUE(contains(m, "top:2:")) << m;
 }
 
 TEST(FoamDictionary, include_cycle_is_an_error)
 {
     ParseOptions o = memory_files({{"/c/system/a", "#include \"a\""}});
-    const std::string m = parse_error_of([&] { parse_dictionary("#include \"a\"", "/c/system/a", o); });
+    const std::string m =
+        parse_error_of([&] { parse_dictionary("#include \"a\"", "/c/system/a", o); });
     EXPECT_TRUE(contains(m, "nesting")) << m;
 }
 
@@ -334,7 +338,8 @@ TEST(FoamDictionary, variable_substitution_and_scoping)
     EXPECT_EQ(merged.keys(), (std::vector<std::string>{"b", "c", "e"}));
     EXPECT_EQ(merged.sub_dict("c").scope(), "merged.c");
 
-    const std::string m = parse_error_of([] { parse_dictionary("a 1;\n\nb $nothingLikeThis;", "f"); });
+    const std::string m =
+        parse_error_of([] { parse_dictionary("a 1;\n\nb $nothingLikeThis;", "f"); });
     EXPECT_TRUE(contains(m, "f:3:") && contains(m, "$nothingLikeThis")) << m;
 }
 
@@ -342,8 +347,7 @@ TEST(FoamDictionary, code_directives_are_rejected_with_file_and_line)
 {
     for (const char* directive : {"#calc", "#eval", "#codeStream"})
     {
-        const std::string value_form =
-            std::string("a 1;\n\nb ") + directive + " \"$a * 2\";\n";
+        const std::string value_form = std::string("a 1;\n\nb ") + directive + " \"$a * 2\";\n";
         std::string m = parse_error_of([&] { parse_dictionary(value_form, "system/dict"); });
         EXPECT_TRUE(contains(m, "system/dict:3:") && contains(m, directive)) << m;
         const std::string keyword_form = std::string("\n") + directive + " { code #{ x #}; }\n";
@@ -464,7 +468,8 @@ TEST(FoamDictionary, binary_compound_lists)
 
 TEST(FoamDictionary, truncated_input_errors_point_at_the_open_construct)
 {
-    std::string m = parse_error_of([] { read_dictionary(test::data_path("dict/unterminated_dict")); });
+    std::string m =
+        parse_error_of([] { read_dictionary(test::data_path("dict/unterminated_dict")); });
     EXPECT_TRUE(contains(m, "unterminated_dict:3:") && contains(m, "outer")) << m;
     m = parse_error_of([] { parse_dictionary("a 1;\nb 2", "f"); });
     EXPECT_TRUE(contains(m, "f:2:") && contains(m, "';'")) << m;
@@ -536,9 +541,9 @@ TEST(FoamDictionary, parses_openfoam_tutorial_dictionaries)
     std::vector<fs::path> roots = {"/usr/share/openfoam/tutorials",
                                    "/usr/share/doc/openfoam-examples/examples"};
     std::vector<fs::path> files;
-    const std::vector<std::string> names = {"blockMeshDict", "snappyHexMeshDict", "controlDict",
-                                            "fvSchemes", "fvSolution", "decomposeParDict",
-                                            "topoSetDict", "surfaceFeatureExtractDict"};
+    const std::vector<std::string> names = {
+        "blockMeshDict", "snappyHexMeshDict", "controlDict", "fvSchemes",
+        "fvSolution",    "decomposeParDict",  "topoSetDict", "surfaceFeatureExtractDict"};
     for (const fs::path& root : roots)
     {
         std::error_code ec;
@@ -639,7 +644,8 @@ TEST(FoamDictionary, reads_motorbike_snappy_hex_mesh_dict)
         gzclose(g);
     }
     ParseOptions o;
-    o.read_file = [](const fs::path& p) -> std::optional<std::string> {
+    o.read_file = [](const fs::path& p) -> std::optional<std::string>
+    {
         if (p.filename() == "meshQualityDict")
             return std::string("maxNonOrtho 65;\n");
         return std::nullopt;

@@ -297,11 +297,12 @@ TEST(FoamTokenizer, negative_list_size_is_rejected)
 
 TEST(FoamHeader, parses_banner_and_all_keys)
 {
-    const std::string text = "/*-----*\\\n| banner |\n\\*-----*/\n"
-                             "FoamFile\n{\n    version 2.0;\n    format binary;\n"
-                             "    class vectorField;\n    arch \"LSB;label=64;scalar=32\";\n"
-                             "    note \"nPoints:8  nCells:1\";\n    location \"constant/polyMesh\";\n"
-                             "    object points;\n    unknownKey whatever;\n}\n// * * //\nbody";
+    const std::string text =
+        "/*-----*\\\n| banner |\n\\*-----*/\n"
+        "FoamFile\n{\n    version 2.0;\n    format binary;\n"
+        "    class vectorField;\n    arch \"LSB;label=64;scalar=32\";\n"
+        "    note \"nPoints:8  nCells:1\";\n    location \"constant/polyMesh\";\n"
+        "    object points;\n    unknownKey whatever;\n}\n// * * //\nbody";
     FoamTokenizer tok(text, "points");
     ASSERT_TRUE(has_header(tok));
     const FoamHeader h = parse_header(tok);
@@ -319,7 +320,8 @@ TEST(FoamHeader, parses_banner_and_all_keys)
 
 TEST(FoamHeader, arch_defaults_and_variants)
 {
-    const auto parse = [](const std::string& arch) {
+    const auto parse = [](const std::string& arch)
+    {
         std::string text = "FoamFile { format binary; class labelList;";
         if (!arch.empty())
             text += " arch \"" + arch + "\";";
@@ -346,7 +348,8 @@ TEST(FoamHeader, arch_defaults_and_variants)
 
 TEST(FoamHeader, missing_header_or_keys_are_errors_with_line)
 {
-    const auto header_of = [](const std::string& text) {
+    const auto header_of = [](const std::string& text)
+    {
         FoamTokenizer tok(text, "constant/polyMesh/points");
         parse_header(tok);
     };
@@ -370,8 +373,8 @@ TEST(FoamHeader, missing_header_or_keys_are_errors_with_line)
 TEST(FoamHeader, format_header_reproduces_openfoam_output)
 {
     // Files written by OpenFOAM v1912 (blockMesh + topoSet + foamFormatConvert).
-    for (const char* name : {"boundary_cavity", "owner_binary", "zones_binary/faceZones",
-                             "zones_ascii/cellZones"})
+    for (const char* name :
+         {"boundary_cavity", "owner_binary", "zones_binary/faceZones", "zones_ascii/cellZones"})
     {
         const std::string text = read_file(test::data_path(std::string("dict/") + name));
         ASSERT_FALSE(text.empty()) << name;

@@ -18,8 +18,9 @@ Index to_index(const FoamEntry& e, std::int64_t v, const std::string& what)
     if (v < 0)
         throw e.error(what + " must not be negative (found " + std::to_string(v) + ")");
     if (v > static_cast<std::int64_t>(std::numeric_limits<Index>::max()))
-        throw e.error(what + " " + std::to_string(v) + " does not fit the label size of this "
-                             "build (configure with MESHMORPH_LABEL64=ON)");
+        throw e.error(what + " " + std::to_string(v) +
+                      " does not fit the label size of this "
+                      "build (configure with MESHMORPH_LABEL64=ON)");
     return static_cast<Index>(v);
 }
 
@@ -31,8 +32,8 @@ std::string read_list_name(FoamTokenizer& tok, const std::string& file_kind, std
         throw tok.error_at(name.line, file_kind + " declares " + std::to_string(n) +
                                           " entries but has only " + std::to_string(i));
     if (!name.is_word() && !name.is_string())
-        throw tok.error_at(name.line, "expected a " + file_kind + " entry name but found " +
-                                          name.describe());
+        throw tok.error_at(name.line,
+                           "expected a " + file_kind + " entry name but found " + name.describe());
     return std::move(name.text);
 }
 
@@ -85,14 +86,14 @@ std::string labels_keyword(const std::string& type)
         return "faceLabels";
     if (type == "pointZone")
         return "pointLabels";
-    throw InvalidInput("unknown zone type '" + type + "' (expected cellZone, faceZone or pointZone)");
+    throw InvalidInput("unknown zone type '" + type +
+                       "' (expected cellZone, faceZone or pointZone)");
 }
 
 // One label/bool list entry as OpenFOAM v1912 writes it in a zone file.
 template <class T>
 void write_zone_list(std::string& out, const std::string& key, const std::string& type_word,
-                     const std::vector<T>& values, FoamFormat format, int label_bytes,
-                     bool is_bool)
+                     const std::vector<T>& values, FoamFormat format, int label_bytes, bool is_bool)
 {
     const std::size_t n = values.size();
     out += key;
@@ -128,9 +129,8 @@ void write_zone_list(std::string& out, const std::string& key, const std::string
         out += ");\n";
         return;
     }
-    const auto item = [&](const T& v) {
-        return is_bool ? std::string(v ? "1" : "0") : std::to_string(static_cast<std::int64_t>(v));
-    };
+    const auto item = [&](const T& v)
+    { return is_bool ? std::string(v ? "1" : "0") : std::to_string(static_cast<std::int64_t>(v)); };
     bool uniform = n > 1;
     for (std::size_t i = 1; i < n && uniform; ++i)
         uniform = (values[i] != 0) == (values[0] != 0) && (is_bool || values[i] == values[0]);
@@ -199,9 +199,8 @@ std::vector<Patch> parse_boundary(FoamTokenizer& tok)
                 p.entries.emplace_back(k, e.source_text());
             }
         }
-        const auto missing = [&](const char* key) {
-            return tok.error_at(d.line(), "patch '" + p.name + "' has no '" + key + "' entry");
-        };
+        const auto missing = [&](const char* key)
+        { return tok.error_at(d.line(), "patch '" + p.name + "' has no '" + key + "' entry"); };
         if (!has_type)
             throw missing("type");
         if (!has_n)

@@ -160,8 +160,8 @@ bool FoamEntry::matches(const std::string& name) const
 ParseError FoamEntry::error(const std::string& msg) const
 {
     return ParseError(path_, line_,
-                      "keyword '" + keyword_ + "' in dictionary '" +
-                          display_scope(scope_, path_) + "': " + msg);
+                      "keyword '" + keyword_ + "' in dictionary '" + display_scope(scope_, path_) +
+                          "': " + msg);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -172,7 +172,10 @@ FoamDictionary::FoamDictionary(std::string path, std::string scope, std::size_t 
 {
 }
 
-std::string FoamDictionary::scope_name() const { return display_scope(scope_, path_); }
+std::string FoamDictionary::scope_name() const
+{
+    return display_scope(scope_, path_);
+}
 
 const FoamEntry* FoamDictionary::find(const std::string& key) const
 {
@@ -195,8 +198,7 @@ const FoamEntry& FoamDictionary::entry(const std::string& key) const
     const FoamEntry* e = find(key);
     if (!e)
         throw ParseError(path_, line_ == 0 ? 1 : line_,
-                         "keyword '" + key + "' is undefined in dictionary '" + scope_name() +
-                             "'");
+                         "keyword '" + key + "' is undefined in dictionary '" + scope_name() + "'");
     return *e;
 }
 
@@ -384,7 +386,8 @@ struct detail_dictionary_access
             }
             if (close >= name.size())
                 return std::nullopt;
-            const std::optional<std::string> inner = expand_inner(name.substr(at + 2, close - at - 2));
+            const std::optional<std::string> inner =
+                expand_inner(name.substr(at + 2, close - at - 2));
             if (!inner)
                 return std::nullopt;
             std::string value;
@@ -448,7 +451,8 @@ struct detail_dictionary_access
     static void dict_tokens(const FoamDictionary& d, std::size_t line,
                             std::vector<FoamValueToken>& out)
     {
-        const auto punct = [&](char c) {
+        const auto punct = [&](char c)
+        {
             FoamValueToken t;
             t.type = TokenType::punctuation;
             t.punct = c;
@@ -481,7 +485,8 @@ struct detail_dictionary_access
 
     fs::path expand_include(const FoamTokenizer& tok, std::size_t line, std::string s) const
     {
-        const auto replace_prefix = [&](const std::string& prefix, const fs::path& base) {
+        const auto replace_prefix = [&](const std::string& prefix, const fs::path& base)
+        {
             if (s.rfind(prefix, 0) == 0)
             {
                 s = (base / s.substr(prefix.size())).string();
@@ -515,8 +520,8 @@ struct detail_dictionary_access
             }
             else
             {
-                while (j < s.size() && (std::isalnum(static_cast<unsigned char>(s[j])) ||
-                                        s[j] == '_'))
+                while (j < s.size() &&
+                       (std::isalnum(static_cast<unsigned char>(s[j])) || s[j] == '_'))
                     ++j;
                 var = s.substr(i + 1, j - i - 1);
             }
@@ -540,16 +545,14 @@ struct detail_dictionary_access
     {
         const FoamToken arg = tok.next();
         if (!arg.is_string() && !arg.is_word())
-            throw tok.error_at(directive.line, "expected a file name after '" +
-                                                   directive.text + "' but found " +
-                                                   arg.describe());
+            throw tok.error_at(directive.line, "expected a file name after '" + directive.text +
+                                                   "' but found " + arg.describe());
         const bool optional = directive.text != "#include";
         const fs::path file = expand_include(tok, directive.line, arg.text);
         if (include_depth >= options.max_include_depth)
             throw tok.error_at(directive.line, "#include nesting deeper than " +
                                                    std::to_string(options.max_include_depth) +
-                                                   " (include cycle?) at '" + file.string() +
-                                                   "'");
+                                                   " (include cycle?) at '" + file.string() + "'");
         std::optional<std::string> text =
             options.read_file ? options.read_file(file) : read_file_plain_or_gz(file);
         if (!text)
@@ -581,8 +584,9 @@ struct detail_dictionary_access
             throw tok.error_at(d.line, "'#includeEtc' (files of the OpenFOAM installation) is not "
                                        "supported: copy the entries into the dictionary");
         else if (w == "#includeFunc" || w == "#includeModel")
-            throw tok.error_at(d.line, "'" + w + "' (OpenFOAM function objects/models) is not "
-                                                 "supported");
+            throw tok.error_at(d.line, "'" + w +
+                                           "' (OpenFOAM function objects/models) is not "
+                                           "supported");
         else if (is_code_directive(w))
             throw_code_directive(tok, d.line, w);
         else if (w == "#inputMode")
@@ -636,9 +640,9 @@ struct detail_dictionary_access
                         throw tok.error_at(k.line, "invalid regular expression \"" + k.text +
                                                        "\" after '#remove': " + ex.what());
                     }
-                    std::erase_if(es, [&](const FoamEntry& e) {
-                        return std::regex_match(e.keyword_, re) || e.keyword_ == k.text;
-                    });
+                    std::erase_if(
+                        es, [&](const FoamEntry& e)
+                        { return std::regex_match(e.keyword_, re) || e.keyword_ == k.text; });
                 }
                 else
                     std::erase_if(es, [&](const FoamEntry& e) { return e.keyword_ == k.text; });
@@ -659,8 +663,7 @@ struct detail_dictionary_access
             if (key.is_end())
             {
                 if (nested)
-                    throw tok.error_at(dict.line_, "unterminated dictionary '" +
-                                                       dict.scope_name() +
+                    throw tok.error_at(dict.line_, "unterminated dictionary '" + dict.scope_name() +
                                                        "' (no closing '}' before end of file)");
                 if (!is_include)
                     dict.end_line_ = tok.line();
@@ -689,8 +692,7 @@ struct detail_dictionary_access
                 {
                     log::warning() << tok.path() << ":" << key.line << ": '" << key.text
                                    << "' at keyword position "
-                                   << (src ? "names a value, not a dictionary"
-                                           : "is undefined")
+                                   << (src ? "names a value, not a dictionary" : "is undefined")
                                    << "; ignored";
                     tok.accept(';');
                     continue;
@@ -808,8 +810,8 @@ struct detail_dictionary_access
                     {
                         FoamValueToken vt;
                         static_cast<FoamToken&>(vt) = t;
-                        vt.compound =
-                            std::make_shared<const FoamCompound>(read_compound(tok, t.text, options));
+                        vt.compound = std::make_shared<const FoamCompound>(
+                            read_compound(tok, t.text, options));
                         last = tok.offset();
                         e.tokens_.push_back(std::move(vt));
                         continue;
@@ -945,9 +947,8 @@ FoamCompound read_compound(FoamTokenizer& tok, const std::string& type_word,
         case Kind::label:
             c.labels.resize(count);
             for (std::size_t i = 0; i < count; ++i)
-                c.labels[i] = options.label_bytes == 4
-                                  ? load_le<std::int32_t>(p + 4 * i)
-                                  : load_le<std::int64_t>(p + 8 * i);
+                c.labels[i] = options.label_bytes == 4 ? load_le<std::int32_t>(p + 4 * i)
+                                                       : load_le<std::int64_t>(p + 8 * i);
             break;
         case Kind::boolean:
             c.labels.resize(count);
@@ -984,12 +985,14 @@ FoamCompound read_compound(FoamTokenizer& tok, const std::string& type_word,
         throw tok.error_at(open.line, "expected '(' " + std::string(n >= 0 ? "or '{' " : "") +
                                           "to start the " + type_word + " but found " +
                                           open.describe());
-    const auto fail = [&](std::size_t index) -> ParseError {
+    const auto fail = [&](std::size_t index) -> ParseError
+    {
         const FoamToken t = tok.next();
         return tok.error_at(t.line, "bad element " + std::to_string(index) + " of " + type_word +
                                         ": found " + t.describe());
     };
-    const auto read_one = [&](std::size_t index) {
+    const auto read_one = [&](std::size_t index)
+    {
         switch (c.kind)
         {
         case Kind::label:
@@ -1047,7 +1050,8 @@ FoamCompound read_compound(FoamTokenizer& tok, const std::string& type_word,
         }
         }
     };
-    const auto reserve = [&](std::size_t count) {
+    const auto reserve = [&](std::size_t count)
+    {
         // Never trust a size for allocation beyond what the remaining text could hold.
         count = std::min<std::size_t>(count, tok.buffer().size() - tok.offset());
         if (c.kind == Kind::label || c.kind == Kind::boolean)
@@ -1084,7 +1088,8 @@ FoamCompound read_compound(FoamTokenizer& tok, const std::string& type_word,
     if (n >= 0)
     {
         reserve(static_cast<std::size_t>(n));
-        const auto too_short = [&](std::int64_t i) {
+        const auto too_short = [&](std::int64_t i)
+        {
             return tok.error_at(start_line, type_word + " declares " + std::to_string(n) +
                                                 " elements but has only " + std::to_string(i));
         };
@@ -1145,8 +1150,8 @@ FoamCompound read_compound(FoamTokenizer& tok, const std::string& type_word,
         const FoamToken close = tok.next();
         if (!close.is_punct(')'))
             throw tok.error_at(close.line, type_word + " declares " + std::to_string(n) +
-                                               " elements but has more (found " +
-                                               close.describe() + " where ')' was expected)");
+                                               " elements but has more (found " + close.describe() +
+                                               " where ')' was expected)");
         return c;
     }
     for (std::size_t i = 0;; ++i)
@@ -1213,8 +1218,8 @@ FoamDictionary parse_dictionary_block(FoamTokenizer& tokenizer, const std::strin
     FoamDictionary dict(tokenizer.path(), scope, open.line);
     detail_dictionary_access parser;
     parser.options = options;
-    parser.case_dir = options.case_dir.empty() ? derive_case_dir(fs::path(tokenizer.path()))
-                                               : options.case_dir;
+    parser.case_dir =
+        options.case_dir.empty() ? derive_case_dir(fs::path(tokenizer.path())) : options.case_dir;
     parser.scopes.push_back(&dict);
     parser.parse_entries(tokenizer, dict, true);
     return dict;
@@ -1253,8 +1258,7 @@ public:
     }
     [[noreturn]] void fail(const std::string& expected) const
     {
-        const std::string found =
-            i_ < t_.size() ? t_[i_].describe() : std::string("end of value");
+        const std::string found = i_ < t_.size() ? t_[i_].describe() : std::string("end of value");
         throw e_.error("expected " + expected + " but found " + found);
     }
     void expect_punct(char c, const std::string& context)
@@ -1395,7 +1399,8 @@ std::vector<T> take_list(Cursor& c, const std::string& what, ReadOne read_one,
 std::vector<std::int64_t> take_label_list(Cursor& c)
 {
     return take_list<std::int64_t>(c, "integers", take_label,
-                                   [](const FoamCompound& k, std::vector<std::int64_t>& out) {
+                                   [](const FoamCompound& k, std::vector<std::int64_t>& out)
+                                   {
                                        if (k.kind != FoamCompound::Kind::label &&
                                            k.kind != FoamCompound::Kind::boolean)
                                            return false;
@@ -1406,7 +1411,8 @@ std::vector<std::int64_t> take_label_list(Cursor& c)
 
 std::int32_t narrow(const FoamEntry& e, std::int64_t v)
 {
-    if (v < std::numeric_limits<std::int32_t>::min() || v > std::numeric_limits<std::int32_t>::max())
+    if (v < std::numeric_limits<std::int32_t>::min() ||
+        v > std::numeric_limits<std::int32_t>::max())
         throw e.error("integer " + std::to_string(v) + " does not fit in 32 bits");
     return static_cast<std::int32_t>(v);
 }
@@ -1466,16 +1472,17 @@ template <> Vector3 FoamEntry::get<Vector3>(std::size_t first) const
 template <> std::vector<double> FoamEntry::get<std::vector<double>>(std::size_t first) const
 {
     Cursor c(*this, first);
-    std::vector<double> v = take_list<double>(
-        c, "numbers", take_scalar, [](const FoamCompound& k, std::vector<double>& out) {
-            if (k.kind == FoamCompound::Kind::scalar)
-                out = k.scalars;
-            else if (k.kind == FoamCompound::Kind::label)
-                out.assign(k.labels.begin(), k.labels.end());
-            else
-                return false;
-            return true;
-        });
+    std::vector<double> v = take_list<double>(c, "numbers", take_scalar,
+                                              [](const FoamCompound& k, std::vector<double>& out)
+                                              {
+                                                  if (k.kind == FoamCompound::Kind::scalar)
+                                                      out = k.scalars;
+                                                  else if (k.kind == FoamCompound::Kind::label)
+                                                      out.assign(k.labels.begin(), k.labels.end());
+                                                  else
+                                                      return false;
+                                                  return true;
+                                              });
     c.finish("the list");
     return v;
 }
@@ -1503,13 +1510,15 @@ template <>
 std::vector<std::string> FoamEntry::get<std::vector<std::string>>(std::size_t first) const
 {
     Cursor c(*this, first);
-    std::vector<std::string> v = take_list<std::string>(
-        c, "words", take_string, [](const FoamCompound& k, std::vector<std::string>& out) {
-            if (k.kind != FoamCompound::Kind::word)
-                return false;
-            out = k.words;
-            return true;
-        });
+    std::vector<std::string> v =
+        take_list<std::string>(c, "words", take_string,
+                               [](const FoamCompound& k, std::vector<std::string>& out)
+                               {
+                                   if (k.kind != FoamCompound::Kind::word)
+                                       return false;
+                                   out = k.words;
+                                   return true;
+                               });
     c.finish("the list");
     return v;
 }
@@ -1518,7 +1527,9 @@ template <> std::vector<Vector3> FoamEntry::get<std::vector<Vector3>>(std::size_
 {
     Cursor c(*this, first);
     std::vector<Vector3> v = take_list<Vector3>(
-        c, "vectors", take_vector, [](const FoamCompound& k, std::vector<Vector3>& out) {
+        c, "vectors", take_vector,
+        [](const FoamCompound& k, std::vector<Vector3>& out)
+        {
             if (k.kind != FoamCompound::Kind::vector)
                 return false;
             out.resize(k.size());

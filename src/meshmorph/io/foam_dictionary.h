@@ -9,7 +9,8 @@
 //!   double tol = dict.get_or<double>("tolerance", 1e-6);
 //!   const FoamDictionary& wing = dict.sub_dict("boundary").sub_dict("wing");
 //!   Vector3 v = wing.get<Vector3>("vector");   // ParseError "…/morphMeshDict:12: keyword
-//!                                              // 'vector' is undefined in dictionary 'boundary.wing'"
+//!                                              // 'vector' is undefined in dictionary
+//!                                              'boundary.wing'"
 //! \endcode
 #pragma once
 
@@ -39,17 +40,17 @@ struct FoamCompound
 {
     enum class Kind
     {
-        label,  //!< List<label>: `labels`
-        scalar, //!< List<scalar>: `scalars`
-        vector, //!< List<vector>: `scalars`, 3 per element (x y z)
+        label,   //!< List<label>: `labels`
+        scalar,  //!< List<scalar>: `scalars`
+        vector,  //!< List<vector>: `scalars`, 3 per element (x y z)
         boolean, //!< List<bool>: `labels` (0/1)
-        word,   //!< List<word>: `words`
+        word,    //!< List<word>: `words`
     };
     Kind kind = Kind::label;
-    std::string type_word;             //!< as written, e.g. "List<label>"
-    std::vector<std::int64_t> labels;  //!< label and bool elements
-    std::vector<double> scalars;       //!< scalar elements, or vector components
-    std::vector<std::string> words;    //!< word elements
+    std::string type_word;            //!< as written, e.g. "List<label>"
+    std::vector<std::int64_t> labels; //!< label and bool elements
+    std::vector<double> scalars;      //!< scalar elements, or vector components
+    std::vector<std::string> words;   //!< word elements
 
     //! Number of elements (vectors count once).
     std::size_t size() const;

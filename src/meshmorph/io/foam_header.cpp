@@ -37,7 +37,10 @@ void write_entry(std::string& out, const std::string& key, const std::string& va
 
 } // namespace
 
-bool has_header(FoamTokenizer& tokenizer) { return tokenizer.peek().is_word("FoamFile"); }
+bool has_header(FoamTokenizer& tokenizer)
+{
+    return tokenizer.peek().is_word("FoamFile");
+}
 
 void parse_arch(const std::string& arch, FoamHeader& header, const std::string& path,
                 std::size_t line)
@@ -53,7 +56,8 @@ void parse_arch(const std::string& arch, FoamHeader& header, const std::string& 
             throw ParseError(path, line,
                              "big-endian (MSB) binary data is not supported (arch \"" + arch +
                                  "\")");
-        const auto parse_size = [&](const std::string& prefix, int& bytes) {
+        const auto parse_size = [&](const std::string& prefix, int& bytes)
+        {
             if (part.rfind(prefix, 0) != 0)
                 return false;
             const std::string bits = part.substr(prefix.size());
@@ -63,9 +67,8 @@ void parse_arch(const std::string& arch, FoamHeader& header, const std::string& 
                 bytes = 8;
             else
                 throw ParseError(path, line,
-                                 "unsupported " + prefix.substr(0, prefix.size() - 1) +
-                                     " size '" + bits + "' in arch \"" + arch +
-                                     "\" (expected 32 or 64)");
+                                 "unsupported " + prefix.substr(0, prefix.size() - 1) + " size '" +
+                                     bits + "' in arch \"" + arch + "\" (expected 32 or 64)");
             return true;
         };
         if (!parse_size("label=", header.label_bytes))
@@ -115,7 +118,8 @@ FoamHeader parse_header(FoamTokenizer& tokenizer, bool require_format_and_class)
                                                      key.text + "' but found " + t.describe());
             value.push_back(std::move(t));
         }
-        const auto single = [&]() -> const std::string& {
+        const auto single = [&]() -> const std::string&
+        {
             if (value.size() != 1)
                 throw tokenizer.error_at(key.line, "'FoamFile' entry '" + key.text +
                                                        "' must have exactly one value");
@@ -188,6 +192,9 @@ std::string format_header(const FoamHeader& header)
     return out;
 }
 
-std::string format_footer() { return std::string("\n\n") + end_divider; }
+std::string format_footer()
+{
+    return std::string("\n\n") + end_divider;
+}
 
 } // namespace meshmorph::io

@@ -22,14 +22,14 @@ struct FoamHeader
 {
     std::string version = "2.0";
     FoamFormat format = FoamFormat::ascii;
-    std::string class_name;  //!< `class`, e.g. vectorField, faceList, polyBoundaryMesh
-    std::string object;      //!< `object`, e.g. points
-    std::string location;    //!< `location` without quotes; empty when absent
-    std::string note;        //!< `note` without quotes; empty when absent
-    std::string arch;        //!< `arch` as written, e.g. "LSB;label=32;scalar=64"; empty when absent
-    int label_bytes = 4;     //!< from arch `label=32|64` (4 or 8); 4 when absent
-    int scalar_bytes = 8;    //!< from arch `scalar=32|64` (4 or 8); 8 when absent
-    std::size_t line = 0;    //!< line of the `FoamFile` keyword (0 when built in code)
+    std::string class_name; //!< `class`, e.g. vectorField, faceList, polyBoundaryMesh
+    std::string object;     //!< `object`, e.g. points
+    std::string location;   //!< `location` without quotes; empty when absent
+    std::string note;       //!< `note` without quotes; empty when absent
+    std::string arch;       //!< `arch` as written, e.g. "LSB;label=32;scalar=64"; empty when absent
+    int label_bytes = 4;    //!< from arch `label=32|64` (4 or 8); 4 when absent
+    int scalar_bytes = 8;   //!< from arch `scalar=32|64` (4 or 8); 8 when absent
+    std::size_t line = 0;   //!< line of the `FoamFile` keyword (0 when built in code)
 
     bool is_binary() const { return format == FoamFormat::binary; }
 };

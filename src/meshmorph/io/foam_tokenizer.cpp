@@ -36,7 +36,10 @@ inline bool is_punct(char c)
     }
 }
 
-inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
+inline bool is_digit(char c)
+{
+    return c >= '0' && c <= '9';
+}
 
 // Whether the byte at p ends a word or number token.
 inline bool is_delimiter(const char* p, const char* end)
@@ -118,14 +121,20 @@ std::string_view FoamTokenizer::slice(std::size_t begin, std::size_t end) const
     return buffer_.substr(begin, end - begin);
 }
 
-ParseError FoamTokenizer::error(const std::string& msg) const { return ParseError(path_, line_, msg); }
+ParseError FoamTokenizer::error(const std::string& msg) const
+{
+    return ParseError(path_, line_, msg);
+}
 
 ParseError FoamTokenizer::error_at(std::size_t line, const std::string& msg) const
 {
     return ParseError(path_, line, msg);
 }
 
-void FoamTokenizer::discard_peek() { has_peek_ = false; }
+void FoamTokenizer::discard_peek()
+{
+    has_peek_ = false;
+}
 
 void FoamTokenizer::skip_whitespace_and_comments()
 {
@@ -217,7 +226,10 @@ const FoamToken& FoamTokenizer::peek()
     return peek_;
 }
 
-bool FoamTokenizer::at_end() { return peek().is_end(); }
+bool FoamTokenizer::at_end()
+{
+    return peek().is_end();
+}
 
 FoamToken FoamTokenizer::scan()
 {
@@ -419,7 +431,7 @@ std::string_view FoamTokenizer::read_raw(std::size_t n)
                     " bytes of binary data, only " + std::to_string(buffer_.size() - pos_) +
                     " remain");
     const std::string_view data = buffer_.substr(pos_, n);
-    for (const char* p = data.data(), *e = data.data() + n;;)
+    for (const char *p = data.data(), *e = data.data() + n;;)
     {
         const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(e - p));
         if (!nl)

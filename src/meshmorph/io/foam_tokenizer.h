@@ -40,13 +40,13 @@ enum class TokenType
 struct FoamToken
 {
     TokenType type = TokenType::end;
-    char punct = 0;            //!< for punctuation
-    std::string text;          //!< word / unescaped string / number spelling / punctuation
-    std::int64_t label = 0;    //!< for label
-    double scalar = 0.0;       //!< for scalar and label (label converted)
-    std::size_t line = 0;      //!< 1-based line where the token starts
-    std::size_t offset = 0;    //!< byte offset of the first character in the buffer
-    std::size_t end = 0;       //!< byte offset one past the last character
+    char punct = 0;         //!< for punctuation
+    std::string text;       //!< word / unescaped string / number spelling / punctuation
+    std::int64_t label = 0; //!< for label
+    double scalar = 0.0;    //!< for scalar and label (label converted)
+    std::size_t line = 0;   //!< 1-based line where the token starts
+    std::size_t offset = 0; //!< byte offset of the first character in the buffer
+    std::size_t end = 0;    //!< byte offset one past the last character
 
     bool is_end() const { return type == TokenType::end; }
     bool is_punct(char c) const { return type == TokenType::punctuation && punct == c; }
@@ -73,7 +73,8 @@ public:
     //! \throw ParseError on an unterminated string or comment (line where it started), or a
     //! malformed number such as `1.2.3`.
     FoamToken next();
-    //! The next token without consuming it (line()/offset() are unchanged).
+    //! The next token without consuming it (line()/offset() are unchanged). The reference
+    //! stays valid until the tokenizer is used again.
     const FoamToken& peek();
     //! Whether only whitespace and comments remain.
     bool at_end();
