@@ -140,6 +140,30 @@ TEST(ScaledJacobian, jitter_lowers_quality_below_one)
     EXPECT_LE(highest, 1.0 + 1e-14);
 }
 
+TEST(ScaledJacobian, threaded_path_equals_per_cell_formula)
+{
+    // 22500 cells: above the threshold where scaled_jacobian runs OpenMP threads.
+    PolyMesh mesh = test::make_box_mesh(30, 30, 25);
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> u(-0.01, 0.01);
+    const std::vector<char> boundary = boundary_point_mask(mesh);
+    for (Index p = 0; p < mesh.n_points(); ++p)
+        if (!boundary[p])
+            mesh.points.row(p) += Eigen::RowVector3d(u(rng), u(rng), u(rng));
+    const CompactList cf = cell_faces(mesh);
+    const std::vector<CellShape> shapes = classify_cells(mesh, cf);
+    const Eigen::VectorXd sj = scaled_jacobian(mesh, cf, shapes);
+    ASSERT_EQ(sj.size(), mesh.n_cells);
+    for (Index c = 0; c < mesh.n_cells; ++c)
+    {
+        const VtkCell cell = vtk_cell(mesh, cf, c, shapes[c]);
+        std::array<Vector3, 8> p;
+        for (int i = 0; i < 8; ++i)
+            p[i] = mesh.points.row(cell.points[i]).transpose();
+        ASSERT_EQ(sj[c], hex_scaled_jacobian(p)) << "cell " << c; // bit-identical
+    }
+}
+
 #if MESHMORPH_TEST_WITH_VTK
 TEST(ScaledJacobian, hexes_match_vtk_mesh_quality)
 {

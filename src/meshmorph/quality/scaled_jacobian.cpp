@@ -108,47 +108,53 @@ Eigen::VectorXd scaled_jacobian(const PolyMesh& mesh, const CompactList& cell_fa
     const Index n_cells = cell_faces.size();
     Eigen::VectorXd result(n_cells);
     const auto point = [&](Index label) -> Vector3 { return mesh.points.row(label).transpose(); };
-    VtkCell cell; // buffers reused across cells
-    for (Index c = 0; c < n_cells; ++c)
+    // Each thread reuses its own buffers; every cell is independent, so results do not depend
+    // on the thread count. Small meshes stay serial (a parallel region costs more).
+#pragma omp parallel if (n_cells > 20000)
     {
-        cell.type = vtk_cell(mesh, cell_faces, c, shapes[c], cell.points, cell.face_stream);
-        switch (cell.type)
+        VtkCell cell;
+#pragma omp for schedule(static)
+        for (Index c = 0; c < n_cells; ++c)
         {
-        case VtkCellType::hexahedron:
-        {
-            std::array<Vector3, 8> p;
-            for (int i = 0; i < 8; ++i)
-                p[i] = point(cell.points[i]);
-            result[c] = hex_scaled_jacobian(p);
-            break;
-        }
-        case VtkCellType::tetra:
-        {
-            std::array<Vector3, 4> p;
-            for (int i = 0; i < 4; ++i)
-                p[i] = point(cell.points[i]);
-            result[c] = tet_scaled_jacobian(p);
-            break;
-        }
-        case VtkCellType::wedge:
-        {
-            std::array<Vector3, 6> p;
-            for (int i = 0; i < 6; ++i)
-                p[i] = point(cell.points[i]);
-            result[c] = prism_scaled_jacobian(p);
-            break;
-        }
-        case VtkCellType::pyramid:
-        {
-            std::array<Vector3, 5> p;
-            for (int i = 0; i < 5; ++i)
-                p[i] = point(cell.points[i]);
-            result[c] = pyramid_scaled_jacobian(p);
-            break;
-        }
-        default:
-            result[c] = std::numeric_limits<double>::quiet_NaN();
-            break;
+            cell.type = vtk_cell(mesh, cell_faces, c, shapes[c], cell.points, cell.face_stream);
+            switch (cell.type)
+            {
+            case VtkCellType::hexahedron:
+            {
+                std::array<Vector3, 8> p;
+                for (int i = 0; i < 8; ++i)
+                    p[i] = point(cell.points[i]);
+                result[c] = hex_scaled_jacobian(p);
+                break;
+            }
+            case VtkCellType::tetra:
+            {
+                std::array<Vector3, 4> p;
+                for (int i = 0; i < 4; ++i)
+                    p[i] = point(cell.points[i]);
+                result[c] = tet_scaled_jacobian(p);
+                break;
+            }
+            case VtkCellType::wedge:
+            {
+                std::array<Vector3, 6> p;
+                for (int i = 0; i < 6; ++i)
+                    p[i] = point(cell.points[i]);
+                result[c] = prism_scaled_jacobian(p);
+                break;
+            }
+            case VtkCellType::pyramid:
+            {
+                std::array<Vector3, 5> p;
+                for (int i = 0; i < 5; ++i)
+                    p[i] = point(cell.points[i]);
+                result[c] = pyramid_scaled_jacobian(p);
+                break;
+            }
+            default:
+                result[c] = std::numeric_limits<double>::quiet_NaN();
+                break;
+            }
         }
     }
     return result;
