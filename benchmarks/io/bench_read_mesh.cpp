@@ -12,10 +12,10 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <iostream>
 #include <string>
-#include <ctime>
 
 #include <omp.h>
 #include <sys/resource.h>
@@ -69,9 +69,8 @@ double mesh_mb(const PolyMesh& m)
 
 std::string describe(const io::FoamFileInfo& f)
 {
-    return std::string(f.header.is_binary() ? "binary" : "ascii") +
-           (f.is_compressed ? "+gz" : "") + " " + std::to_string(f.bytes / 1000000.0).substr(0, 6) +
-           " MB";
+    return std::string(f.header.is_binary() ? "binary" : "ascii") + (f.is_compressed ? "+gz" : "") +
+           " " + std::to_string(f.bytes / 1000000.0).substr(0, 6) + " MB";
 }
 
 } // namespace
@@ -113,8 +112,7 @@ int main(int argc, char** argv)
         std::cout << "Case      : " << case_dir.string() << "\n"
                   << "Threads   : " << (serial ? 1 : omp_get_max_threads())
                   << (serial ? "" : " (used for large ASCII lists when the load allows)") << "\n"
-                  << "Load avg  : " << load_average() << " on " << omp_get_num_procs()
-                  << " cores\n"
+                  << "Load avg  : " << load_average() << " on " << omp_get_num_procs() << " cores\n"
                   << "RSS before: " << peak_rss_mb() << " MB\n";
         io::PolyMeshReadOptions options;
         options.parallel = !serial;
@@ -160,17 +158,18 @@ int main(int argc, char** argv)
             t0 = now();
             io::write_poly_mesh(mesh, m, write_dir, "constant");
             const double t_all = now() - t0;
-            std::printf("Write     : points %.3f s (%.0f MB/s), whole polyMesh %.3f s (%.0f MB/s)\n",
-                        t_points, m.points.bytes / 1e6 / t_points, t_all, mb / t_all);
+            std::printf(
+                "Write     : points %.3f s (%.0f MB/s), whole polyMesh %.3f s (%.0f MB/s)\n",
+                t_points, m.points.bytes / 1e6 / t_points, t_all, mb / t_all);
         }
         if (run_check_mesh && std::system("command -v checkMesh > /dev/null 2>&1") == 0)
         {
             if (std::getenv("WM_PROJECT_DIR") == nullptr)
                 setenv("WM_PROJECT_DIR", "/usr/share/openfoam", 0);
-            const std::string cmd = "checkMesh -case '" + case_dir.string() +
-                                    "' -constant > '" + (case_dir / "log.benchCheckMesh").string() +
-                                    "' 2>&1";
-            const auto children_cpu = [] {
+            const std::string cmd = "checkMesh -case '" + case_dir.string() + "' -constant > '" +
+                                    (case_dir / "log.benchCheckMesh").string() + "' 2>&1";
+            const auto children_cpu = []
+            {
                 rusage u{};
                 getrusage(RUSAGE_CHILDREN, &u);
                 return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +

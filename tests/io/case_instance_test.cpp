@@ -22,7 +22,10 @@ std::vector<std::string> names(const std::vector<TimeDir>& times)
     return out;
 }
 
-void touch(const fs::path& path) { test::write_bytes(path, "x"); }
+void touch(const fs::path& path)
+{
+    test::write_bytes(path, "x");
+}
 
 } // namespace
 
@@ -102,16 +105,18 @@ TEST(CaseInstance, reads_time_settings_from_control_dict)
 {
     const fs::path dir = test::scratch_dir("ci_control");
     EXPECT_EQ(read_time_settings(dir).delta_t, 1.0); // no controlDict: defaults
-    test::write_bytes(dir / "system/controlDict",
-                      "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
-                      "deltaT 0.005;\ntimeFormat fixed;\ntimePrecision 4;\n");
+    test::write_bytes(
+        dir / "system/controlDict",
+        "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
+        "deltaT 0.005;\ntimeFormat fixed;\ntimePrecision 4;\n");
     const TimeSettings s = read_time_settings(dir);
     EXPECT_EQ(s.delta_t, 0.005);
     EXPECT_EQ(s.format, TimeFormat::fixed);
     EXPECT_EQ(s.precision, 4);
-    test::write_bytes(dir / "system/controlDict",
-                      "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
-                      "deltaT -1;\n");
+    test::write_bytes(
+        dir / "system/controlDict",
+        "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
+        "deltaT -1;\n");
     const std::string msg = test::error_of([&] { read_time_settings(dir); });
     EXPECT_NE(msg.find("controlDict:2"), std::string::npos) << msg;
 }

@@ -18,7 +18,10 @@ using namespace meshmorph::io;
 namespace
 {
 
-FoamHeader ascii_header() { return FoamHeader{}; }
+FoamHeader ascii_header()
+{
+    return FoamHeader{};
+}
 
 FoamHeader binary_header(int label_bytes = 4, int scalar_bytes = 8)
 {
@@ -127,8 +130,8 @@ TEST(FoamLists, reads_face_lists_in_all_four_forms)
     expected.push_back({4, 5, 6});
     expected.push_back({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11});
 
-    FoamTokenizer a("3\n(\n4(0 1 2 3)\n3(4 5 6)\n\n12\n(\n0\n1\n2\n3\n4\n5\n6\n7\n8\n9\n10\n11\n)\n\n)",
-                    "f");
+    FoamTokenizer a(
+        "3\n(\n4(0 1 2 3)\n3(4 5 6)\n\n12\n(\n0\n1\n2\n3\n4\n5\n6\n7\n8\n9\n10\n11\n)\n\n)", "f");
     EXPECT_EQ(read_face_list(a, ascii_header(), false), expected);
 
     FoamTokenizer b("4(0 4 7 19) 19(0 1 2 3 4 5 6 0 1 2 3 4 5 6 7 8 9 10 11)", "f");
@@ -172,11 +175,13 @@ TEST(FoamLists, size_mismatch_errors_name_file_and_line)
     EXPECT_NE(fewer.find("ends after 2"), std::string::npos) << fewer;
     const std::string more = test::error_of([] { labels("2\n(\n1\n2\n3\n)"); });
     EXPECT_NE(more.find("test/owner:5"), std::string::npos) << more;
-    const std::string expected = test::error_of([] {
-        ListReadOptions o;
-        o.expected_size = 4;
-        labels("\n\n3(1 2 3)", ascii_header(), o);
-    });
+    const std::string expected = test::error_of(
+        []
+        {
+            ListReadOptions o;
+            o.expected_size = 4;
+            labels("\n\n3(1 2 3)", ascii_header(), o);
+        });
     EXPECT_NE(expected.find("test/owner:3"), std::string::npos) << expected;
     const std::string word = test::error_of([] { labels("3(1 two 3)"); });
     EXPECT_NE(word.find("test/owner:1"), std::string::npos) << word;
@@ -189,8 +194,8 @@ TEST(FoamLists, size_mismatch_errors_name_file_and_line)
 TEST(FoamLists, hostile_counts_fail_before_allocating)
 {
     // Each of these would need terabytes if the count were trusted.
-    for (const std::string text : {"1000000000000\n(\n1\n2\n)", "1000000000000{0}",
-                                   "9223372036854775807(1)", "-5(1)"})
+    for (const std::string text :
+         {"1000000000000\n(\n1\n2\n)", "1000000000000{0}", "9223372036854775807(1)", "-5(1)"})
     {
         const std::string msg = test::error_of([&] { labels(text); });
         EXPECT_NE(msg.find("test/owner:1"), std::string::npos) << text << " -> " << msg;
@@ -225,8 +230,7 @@ TEST(FoamLists, truncated_and_ascii_under_binary_header_are_errors)
     const std::string ascii_body =
         test::error_of([] { labels("\n4\n(\n1\n2\n3\n4\n)\n", binary_header()); });
     EXPECT_NE(ascii_body.find("byte offset"), std::string::npos) << ascii_body;
-    const std::string wrong_size =
-        test::error_of([&] { labels(raw_block(v), binary_header(8)); });
+    const std::string wrong_size = test::error_of([&] { labels(raw_block(v), binary_header(8)); });
     EXPECT_NE(wrong_size.find("test/owner"), std::string::npos) << wrong_size;
 }
 
@@ -275,8 +279,8 @@ TEST(FoamLists, parallel_ascii_parsing_matches_serial)
     std::string broken = owner_text;
     const std::size_t at = broken.find('\n', broken.size() / 2);
     broken.insert(at + 1, "x");
-    const std::size_t line = 1 + static_cast<std::size_t>(
-                                     std::count(broken.begin(), broken.begin() + at + 1, '\n'));
+    const std::size_t line =
+        1 + static_cast<std::size_t>(std::count(broken.begin(), broken.begin() + at + 1, '\n'));
     for (bool parallel : {false, true})
     {
         ListReadOptions o;
@@ -309,8 +313,8 @@ TEST(FoamLists, writers_follow_openfoam_layout_and_read_back)
 
     // 17 significant digits reproduce every double exactly.
     Points p(3, 3);
-    p << 0.1, 1.0 / 3.0, -2.5e-300, 1e300, 123456789.123456789, -0.0, 5e-324, 1.7976931348623157e308,
-        0.30000000000000004;
+    p << 0.1, 1.0 / 3.0, -2.5e-300, 1e300, 123456789.123456789, -0.0, 5e-324,
+        1.7976931348623157e308, 0.30000000000000004;
     s.clear();
     append_vector_list(s, p, FoamFormat::ascii);
     EXPECT_EQ(s.substr(0, 2), "3(");

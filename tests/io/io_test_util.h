@@ -67,8 +67,8 @@ template <class F> std::string error_of(F f)
 inline int run_in(const std::filesystem::path& dir, const std::string& command,
                   const std::string& log = "log.run")
 {
-    const std::string cmd = "cd '" + dir.string() + "' && " + command + " > '" + log +
-                            "' 2>&1 < /dev/null";
+    const std::string cmd =
+        "cd '" + dir.string() + "' && " + command + " > '" + log + "' 2>&1 < /dev/null";
     return std::system(cmd.c_str());
 }
 

@@ -85,8 +85,10 @@ TEST(PointField, applied_values_reproduce_openfoam_movemesh)
         at1.time = TimeSelection::at("1");
         const FoamPolyMesh m1 = read_poly_mesh(case_dir, at1);
         EXPECT_EQ(m1.points_instance, "1");
-        const PointVectorField f0 = read_point_vector_field(case_dir, "0", "pointDisplacement", m0.mesh);
-        const PointVectorField f1 = read_point_vector_field(case_dir, "1", "pointDisplacement", m0.mesh);
+        const PointVectorField f0 =
+            read_point_vector_field(case_dir, "0", "pointDisplacement", m0.mesh);
+        const PointVectorField f1 =
+            read_point_vector_field(case_dir, "1", "pointDisplacement", m0.mesh);
         EXPECT_EQ(f1.header.is_binary(), std::string(variant) == "binary");
         EXPECT_FALSE(f1.internal_is_uniform);
 
@@ -113,15 +115,17 @@ TEST(PointField, reports_missing_entries_and_unsupported_types_by_patch)
 {
     const FoamPolyMesh m = read_poly_mesh(test::data_path("io/point_field/ascii"), {});
     const auto error_for = [&](const fs::path& dir) {
-        return test::error_of(
-            [&] { read_point_vector_field(dir, "0", "pointDisplacement", m.mesh); });
+        return test::error_of([&]
+                              { read_point_vector_field(dir, "0", "pointDisplacement", m.mesh); });
     };
-    const std::string missing = error_for(edited_case("missing", "    \"(inlet|front.*)\"\n", "    \"front.*\"\n"));
+    const std::string missing =
+        error_for(edited_case("missing", "    \"(inlet|front.*)\"\n", "    \"front.*\"\n"));
     EXPECT_NE(missing.find("Cannot find patchField entry for inlet"), std::string::npos) << missing;
     EXPECT_NE(missing.find("0/pointDisplacement:"), std::string::npos) << missing;
 
-    const std::string slip = error_for(edited_case(
-        "slip", "wall\n    {\n        type            fixedValue;", "wall\n    {\n        type            slip;"));
+    const std::string slip =
+        error_for(edited_case("slip", "wall\n    {\n        type            fixedValue;",
+                              "wall\n    {\n        type            slip;"));
     EXPECT_NE(slip.find("walls"), std::string::npos) << slip;
     EXPECT_NE(slip.find("unsupported"), std::string::npos) << slip;
     EXPECT_NE(slip.find("0/pointDisplacement:28:"), std::string::npos) << slip;
@@ -130,15 +134,15 @@ TEST(PointField, reports_missing_entries_and_unsupported_types_by_patch)
     EXPECT_NE(size.find("0/pointDisplacement:34:"), std::string::npos) << size;
     EXPECT_NE(size.find("9 points"), std::string::npos) << size;
 
-    const std::string no_value = error_for(edited_case(
-        "no_value", "        value           uniform (0 0 0);\n    }\n    outlet",
-        "    }\n    outlet"));
+    const std::string no_value = error_for(
+        edited_case("no_value", "        value           uniform (0 0 0);\n    }\n    outlet",
+                    "    }\n    outlet"));
     EXPECT_NE(no_value.find("walls"), std::string::npos) << no_value;
     EXPECT_NE(no_value.find("value"), std::string::npos) << no_value;
 
-    const std::string internal = error_for(edited_case(
-        "internal", "internalField   uniform (0 0 0);",
-        "internalField   nonuniform List<vector> 2((0 0 0) (1 1 1));"));
+    const std::string internal =
+        error_for(edited_case("internal", "internalField   uniform (0 0 0);",
+                              "internalField   nonuniform List<vector> 2((0 0 0) (1 1 1));"));
     EXPECT_NE(internal.find("0/pointDisplacement:17:"), std::string::npos) << internal;
     EXPECT_NE(internal.find("36"), std::string::npos) << internal;
 
@@ -150,10 +154,10 @@ TEST(PointField, conflicting_values_on_shared_points_are_reported)
 {
     // Move the whole outlet: its edge points are shared with the walls and frontAndBack, which
     // prescribe zero, which OpenFOAM would resolve by evaluation order.
-    const fs::path dir = edited_case(
-        "conflict",
-        "nonuniform List<vector> 9((0 0 0) (0 0 0) (0.01 0 0) (0 0 0) (0 0 0) (0 0 0) (0 0 0) (0 0 0) (0 0 0))",
-        "uniform (0.01 0 0)");
+    const fs::path dir = edited_case("conflict",
+                                     "nonuniform List<vector> 9((0 0 0) (0 0 0) (0.01 0 0) (0 0 0) "
+                                     "(0 0 0) (0 0 0) (0 0 0) (0 0 0) (0 0 0))",
+                                     "uniform (0.01 0 0)");
     const FoamPolyMesh m = read_poly_mesh(dir, {});
     const PointVectorField f = read_point_vector_field(dir, "0", "pointDisplacement", m.mesh);
     const std::string msg = test::error_of([&] { apply_patch_values(f, m.mesh); });
@@ -171,8 +175,9 @@ TEST(PointField, empty_patches_default_to_empty_and_constraints_need_their_type)
     const std::string head = "FoamFile { version 2.0; format ascii; class pointVectorField; "
                              "object pointDisplacement; }\ndimensions [0 1 0 0 0 0 0];\n"
                              "internalField uniform (0 0 0);\n";
-    test::write_bytes(case_dir / "0/pointDisplacement",
-                      head + "boundaryField\n{\n    \".*\" { type fixedValue; value uniform (1 2 3); }\n}\n");
+    test::write_bytes(
+        case_dir / "0/pointDisplacement",
+        head + "boundaryField\n{\n    \".*\" { type fixedValue; value uniform (1 2 3); }\n}\n");
     const PointVectorField f = read_point_vector_field(case_dir, "0", "pointDisplacement", mesh);
     EXPECT_EQ(patch_field(f, "zMin").type, "empty");
     EXPECT_EQ(patch_field(f, "zMin").matched_by, PointPatchField::Match::empty_default);
@@ -180,11 +185,12 @@ TEST(PointField, empty_patches_default_to_empty_and_constraints_need_their_type)
     EXPECT_EQ(patch_field(f, "xMin").matched_by, PointPatchField::Match::regex);
     EXPECT_EQ(patch_field(f, "xMin").value->row(0), Eigen::RowVector3d(1, 2, 3));
 
-    test::write_bytes(case_dir / "0/pointDisplacement",
-                      head + "boundaryField\n{\n    \".*\" { type fixedValue; value uniform (0 0 0); }\n"
-                             "    zMin { type fixedValue; value uniform (0 0 0); }\n}\n");
-    const std::string msg = test::error_of(
-        [&] { read_point_vector_field(case_dir, "0", "pointDisplacement", mesh); });
+    test::write_bytes(
+        case_dir / "0/pointDisplacement",
+        head + "boundaryField\n{\n    \".*\" { type fixedValue; value uniform (0 0 0); }\n"
+               "    zMin { type fixedValue; value uniform (0 0 0); }\n}\n");
+    const std::string msg =
+        test::error_of([&] { read_point_vector_field(case_dir, "0", "pointDisplacement", mesh); });
     EXPECT_NE(msg.find("zMin"), std::string::npos) << msg;
     EXPECT_NE(msg.find("empty"), std::string::npos) << msg;
 }

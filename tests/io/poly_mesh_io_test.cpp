@@ -32,9 +32,8 @@ PolyMesh sample_mesh()
 {
     PolyMesh mesh = test::make_block_mesh(
         4, 3, 2,
-        [](double u, double v, double w) {
-            return Vector3(u * 2 + 0.1 * std::sin(3 * v), v + 0.05 * u * u, 0.5 * w + 1e-3 / 3);
-        },
+        [](double u, double v, double w)
+        { return Vector3(u * 2 + 0.1 * std::sin(3 * v), v + 0.05 * u * u, 0.5 * w + 1e-3 / 3); },
         {"patch", "patch", "wall", "wall", "empty", "empty"});
     Zone cells{"left", "cellZone", {0, 4, 8}, {}, {}};
     Zone faces{"mid", "faceZone", {1, 2}, {0, 1}, {}};
@@ -228,14 +227,12 @@ TEST(PolyMeshIo, write_points_keeps_format_and_sets_location)
     {
         SCOPED_TRACE(variant);
         const fs::path case_dir = test::scratch_dir(std::string("pm_points_") + variant);
-        test::copy_tree(test::data_path(std::string("io/curved_block/") + variant),
-                        case_dir);
+        test::copy_tree(test::data_path(std::string("io/curved_block/") + variant), case_dir);
         FoamPolyMesh m = read_poly_mesh(case_dir);
         Points moved = m.mesh.points;
         moved.col(0) *= 1.0 / 3.0; // values that need all 17 digits
         const fs::path written = write_points(moved, m.points, case_dir, "1");
-        EXPECT_EQ(written.filename().string(),
-                  m.points.is_compressed ? "points.gz" : "points");
+        EXPECT_EQ(written.filename().string(), m.points.is_compressed ? "points.gz" : "points");
 
         const FoamPolyMesh latest = read_poly_mesh(case_dir, read_at(TimeSelection::latest_time()));
         EXPECT_EQ(latest.points_instance, "1");
@@ -245,9 +242,8 @@ TEST(PolyMeshIo, write_points_keeps_format_and_sets_location)
         EXPECT_EQ(latest.points.is_compressed, m.points.is_compressed);
         EXPECT_EQ(latest.points.header.class_name, "vectorField");
         ASSERT_EQ(latest.mesh.points.rows(), moved.rows());
-        EXPECT_EQ(std::memcmp(latest.mesh.points.data(), moved.data(),
-                              sizeof(double) * moved.size()),
-                  0);
+        EXPECT_EQ(
+            std::memcmp(latest.mesh.points.data(), moved.data(), sizeof(double) * moved.size()), 0);
         if (latest.points.header.is_binary())
         {
             EXPECT_EQ(latest.points.header.arch, "LSB;label=32;scalar=64");
@@ -309,8 +305,7 @@ TEST(PolyMeshIo, reads_64_bit_labels_and_32_bit_scalars)
     const fs::path case_dir = test::scratch_dir("pm_label64");
     PolyMeshWriteOptions o;
     o.label_bytes = 8;
-    write_poly_mesh(mesh, default_poly_mesh_files(FoamFormat::binary), case_dir, "constant", "",
-                    o);
+    write_poly_mesh(mesh, default_poly_mesh_files(FoamFormat::binary), case_dir, "constant", "", o);
     const FoamPolyMesh back = read_poly_mesh(case_dir);
     EXPECT_EQ(back.owner.header.label_bytes, 8);
     EXPECT_EQ(back.owner.header.arch, "LSB;label=64;scalar=64");
@@ -342,11 +337,11 @@ TEST(PolyMeshIo, reads_64_bit_labels_and_32_bit_scalars)
 
 struct MalformedCase
 {
-    const char* name;       // directory under tests/data/io/malformed
-    const char* file;       // the broken file in it
-    const char* base;       // curved_block variant it replaces a file of
-    const char* where;      // expected "file:line" (or file name) in the message
-    const char* what;       // expected words of the message
+    const char* name;  // directory under tests/data/io/malformed
+    const char* file;  // the broken file in it
+    const char* base;  // curved_block variant it replaces a file of
+    const char* where; // expected "file:line" (or file name) in the message
+    const char* what;  // expected words of the message
 };
 
 class PolyMeshMalformed : public testing::TestWithParam<MalformedCase>
@@ -380,10 +375,9 @@ INSTANTIATE_TEST_SUITE_P(
     testing::Values(
         MalformedCase{"truncated_faces", "faces", "ascii", "faces:19:", "declares 52"},
         MalformedCase{"owner_count_mismatch", "owner", "ascii", "owner:73:", "ends after 51"},
-        MalformedCase{"face_label_out_of_range", "faces", "ascii", "faces:30:",
-                      "vertex label 36 outside [0, 36)"},
-        MalformedCase{"face_too_few_vertices", "faces", "ascii", "faces:25:",
-                      "at least 3"},
+        MalformedCase{"face_label_out_of_range", "faces", "ascii",
+                      "faces:30:", "vertex label 36 outside [0, 36)"},
+        MalformedCase{"face_too_few_vertices", "faces", "ascii", "faces:25:", "at least 3"},
         MalformedCase{"points_wrong_class", "points", "ascii", "points:8:", "wrong class"},
         MalformedCase{"faces_missing_header", "faces", "ascii", "faces:", "FoamFile"},
         MalformedCase{"points_ascii_under_binary", "points", "ascii", "points:", "byte offset"},
@@ -391,13 +385,14 @@ INSTANTIATE_TEST_SUITE_P(
         MalformedCase{"owner_huge_count", "owner", "ascii", "owner:20:", "1000000000000"},
         MalformedCase{"owner_huge_count_binary", "owner", "binary", "owner:", "1000000000000"},
         MalformedCase{"faces_garbage", "faces", "ascii", "faces:", "faces"},
-        MalformedCase{"neighbour_not_upper", "neighbour", "ascii", "neighbour:22:",
-                      "owner must be the lower cell"},
+        MalformedCase{"neighbour_not_upper", "neighbour", "ascii",
+                      "neighbour:22:", "owner must be the lower cell"},
         MalformedCase{"owner_negative", "owner", "ascii", "owner:25:", "negative"},
         MalformedCase{"boundary_gap", "boundary", "ascii", "boundary:26:", "outlet"},
-        MalformedCase{"faces_binary_label_out_of_range", "faces", "binary", "faces:",
-                      "byte offset"},
-        MalformedCase{"neighbour_too_long", "neighbour", "ascii", "neighbour:", "more than the 52"}),
+        MalformedCase{"faces_binary_label_out_of_range", "faces", "binary",
+                      "faces:", "byte offset"},
+        MalformedCase{"neighbour_too_long", "neighbour", "ascii",
+                      "neighbour:", "more than the 52"}),
     [](const testing::TestParamInfo<MalformedCase>& info) { return std::string(info.param.name); });
 
 TEST(PolyMeshIo, missing_file_is_an_io_error_naming_it)
@@ -412,7 +407,8 @@ TEST(PolyMeshIo, missing_file_is_an_io_error_naming_it)
 
 TEST(PolyMeshIo, read_poly_mesh_dir_reads_one_directory)
 {
-    const FoamPolyMesh a = read_poly_mesh_dir(test::data_path("io/curved_block/gz/constant/polyMesh"));
+    const FoamPolyMesh a =
+        read_poly_mesh_dir(test::data_path("io/curved_block/gz/constant/polyMesh"));
     const FoamPolyMesh b = read_poly_mesh(test::data_path("io/curved_block/ascii"));
     expect_same_mesh(a.mesh, b.mesh);
     EXPECT_TRUE(a.case_dir.empty());
@@ -489,9 +485,8 @@ TEST(PolyMeshIo, format_conversion_matches_foam_format_convert)
         o.compress = t.compress;
         const fs::path out = test::scratch_dir(std::string("pm_convert_") + t.variant);
         write_poly_mesh(ascii.mesh, ascii, out, "constant", "", o);
-        const std::map<std::string, std::string> theirs =
-            dir_contents(test::data_path(std::string("io/curved_block/") + t.variant) /
-                         "constant/polyMesh");
+        const std::map<std::string, std::string> theirs = dir_contents(
+            test::data_path(std::string("io/curved_block/") + t.variant) / "constant/polyMesh");
         const std::map<std::string, std::string> ours = dir_contents(out / "constant/polyMesh");
         for (const std::string f : {"points", "faces", "owner", "neighbour"})
         {

@@ -68,16 +68,18 @@ TEST(PolyMeshOpenFoam, checkmesh_reports_the_same_for_meshmorph_output)
                            "log.curved-block"),
               0)
         << "see " << work / "log.curved-block";
-    ASSERT_EQ(test::run_in(work, "'" + (scripts / "convert-format.sh").string() +
-                                     "' ascii binary binary",
+    ASSERT_EQ(test::run_in(work,
+                           "'" + (scripts / "convert-format.sh").string() + "' ascii binary binary",
                            "log.binary"),
               0);
-    ASSERT_EQ(test::run_in(work, "'" + (scripts / "convert-format.sh").string() +
-                                     "' ascii gz ascii compressed",
-                           "log.gz"),
-              0);
-    ASSERT_EQ(test::run_in(work, "'" + (scripts / "convert-format.sh").string() +
-                                     "' ascii binary_gz binary compressed",
+    ASSERT_EQ(
+        test::run_in(work,
+                     "'" + (scripts / "convert-format.sh").string() + "' ascii gz ascii compressed",
+                     "log.gz"),
+        0);
+    ASSERT_EQ(test::run_in(work,
+                           "'" + (scripts / "convert-format.sh").string() +
+                               "' ascii binary_gz binary compressed",
                            "log.binary_gz"),
               0);
 
@@ -114,9 +116,8 @@ TEST(PolyMeshOpenFoam, openfoam_reads_generated_meshes_in_every_format)
     // checkMesh in every format, with the cell count meshmorph computed.
     const PolyMesh mesh = test::make_block_mesh(
         5, 4, 3,
-        [](double u, double v, double w) {
-            return Vector3(u + 0.1 * v * v, v + 0.05 * std::sin(3 * u), 0.5 * w);
-        },
+        [](double u, double v, double w)
+        { return Vector3(u + 0.1 * v * v, v + 0.05 * std::sin(3 * u), 0.5 * w); },
         {"patch", "patch", "wall", "wall", "patch", "patch"});
     const fs::path work = test::scratch_dir("pm_openfoam_generated");
     ASSERT_EQ(test::run_in(work, "'" + (scripts / "curved-block.sh").string() + "' template",

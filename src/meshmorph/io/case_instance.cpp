@@ -42,7 +42,10 @@ bool time_equal(double a, double b)
     return std::abs(a - b) <= time_tolerance * std::max({std::abs(a), std::abs(b), 1e-300});
 }
 
-bool time_less_equal(double a, double b) { return a < b || time_equal(a, b); }
+bool time_less_equal(double a, double b)
+{
+    return a < b || time_equal(a, b);
+}
 
 std::string known_times(const std::vector<TimeDir>& times)
 {
@@ -70,9 +73,9 @@ std::vector<TimeDir> list_times(const fs::path& case_dir)
         if (const std::optional<double> value = parse_time_name(name))
             times.push_back({name, *value});
     }
-    std::sort(times.begin(), times.end(), [](const TimeDir& a, const TimeDir& b) {
-        return a.value < b.value || (a.value == b.value && a.name < b.name);
-    });
+    std::sort(times.begin(), times.end(),
+              [](const TimeDir& a, const TimeDir& b)
+              { return a.value < b.value || (a.value == b.value && a.name < b.name); });
     return times;
 }
 
@@ -98,8 +101,8 @@ std::string select_time(const std::vector<TimeDir>& times, const TimeSelection& 
     for (const TimeDir& t : times)
         if (time_equal(t.value, *value))
             return t.name;
-    throw InvalidInput("-time " + selection.time + ": no such time directory (times: " +
-                       known_times(times) + ")");
+    throw InvalidInput("-time " + selection.time +
+                       ": no such time directory (times: " + known_times(times) + ")");
 }
 
 fs::path poly_mesh_dir(const fs::path& case_dir, const std::string& instance,
@@ -132,9 +135,9 @@ std::string find_instance(const fs::path& case_dir, const std::vector<TimeDir>& 
     }
     const fs::path constant = poly_mesh_dir(case_dir, "constant", region);
     if (!foam_file_exists(constant / key))
-        throw IoError("Cannot find polyMesh file '" + key + "' in " + constant.string() +
-                      (time == "constant" ? std::string()
-                                          : " nor in a time directory up to " + time));
+        throw IoError(
+            "Cannot find polyMesh file '" + key + "' in " + constant.string() +
+            (time == "constant" ? std::string() : " nor in a time directory up to " + time));
     return "constant";
 }
 
@@ -189,10 +192,8 @@ std::string next_time_name(const std::vector<TimeDir>& times, const std::string&
     else
         throw InvalidInput("time '" + time + "' is not a number or 'constant'");
     const double next = current + settings.delta_t;
-    const std::string current_name = time == "constant"
-                                         ? format_time_name(current, settings.format,
-                                                            settings.precision)
-                                         : time;
+    const std::string current_name =
+        time == "constant" ? format_time_name(current, settings.format, settings.precision) : time;
     // OpenFOAM raises the precision when the new name would repeat the old one.
     for (int precision = settings.precision; precision <= 17; ++precision)
     {

@@ -60,9 +60,9 @@ std::filesystem::path poly_mesh_dir(const std::filesystem::path& case_dir,
 //! with value <= time whose polyMesh has the file, else "constant". Times are compared by
 //! value with a relative tolerance of 1e-9 (see select_time).
 //! \throw IoError if not even `constant` holds the file.
-std::string find_instance(const std::filesystem::path& case_dir,
-                          const std::vector<TimeDir>& times, const std::string& time,
-                          const std::string& key, const std::string& region = "");
+std::string find_instance(const std::filesystem::path& case_dir, const std::vector<TimeDir>& times,
+                          const std::string& time, const std::string& key,
+                          const std::string& region = "");
 
 //! How time names are printed (controlDict `timeFormat`).
 enum class TimeFormat

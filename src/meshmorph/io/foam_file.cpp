@@ -34,7 +34,10 @@ fs::path with_gz(const fs::path& path)
     return gz;
 }
 
-bool has_gz_suffix(const fs::path& path) { return path.extension() == ".gz"; }
+bool has_gz_suffix(const fs::path& path)
+{
+    return path.extension() == ".gz";
+}
 
 bool is_regular(const fs::path& path)
 {
@@ -52,7 +55,10 @@ struct FileCloser
 };
 using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
-std::string errno_text() { return std::strerror(errno); }
+std::string errno_text()
+{
+    return std::strerror(errno);
+}
 
 std::string read_raw_file(const fs::path& path)
 {
@@ -105,8 +111,8 @@ std::optional<fs::path> resolve_foam_file(const fs::path& path)
     const fs::path gz = with_gz(path);
     const bool compressed = is_regular(gz);
     if (plain && compressed)
-        log::warning() << "Both " << path.string() << " and " << gz.string()
-                       << " exist; reading " << path.string();
+        log::warning() << "Both " << path.string() << " and " << gz.string() << " exist; reading "
+                       << path.string();
     if (plain)
         return path;
     if (compressed)
@@ -123,8 +129,9 @@ FileBuffer read_foam_file(const fs::path& path)
 {
     const std::optional<fs::path> found = resolve_foam_file(path);
     if (!found)
-        throw IoError("Cannot find file " + path.string() +
-                      (has_gz_suffix(path) ? std::string() : " (nor " + with_gz(path).string() + ")"));
+        throw IoError(
+            "Cannot find file " + path.string() +
+            (has_gz_suffix(path) ? std::string() : " (nor " + with_gz(path).string() + ")"));
     FileBuffer buffer;
     buffer.path = *found;
     buffer.data = read_raw_file(*found);
@@ -143,8 +150,9 @@ MappedFoamFile::MappedFoamFile(const fs::path& path)
 {
     const std::optional<fs::path> found = resolve_foam_file(path);
     if (!found)
-        throw IoError("Cannot find file " + path.string() +
-                      (has_gz_suffix(path) ? std::string() : " (nor " + with_gz(path).string() + ")"));
+        throw IoError(
+            "Cannot find file " + path.string() +
+            (has_gz_suffix(path) ? std::string() : " (nor " + with_gz(path).string() + ")"));
     path_ = *found;
     const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0)
@@ -192,7 +200,10 @@ MappedFoamFile::MappedFoamFile(const fs::path& path)
     }
 }
 
-MappedFoamFile::MappedFoamFile(MappedFoamFile&& other) noexcept { *this = std::move(other); }
+MappedFoamFile::MappedFoamFile(MappedFoamFile&& other) noexcept
+{
+    *this = std::move(other);
+}
 
 MappedFoamFile& MappedFoamFile::operator=(MappedFoamFile&& other) noexcept
 {
@@ -213,7 +224,10 @@ MappedFoamFile& MappedFoamFile::operator=(MappedFoamFile&& other) noexcept
     return *this;
 }
 
-MappedFoamFile::~MappedFoamFile() { release(); }
+MappedFoamFile::~MappedFoamFile()
+{
+    release();
+}
 
 void MappedFoamFile::release()
 {
@@ -344,9 +358,9 @@ fs::path write_file_atomic(const fs::path& path, std::string_view data,
     const std::string_view bytes = options.compress ? std::string_view(compressed) : data;
 
     const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-    const fs::path temp = dir / ("." + target.filename().string() + ".tmp" +
-                                 std::to_string(::getpid()) + "_" +
-                                 std::to_string(temp_counter.fetch_add(1)));
+    const fs::path temp =
+        dir / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()) + "_" +
+               std::to_string(temp_counter.fetch_add(1)));
     {
         FilePtr file(std::fopen(temp.c_str(), "wb"));
         if (!file)

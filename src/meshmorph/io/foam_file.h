@@ -61,8 +61,8 @@ public:
 
 private:
     std::filesystem::path path_;
-    std::string owned_;       // decompressed data of a gzip file
-    void* map_ = nullptr;     // mmap of a plain file
+    std::string owned_;   // decompressed data of a gzip file
+    void* map_ = nullptr; // mmap of a plain file
     std::size_t map_size_ = 0;
     const char* data_ = nullptr;
     std::size_t size_ = 0;
@@ -72,7 +72,7 @@ private:
 //! Options of write_file_atomic.
 struct WriteFileOptions
 {
-    bool compress = false; //!< gzip the data and write `path.gz` instead of `path`
+    bool compress = false;     //!< gzip the data and write `path.gz` instead of `path`
     int compression_level = 6; //!< zlib level 1..9 (OpenFOAM uses the zlib default, 6)
 };
 
@@ -85,8 +85,7 @@ struct WriteFileOptions
 //! bytes. Returns the path written.
 //! \pre the parent directory exists.
 //! \throw IoError naming the path on any failure (the target is then left unchanged).
-std::filesystem::path write_file_atomic(const std::filesystem::path& path,
-                                        std::string_view data,
+std::filesystem::path write_file_atomic(const std::filesystem::path& path, std::string_view data,
                                         const WriteFileOptions& options = {});
 
 //! \brief Gzip-compress `data` (deterministic gzip header without time stamp).

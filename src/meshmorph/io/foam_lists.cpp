@@ -5,11 +5,11 @@
 
 #include <algorithm>
 #include <array>
-#include <exception>
 #include <bit>
 #include <charconv>
 #include <cstdint>
 #include <cstring>
+#include <exception>
 #include <limits>
 #include <type_traits>
 
@@ -35,9 +35,15 @@ constexpr std::size_t min_chars_face = 8;   // "3(0 1 2)"
 // Lists at least this long (in bytes of text) are parsed in parallel.
 constexpr std::size_t parallel_min_bytes = std::size_t(1) << 20;
 
-std::string size_text(std::size_t n) { return std::to_string(n); }
+std::string size_text(std::size_t n)
+{
+    return std::to_string(n);
+}
 
-std::size_t remaining(const FoamTokenizer& tok) { return tok.buffer().size() - tok.offset(); }
+std::size_t remaining(const FoamTokenizer& tok)
+{
+    return tok.buffer().size() - tok.offset();
+}
 
 ParseError binary_error(const FoamTokenizer& tok, std::size_t line, std::size_t byte_offset,
                         const std::string& what, const std::string& msg)
@@ -51,9 +57,8 @@ Index to_index(std::int64_t v, const FoamTokenizer& tok, const std::string& what
     if constexpr (sizeof(Index) < sizeof(std::int64_t))
     {
         if (v < std::numeric_limits<Index>::min() || v > std::numeric_limits<Index>::max())
-            throw tok.error("label " + std::to_string(v) + " in '" + what +
-                            "' does not fit in a " + std::to_string(8 * sizeof(Index)) +
-                            "-bit label");
+            throw tok.error("label " + std::to_string(v) + " in '" + what + "' does not fit in a " +
+                            std::to_string(8 * sizeof(Index)) + "-bit label");
     }
     return static_cast<Index>(v);
 }
@@ -115,8 +120,8 @@ ListStart read_list_start(FoamTokenizer& tok, const FoamHeader& header,
 
     if (start.open == '{')
     {
-        const std::size_t limit = options.expected_size ? *options.expected_size
-                                                        : options.max_uniform_size;
+        const std::size_t limit =
+            options.expected_size ? *options.expected_size : options.max_uniform_size;
         if (start.size > limit)
             throw tok.error_at(start.line, "uniform list '" + options.what + "' of size " +
                                                size_text(start.size) +
@@ -129,14 +134,13 @@ ListStart read_list_start(FoamTokenizer& tok, const FoamHeader& header,
         if (header.is_binary() && binary_element_bytes > 0)
         {
             if (start.size > left / binary_element_bytes)
-                throw binary_error(tok, start.line, tok.offset(), options.what,
-                                   "declared size " + size_text(start.size) + " needs " +
-                                       (start.size > std::numeric_limits<std::size_t>::max() /
-                                                         binary_element_bytes
-                                            ? std::string("more")
-                                            : size_text(start.size * binary_element_bytes)) +
-                                       " bytes but only " + size_text(left) +
-                                       " remain (truncated file?)");
+                throw binary_error(
+                    tok, start.line, tok.offset(), options.what,
+                    "declared size " + size_text(start.size) + " needs " +
+                        (start.size > std::numeric_limits<std::size_t>::max() / binary_element_bytes
+                             ? std::string("more")
+                             : size_text(start.size * binary_element_bytes)) +
+                        " bytes but only " + size_text(left) + " remain (truncated file?)");
         }
         else if (start.size > left / ascii_min_chars + 1)
             throw tok.error_at(start.line, "list '" + options.what + "' declares " +
@@ -223,9 +227,8 @@ void decode_scalars(std::string_view raw, int scalar_bytes, double* out, std::si
     if (t.is_punct(start.open == '{' ? '}' : ')'))
         throw tok.error_at(t.line, "list '" + what + "' ends after " + size_text(got) +
                                        " elements but its size is " + size_text(start.size));
-    throw tok.error_at(t.line, std::string("expected ") + kind + " (element " +
-                                   size_text(got) + " of list '" + what + "') but found " +
-                                   t.describe());
+    throw tok.error_at(t.line, std::string("expected ") + kind + " (element " + size_text(got) +
+                                   " of list '" + what + "') but found " + t.describe());
 }
 
 void expect_close(FoamTokenizer& tok, const ListStart& start, const std::string& what,
@@ -246,8 +249,8 @@ void expect_close(FoamTokenizer& tok, const ListStart& start, const std::string&
                                    "' of " + kind + "s but found " + t.describe());
 }
 
-inline void read_ascii_label(FoamTokenizer& tok, Index& out, const ListStart& start,
-                             std::size_t i, const std::string& what)
+inline void read_ascii_label(FoamTokenizer& tok, Index& out, const ListStart& start, std::size_t i,
+                             const std::string& what)
 {
     std::int64_t v;
     if (!tok.read_label(v))
@@ -309,8 +312,7 @@ std::size_t find_list_end(std::string_view buf, std::size_t from, int element_de
 
 // Split [begin, end) into about `parts` chunks at newlines (vectors and numbers never span
 // lines in the bodies the fast kernels accept).
-std::vector<Chunk> split_lines(std::string_view buf, std::size_t begin, std::size_t end,
-                               int parts)
+std::vector<Chunk> split_lines(std::string_view buf, std::size_t begin, std::size_t end, int parts)
 {
     std::vector<Chunk> chunks;
     const std::size_t len = end - begin;
@@ -323,8 +325,8 @@ std::vector<Chunk> split_lines(std::string_view buf, std::size_t begin, std::siz
         if (stop < end)
         {
             const void* nl = std::memchr(buf.data() + stop, '\n', end - stop);
-            stop = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - buf.data()) + 1
-                      : end;
+            stop =
+                nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - buf.data()) + 1 : end;
         }
         chunks.push_back({pos, stop, 0, 0});
         pos = stop;
@@ -340,8 +342,8 @@ std::size_t count_tokens(std::string_view buf, const Chunk& c)
     for (std::size_t i = c.begin; i < c.end; ++i)
     {
         const char ch = buf[i];
-        const bool space = ch == ' ' || ch == '\n' || ch == '\t' || ch == '\r' || ch == '\f' ||
-                           ch == '\v';
+        const bool space =
+            ch == ' ' || ch == '\n' || ch == '\t' || ch == '\r' || ch == '\f' || ch == '\v';
         if (!space && !in_token)
             ++n;
         in_token = !space;
@@ -351,11 +353,13 @@ std::size_t count_tokens(std::string_view buf, const Chunk& c)
 
 std::size_t count_char(std::string_view buf, const Chunk& c, char ch)
 {
-    return static_cast<std::size_t>(
-        std::count(buf.data() + c.begin, buf.data() + c.end, ch));
+    return static_cast<std::size_t>(std::count(buf.data() + c.begin, buf.data() + c.end, ch));
 }
 
-int chunk_count() { return std::max(1, omp_get_max_threads()) * 4; }
+int chunk_count()
+{
+    return std::max(1, omp_get_max_threads()) * 4;
+}
 
 // ---------------------------------------------------------------------------------------
 // Fast kernels for the bodies of big ASCII lists. They run over comment-free text only and
@@ -365,7 +369,10 @@ int chunk_count() { return std::max(1, omp_get_max_threads()) * 4; }
 namespace fast
 {
 
-inline bool is_space(char c) { return c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+inline bool is_space(char c)
+{
+    return c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
 
 inline bool is_delimiter(const char* p, const char* e)
 {
@@ -514,12 +521,11 @@ bool parse_fast(FoamTokenizer& tok, const ListStart& start, const ListReadOption
     bool ok = true;
     // Comments or uniform sub-lists make a kernel fail (and the tokenizer take over), so a
     // chunk boundary inside a comment cannot go unnoticed.
-    std::size_t body_end = worth_parallel(tok, options) ? list_body_end(tok, element_depth)
-                                                        : std::string_view::npos;
+    std::size_t body_end =
+        worth_parallel(tok, options) ? list_body_end(tok, element_depth) : std::string_view::npos;
     if (body_end != std::string_view::npos)
     {
-        std::vector<Chunk> chunks =
-            split_lines(buf, body_begin, body_end, chunk_count());
+        std::vector<Chunk> chunks = split_lines(buf, body_begin, body_end, chunk_count());
 #pragma omp parallel for schedule(static)
         for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
             chunks[k].count = count_chunk(chunks[k]);
@@ -563,15 +569,14 @@ bool parse_fast(FoamTokenizer& tok, const ListStart& start, const ListReadOption
 }
 
 template <class T, class ReadOne>
-std::vector<T> read_number_list(FoamTokenizer& tok, const FoamHeader& header,
-                                const ListReadOptions& options, int binary_bytes,
-                                ReadOne read_one, const char* kind,
-                                void (*decode)(std::string_view, int, T*, std::size_t,
-                                               const FoamTokenizer&, const ListStart&,
-                                               std::size_t, const std::string&))
+std::vector<T>
+read_number_list(FoamTokenizer& tok, const FoamHeader& header, const ListReadOptions& options,
+                 int binary_bytes, ReadOne read_one, const char* kind,
+                 void (*decode)(std::string_view, int, T*, std::size_t, const FoamTokenizer&,
+                                const ListStart&, std::size_t, const std::string&))
 {
-    const ListStart start =
-        read_list_start(tok, header, options, min_chars_label, header.is_binary() ? binary_bytes : 0);
+    const ListStart start = read_list_start(tok, header, options, min_chars_label,
+                                            header.is_binary() ? binary_bytes : 0);
     std::vector<T> values;
     if (start.open == 0)
         return values;
@@ -607,7 +612,8 @@ std::vector<T> read_number_list(FoamTokenizer& tok, const FoamHeader& header,
         const std::string_view buf = tok.buffer();
         if (parse_fast(
                 tok, start, options, 0,
-                [out](const char*& p, const char* e, std::size_t i) {
+                [out](const char*& p, const char* e, std::size_t i)
+                {
                     if constexpr (std::is_same_v<T, double>)
                         return fast::scalar(p, e, out[i]);
                     else
@@ -660,8 +666,8 @@ void read_ascii_face(FoamTokenizer& tok, std::vector<Index>& values, const ListS
         throw_short_list(tok, start, i, what, "a face 'n(v0 v1 ...)'");
     const std::size_t line = tok.line();
     if (k < 0)
-        throw tok.error_at(line, "face " + size_text(i) + " of '" + what +
-                                     "' has negative size " + std::to_string(k));
+        throw tok.error_at(line, "face " + size_text(i) + " of '" + what + "' has negative size " +
+                                     std::to_string(k));
     if (static_cast<std::size_t>(k) > remaining(tok) / min_chars_label + 1)
         throw tok.error_at(line, "face " + size_text(i) + " of '" + what + "' declares " +
                                      std::to_string(k) +
@@ -678,8 +684,8 @@ void read_ascii_face(FoamTokenizer& tok, std::vector<Index>& values, const ListS
         {
             const FoamToken& t = tok.peek();
             throw tok.error_at(t.line, "face " + size_text(i) + " of '" + what + "' of size " +
-                                           std::to_string(k) + ": expected a vertex label but found " +
-                                           t.describe());
+                                           std::to_string(k) +
+                                           ": expected a vertex label but found " + t.describe());
         }
         values.push_back(to_index(v, tok, what));
     }
@@ -715,8 +721,7 @@ void read_binary_face(FoamTokenizer& tok, const FoamHeader& header, std::vector<
     values.resize(base + n);
     decode_labels(raw, header.label_bytes, values.data() + base, n, tok, start, data_offset,
                   face_options.what);
-    expect_binary_close(tok, start, face_options.what, data_offset,
-                        start.open == '{' ? '}' : ')');
+    expect_binary_close(tok, start, face_options.what, data_offset, start.open == '{' ? '}' : ')');
     if (start.open == '{')
         values.insert(values.end(), start.size - 1, values[base]);
 }
@@ -827,8 +832,9 @@ bool parse_faces_fast(FoamTokenizer& tok, const ListStart& start, CompactList& f
         {
             running += static_cast<std::size_t>(faces.offsets[i]);
             if (running > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
-                throw tok.error_at(start.line, "list '" + options.what +
-                                                   "' has more vertex labels than a label can count");
+                throw tok.error_at(start.line,
+                                   "list '" + options.what +
+                                       "' has more vertex labels than a label can count");
             faces.offsets[i] = static_cast<Index>(running);
         }
         sizes.clear();
@@ -846,8 +852,9 @@ bool parse_faces_fast(FoamTokenizer& tok, const ListStart& start, CompactList& f
         {
             flat += static_cast<std::size_t>(n);
             if (flat > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
-                throw tok.error_at(start.line, "list '" + options.what +
-                                                   "' has more vertex labels than a label can count");
+                throw tok.error_at(start.line,
+                                   "list '" + options.what +
+                                       "' has more vertex labels than a label can count");
             faces.offsets[++f] = static_cast<Index>(flat);
         }
         std::vector<Index>().swap(sizes[k]);
@@ -901,8 +908,7 @@ CompactList read_face_list_plain(FoamTokenizer& tok, const FoamHeader& header,
             faces.push_back(std::span<const Index>(one));
         return faces;
     }
-    if (start.has_size && !header.is_binary() &&
-        parse_faces_fast(tok, start, faces, options))
+    if (start.has_size && !header.is_binary() && parse_faces_fast(tok, start, faces, options))
         return faces;
     if (start.has_size)
     {
@@ -1020,8 +1026,8 @@ void append_ascii_list(std::string& out, std::size_t n, Elem elem, AppendOne app
 
 } // namespace
 
-ElementLocation locate_list_element(FoamTokenizer& tok, const FoamHeader& header,
-                                    ListKind kind, std::size_t index)
+ElementLocation locate_list_element(FoamTokenizer& tok, const FoamHeader& header, ListKind kind,
+                                    std::size_t index)
 {
     try
     {
@@ -1153,13 +1159,12 @@ Points read_vector_list(FoamTokenizer& tok, const FoamHeader& header,
         const std::string_view buf = tok.buffer();
         if (parse_fast(
                 tok, start, options, 1,
-                [data](const char*& p, const char* e, std::size_t i) {
-                    return fast::vector(p, e, data + 3 * i);
-                },
+                [data](const char*& p, const char* e, std::size_t i)
+                { return fast::vector(p, e, data + 3 * i); },
                 [&buf](const Chunk& c) { return count_char(buf, c, '('); }, "vector"))
             return points;
         for (std::size_t i = 0; i < start.size; ++i)
-                read_ascii_vector(tok, data + 3 * i, start, i, options.what);
+            read_ascii_vector(tok, data + 3 * i, start, i, options.what);
         expect_close(tok, start, options.what, "vector");
         return points;
     }
@@ -1199,7 +1204,8 @@ CompactList read_face_list(FoamTokenizer& tok, const FoamHeader& header, bool co
     const std::size_t offsets_offset = tok.offset();
     CompactList faces;
     faces.offsets = read_label_list(tok, header, offsets_options);
-    const auto offsets_error = [&](const std::string& msg) {
+    const auto offsets_error = [&](const std::string& msg)
+    {
         if (header.is_binary())
             return binary_error(tok, offsets_line, offsets_offset, offsets_options.what, msg);
         return tok.error_at(offsets_line, "list '" + offsets_options.what + "': " + msg);
@@ -1207,8 +1213,7 @@ CompactList read_face_list(FoamTokenizer& tok, const FoamHeader& header, bool co
     if (faces.offsets.empty())
         faces.offsets.push_back(0); // zero faces may be written as an empty offsets list
     if (faces.offsets[0] != 0)
-        throw offsets_error("first offset is " + std::to_string(faces.offsets[0]) +
-                            ", expected 0");
+        throw offsets_error("first offset is " + std::to_string(faces.offsets[0]) + ", expected 0");
     for (std::size_t i = 1; i < faces.offsets.size(); ++i)
         if (faces.offsets[i] < faces.offsets[i - 1])
             throw offsets_error("offsets decrease at face " + size_text(i - 1) + " (" +
@@ -1260,12 +1265,14 @@ void append_vector_list(std::string& out, const Points& values, FoamFormat forma
     out.reserve(out.size() + n * (3 * (digits + 7) + 3) + 32);
     append_ascii_list(
         out, n,
-        [&](std::size_t i) {
+        [&](std::size_t i)
+        {
             return std::array<double, 3>{values(static_cast<Eigen::Index>(i), 0),
                                          values(static_cast<Eigen::Index>(i), 1),
                                          values(static_cast<Eigen::Index>(i), 2)};
         },
-        [&](std::string& o, std::size_t i) {
+        [&](std::string& o, std::size_t i)
+        {
             const Eigen::Index r = static_cast<Eigen::Index>(i);
             o += '(';
             append_scalar(o, values(r, 0), digits);
@@ -1289,7 +1296,8 @@ void append_face_list(std::string& out, const CompactList& faces, FoamFormat for
     }
     // faceList is not contiguous: multi-line unless it has at most one face.
     const Index n = faces.size();
-    const auto append_face = [&](std::string& o, Index f) {
+    const auto append_face = [&](std::string& o, Index f)
+    {
         const std::span<const Index> face = faces[f];
         append_ascii_list(
             o, face.size(), [&](std::size_t i) { return face[i]; },

@@ -108,8 +108,7 @@ void append_label_list(std::string& out, const std::vector<Index>& values, FoamF
 
 //! \brief Append a vector list body: ASCII `N\n(\n(x y z)\n…)` with `digits` significant
 //! digits (one line `N((x y z) …)` for N <= 10, like OpenFOAM), or binary raw doubles.
-void append_vector_list(std::string& out, const Points& values, FoamFormat format,
-                        int digits = 17);
+void append_vector_list(std::string& out, const Points& values, FoamFormat format, int digits = 17);
 
 //! \brief Append a face list: ASCII `faceList` (`N\n(\nk(v…)\n…)`), or binary
 //! `faceCompactList` (offsets block then flat block).

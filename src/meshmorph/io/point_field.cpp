@@ -159,11 +159,10 @@ PointVectorField read_point_vector_field(const fs::path& path, const PolyMesh& m
         if (is_constraint_type(patch.type) || is_constraint_type(pf.type))
         {
             if (pf.type != patch.type)
-                throw bc.entry("type").error(where + ": a patch of type " + patch.type +
-                                             " needs the patchField type " +
-                                             (is_constraint_type(patch.type) ? patch.type
-                                                                             : "of its patch") +
-                                             ", not " + pf.type);
+                throw bc.entry("type").error(
+                    where + ": a patch of type " + patch.type + " needs the patchField type " +
+                    (is_constraint_type(patch.type) ? patch.type : "of its patch") + ", not " +
+                    pf.type);
             continue;
         }
         if (pf.type != "fixedValue" && pf.type != "calculated")
@@ -203,14 +202,15 @@ Points apply_patch_values(const PointVectorField& field, const PolyMesh& mesh)
             if (other >= 0 && values.row(pt) != v)
             {
                 const Eigen::RowVector3d w = values.row(pt);
-                throw InvalidInput(
-                    field.path.string() + ": point " + std::to_string(pt) + " is on patches '" +
-                    mesh.patches[static_cast<std::size_t>(other)].name + "' and '" + pf.patch +
-                    "' with different prescribed values (" + std::to_string(w.x()) + " " +
-                    std::to_string(w.y()) + " " + std::to_string(w.z()) + ") and (" +
-                    std::to_string(v.x()) + " " + std::to_string(v.y()) + " " +
-                    std::to_string(v.z()) + "); OpenFOAM's result would depend on the patch "
-                                            "evaluation order");
+                throw InvalidInput(field.path.string() + ": point " + std::to_string(pt) +
+                                   " is on patches '" +
+                                   mesh.patches[static_cast<std::size_t>(other)].name + "' and '" +
+                                   pf.patch + "' with different prescribed values (" +
+                                   std::to_string(w.x()) + " " + std::to_string(w.y()) + " " +
+                                   std::to_string(w.z()) + ") and (" + std::to_string(v.x()) + " " +
+                                   std::to_string(v.y()) + " " + std::to_string(v.z()) +
+                                   "); OpenFOAM's result would depend on the patch "
+                                   "evaluation order");
             }
             values.row(pt) = v;
             owner_patch[static_cast<std::size_t>(pt)] = static_cast<Index>(p);

@@ -23,14 +23,14 @@ namespace meshmorph::io
 //! The boundary condition of one patch.
 struct PointPatchField
 {
-    std::string patch;      //!< patch name (mesh order)
-    std::string type;       //!< fixedValue, calculated, empty, wedge, symmetryPlane, ...
-    std::string key;        //!< the boundaryField keyword that matched ("" for the empty default)
+    std::string patch; //!< patch name (mesh order)
+    std::string type;  //!< fixedValue, calculated, empty, wedge, symmetryPlane, ...
+    std::string key;   //!< the boundaryField keyword that matched ("" for the empty default)
     enum class Match
     {
-        name,   //!< exact patch name
-        group,  //!< patch group
-        regex,  //!< regular-expression key
+        name,          //!< exact patch name
+        group,         //!< patch group
+        regex,         //!< regular-expression key
         empty_default, //!< empty patch without entry
     };
     Match matched_by = Match::name;
@@ -49,7 +49,7 @@ struct PointVectorField
 {
     std::filesystem::path path; //!< the file read
     FoamHeader header;
-    Points internal;            //!< nPoints x 3 internalField (uniform expanded)
+    Points internal; //!< nPoints x 3 internalField (uniform expanded)
     bool internal_is_uniform = false;
     std::vector<PointPatchField> patches; //!< one per mesh patch, in mesh order
 };

@@ -47,8 +47,8 @@ struct OpenFile
         const ElementLocation at = locate_list_element(tok, info.header, kind, index);
         if (info.header.is_binary() && at.line != 0)
             return ParseError(name(), at.line,
-                              "byte offset " + std::to_string(at.byte_offset + body_offset) +
-                                  ": " + msg);
+                              "byte offset " + std::to_string(at.byte_offset + body_offset) + ": " +
+                                  msg);
         return ParseError(name(), at.line, msg);
     }
 };
@@ -87,7 +87,10 @@ OpenFile open_file(const fs::path& path, std::initializer_list<std::string_view>
     return file;
 }
 
-FoamTokenizer start_body(const OpenFile& file) { return file.body_tokenizer(); }
+FoamTokenizer start_body(const OpenFile& file)
+{
+    return file.body_tokenizer();
+}
 
 // The line of the first word token `name` in a boundary/zones file (for messages).
 std::size_t find_word_line(const OpenFile& file, const std::string& name)
@@ -119,8 +122,7 @@ void read_points_into(const fs::path& path, PolyMesh& mesh, FoamFileInfo& info, 
     for (Eigen::Index i = 0; i < mesh.points.rows(); ++i)
         if (!mesh.points.row(i).allFinite())
             throw file.element_error(ListKind::vector, static_cast<std::size_t>(i),
-                                     "point " + std::to_string(i) +
-                                         " has a non-finite coordinate");
+                                     "point " + std::to_string(i) + " has a non-finite coordinate");
     info = file.info;
 }
 
@@ -143,11 +145,10 @@ void read_faces_into(const fs::path& path, PolyMesh& mesh, FoamFileInfo& info, b
         const Index begin = mesh.faces.offsets[f];
         const Index end = mesh.faces.offsets[f + 1];
         if (end - begin < 3)
-            throw file.element_error(compact ? ListKind::label : ListKind::face,
-                                     static_cast<std::size_t>(f),
-                                     "face " + std::to_string(f) + " has " +
-                                         std::to_string(end - begin) +
-                                         " vertices, at least 3 are required");
+            throw file.element_error(
+                compact ? ListKind::label : ListKind::face, static_cast<std::size_t>(f),
+                "face " + std::to_string(f) + " has " + std::to_string(end - begin) +
+                    " vertices, at least 3 are required");
     }
     info = file.info;
 }
@@ -210,8 +211,7 @@ void read_owner_into(const fs::path& path, PolyMesh& mesh, FoamFileInfo& info, b
     info = file.info;
 }
 
-void read_neighbour_into(const fs::path& path, PolyMesh& mesh, FoamFileInfo& info,
-                         bool parallel)
+void read_neighbour_into(const fs::path& path, PolyMesh& mesh, FoamFileInfo& info, bool parallel)
 {
     OpenFile file = open_file(path, {"labelList"}, "neighbour");
     FoamTokenizer tok = start_body(file);
@@ -245,8 +245,8 @@ void read_neighbour_into(const fs::path& path, PolyMesh& mesh, FoamFileInfo& inf
         const Index n = mesh.neighbour[f];
         if (n < 0)
             throw file.element_error(ListKind::label, f,
-                                     "neighbour of face " + std::to_string(f) +
-                                         " is negative (" + std::to_string(n) + ")");
+                                     "neighbour of face " + std::to_string(f) + " is negative (" +
+                                         std::to_string(n) + ")");
         if (mesh.owner[f] >= n)
             throw file.element_error(ListKind::label, f,
                                      "internal face " + std::to_string(f) + " has owner " +
@@ -289,8 +289,7 @@ void read_boundary_into(const fs::path& path, PolyMesh& mesh, FoamFileInfo& info
 }
 
 void read_zones_into(const fs::path& path, std::vector<Zone>& zones,
-                     std::optional<FoamFileInfo>& info, const std::string& object,
-                     Index max_label)
+                     std::optional<FoamFileInfo>& info, const std::string& object, Index max_label)
 {
     if (!foam_file_exists(path))
         return;

@@ -35,11 +35,11 @@ struct FoamFileInfo
 struct FoamPolyMesh
 {
     PolyMesh mesh;
-    std::filesystem::path case_dir; //!< empty when read with read_poly_mesh_dir
-    std::string region;             //!< "" for the default region
-    std::string time;               //!< the selected time ("constant" or a time name)
-    std::string points_instance;    //!< instance holding `points` ("constant" or a time)
-    std::string faces_instance;     //!< instance holding faces/owner/neighbour/boundary
+    std::filesystem::path case_dir;   //!< empty when read with read_poly_mesh_dir
+    std::string region;               //!< "" for the default region
+    std::string time;                 //!< the selected time ("constant" or a time name)
+    std::string points_instance;      //!< instance holding `points` ("constant" or a time)
+    std::string faces_instance;       //!< instance holding faces/owner/neighbour/boundary
     std::filesystem::path points_dir; //!< polyMesh directory `points` was read from
     std::filesystem::path faces_dir;  //!< polyMesh directory of the topology files
     FoamFileInfo points;
@@ -60,10 +60,10 @@ struct FoamPolyMesh
 //! Options of read_poly_mesh.
 struct PolyMeshReadOptions
 {
-    TimeSelection time;    //!< which time to read (default: the earliest, or constant)
-    std::string region;    //!< `-region`; "" for the default region
+    TimeSelection time;     //!< which time to read (default: the earliest, or constant)
+    std::string region;     //!< `-region`; "" for the default region
     bool read_zones = true; //!< read cellZones/faceZones/pointZones when present
-    bool parallel = true;  //!< parse large ASCII lists with OpenMP threads
+    bool parallel = true;   //!< parse large ASCII lists with OpenMP threads
 };
 
 //! \brief Read the polyMesh of `case_dir` at the selected time: points from the points

@@ -80,8 +80,9 @@ fs::path write_file(const fs::path& path, const FoamHeader& header, const std::s
 
 std::string mesh_note(const PolyMesh& mesh)
 {
-    return "nPoints:" + std::to_string(mesh.n_points()) + "  nCells:" +
-           std::to_string(mesh.n_cells) + "  nFaces:" + std::to_string(mesh.n_faces()) +
+    return "nPoints:" + std::to_string(mesh.n_points()) +
+           "  nCells:" + std::to_string(mesh.n_cells) +
+           "  nFaces:" + std::to_string(mesh.n_faces()) +
            "  nInternalFaces:" + std::to_string(mesh.n_internal_faces());
 }
 
@@ -177,8 +178,7 @@ fs::path write_poly_mesh_dir(const PolyMesh& mesh, const FoamPolyMesh& like, con
         FoamFileInfo info = like.faces;
         const FoamFormat format = format_of(info, options);
         if (info.header.class_name.empty() || format != info.header.format)
-            info.header.class_name =
-                format == FoamFormat::binary ? "faceCompactList" : "faceList";
+            info.header.class_name = format == FoamFormat::binary ? "faceCompactList" : "faceList";
         const FoamHeader h = make_header(info, options, "faces", location);
         std::string body;
         if (h.class_name == "faceCompactList")
@@ -215,7 +215,8 @@ fs::path write_poly_mesh_dir(const PolyMesh& mesh, const FoamPolyMesh& like, con
 
     const std::string note = mesh_note(mesh);
     const auto write_labels = [&](const FoamFileInfo& like_file, const std::string& object,
-                                  const std::vector<Index>& values) {
+                                  const std::vector<Index>& values)
+    {
         FoamFileInfo info = like_file;
         if (info.header.class_name.empty())
             info.header.class_name = "labelList";
@@ -233,8 +234,7 @@ fs::path write_poly_mesh_dir(const PolyMesh& mesh, const FoamPolyMesh& like, con
         if (info.header.class_name.empty())
             info.header.class_name = "polyBoundaryMesh";
         const FoamHeader h = make_header(info, options, "boundary", location);
-        write_file(dir / "boundary", h, format_boundary(mesh.patches),
-                   compress_of(info, options));
+        write_file(dir / "boundary", h, format_boundary(mesh.patches), compress_of(info, options));
     }
 
     const FoamFormat zone_format = format_of(like.points, options);

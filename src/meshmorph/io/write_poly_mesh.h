@@ -53,8 +53,7 @@ std::filesystem::path write_points_file(const Points& points, const FoamFileInfo
 //! \brief FoamFileInfo for a file meshmorph creates from scratch (no file read): the
 //! class OpenFOAM uses for `object` in that format (faces: faceList in ASCII,
 //! faceCompactList in binary), native label size, scalar=64.
-FoamFileInfo default_file_info(const std::string& object, FoamFormat format,
-                               bool compress = false);
+FoamFileInfo default_file_info(const std::string& object, FoamFormat format, bool compress = false);
 
 //! \brief FoamPolyMesh metadata for writing a generated mesh in one format.
 FoamPolyMesh default_poly_mesh_files(FoamFormat format, bool compress = false);
@@ -69,8 +68,7 @@ FoamPolyMesh default_poly_mesh_files(FoamFormat format, bool compress = false);
 //! \throw IoError naming the path on failure.
 std::filesystem::path write_poly_mesh(const PolyMesh& mesh, const FoamPolyMesh& like,
                                       const std::filesystem::path& case_dir,
-                                      const std::string& instance,
-                                      const std::string& region = "",
+                                      const std::string& instance, const std::string& region = "",
                                       const PolyMeshWriteOptions& options = {});
 
 //! \brief Write every polyMesh file into the directory `poly_mesh_dir` with header
