@@ -111,4 +111,14 @@ TEST(FoamFile, failed_write_names_the_path_and_keeps_the_old_file)
     const fs::path missing_dir = dir / "no" / "such" / "dir" / "points";
     const std::string msg = test::error_of([&] { write_file_atomic(missing_dir, "x"); });
     EXPECT_NE(msg.find(missing_dir.string()), std::string::npos) << msg;
+
+    // The rename cannot replace a directory: the target stays and no temporary is left.
+    fs::create_directories(dir / "points" / "inside");
+    const std::string rename_msg = test::error_of([&] { write_file_atomic(dir / "points", "x"); });
+    EXPECT_NE(rename_msg.find((dir / "points").string()), std::string::npos) << rename_msg;
+    EXPECT_TRUE(fs::is_directory(dir / "points" / "inside"));
+    int n_entries = 0;
+    for ([[maybe_unused]] const fs::directory_entry& e : fs::directory_iterator(dir))
+        ++n_entries;
+    EXPECT_EQ(n_entries, 1); // only "points"
 }
