@@ -512,3 +512,22 @@ TEST(PolyMeshIo, write_points_warns_about_stale_tet_base_points)
     write_points(m.mesh.points, m.points, case_dir, "constant");
     EXPECT_NE(capture.text().find("tetBasePtIs"), std::string::npos) << capture.text();
 }
+
+TEST(PolyMeshIo, binary_face_list_and_ascii_face_compact_list_round_trip)
+{
+    // The two rarer combinations of docs/polymesh-format.md §5.2, kept when rewriting.
+    const PolyMesh mesh = sample_mesh();
+    for (const FoamFormat format : {FoamFormat::binary, FoamFormat::ascii})
+    {
+        FoamPolyMesh like = default_poly_mesh_files(format);
+        like.faces.header.class_name =
+            format == FoamFormat::binary ? "faceList" : "faceCompactList";
+        const fs::path case_dir = test::scratch_dir(
+            std::string("pm_face_classes_") + (format == FoamFormat::binary ? "bin" : "ascii"));
+        write_poly_mesh(mesh, like, case_dir, "constant");
+        const FoamPolyMesh back = read_poly_mesh(case_dir);
+        EXPECT_EQ(back.faces.header.class_name, like.faces.header.class_name);
+        EXPECT_EQ(back.faces.header.format, format);
+        expect_same_mesh(mesh, back.mesh);
+    }
+}
