@@ -220,6 +220,10 @@ TEST(RbfDeformation, rejects_bad_input_with_clear_errors)
     s.polyharmonic_order = 1;
     EXPECT_THROW(RbfDeformation{s}, InvalidInput);
     EXPECT_THROW(rbf_kernel_from_string("cubic"), InvalidInput);
+    s = RbfSettings{};
+    s.max_dense_centres = 5;
+    RbfDeformation small(s);
+    EXPECT_THROW(small.fit(h, Points::Zero(10, 3)), InvalidInput);
     EXPECT_EQ(rbf_kernel_from_string("inverse_multiquadric"), RbfKernel::inverse_multiquadric);
 }
 

@@ -484,6 +484,15 @@ void RbfDeformation::fit(const Eigen::Ref<const Points>& handles,
     d.P = d.model.polynomial_matrix(d.merged.centres);
     d.model.set_centres(d.merged.centres);
     d.sparse = d.setup.params.type == detail::KernelType::wendland_c2;
+    if (!d.sparse && d.merged.centres.rows() > d.settings.max_dense_centres)
+        throw InvalidInput(
+            "RBF: " + std::to_string(d.merged.centres.rows()) +
+            " centres exceed max_dense_centres = " + std::to_string(d.settings.max_dense_centres) +
+            " (the dense matrix "
+            "would need " +
+            std::to_string(8.0 * double(d.merged.centres.rows()) * double(d.merged.centres.rows()) /
+                           1e9) +
+            " GB); use the greedy RBF or the Wendland kernel");
     if (d.sparse)
         d.factor_sparse();
     else

@@ -53,6 +53,10 @@ struct RbfSettings
     double polynomial_rank_tolerance = 1e-9;
     //! log::warning when the condition-number estimate exceeds this.
     double condition_warning = 1e12;
+    //! Dense kernels need an m x m matrix (8 m^2 bytes: 2 GB at m = 16000). More centres
+    //! than this give InvalidInput instead of an allocation failure; use the greedy RBF or
+    //! the Wendland kernel for larger handle sets.
+    Index max_dense_centres = 40000;
 };
 
 //! RBF deformation d(x) = sum_j w_j phi(|x - c_j|) + polynomial (Eq. 6) with centres at the
