@@ -3,6 +3,7 @@
 #include "meshmorph/app/morph_setup.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -166,7 +167,22 @@ std::pair<Vector3, Vector3> read_box(const io::FoamEntry& e)
 {
     const std::vector<io::FoamValueToken>& t = e.tokens();
     if (t.size() == 10 && t[0].is_punct('(') && t[5].is_punct('('))
-        return {e.get<Vector3>(0), e.get<Vector3>(5)};
+    {
+        std::array<Vector3, 2> corners;
+        for (int c = 0; c < 2; ++c)
+        {
+            const std::size_t base = 5 * static_cast<std::size_t>(c);
+            if (!t[base + 4].is_punct(')'))
+                throw e.error("expected two corners (x0 y0 z0) (x1 y1 z1)");
+            for (int a = 0; a < 3; ++a)
+            {
+                if (!t[base + 1 + a].is_number())
+                    throw e.error("expected a number, found " + t[base + 1 + a].describe());
+                corners[c][a] = t[base + 1 + a].scalar;
+            }
+        }
+        return {corners[0], corners[1]};
+    }
     const std::vector<Vector3> corners = e.get<std::vector<Vector3>>();
     if (corners.size() != 2)
         throw e.error("expected two corners (x0 y0 z0) (x1 y1 z1)");
