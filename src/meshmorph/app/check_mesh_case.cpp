@@ -196,6 +196,8 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
         settings.all_topology = options.found("allTopology");
         settings.no_topology = options.found("noTopology");
         settings.report_sets = options.found("writeSets");
+        // The scaled Jacobian is reported in the JSON and VTK outputs only.
+        settings.scaled_jacobian = options.found("json") || options.found("vtk");
         settings.write_precision = read_write_precision(case_dir);
         if (options.found("meshQuality"))
             settings.mesh_quality =

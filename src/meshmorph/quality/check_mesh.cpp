@@ -8,6 +8,7 @@
 #include "meshmorph/quality/check_mesh.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -120,6 +121,14 @@ using Edge = std::pair<Index, Index>;
 
 Edge make_edge(Index a, Index b) { return a < b ? Edge{a, b} : Edge{b, a}; }
 
+//! An undirected edge as one sortable integer (smaller label in the high half).
+std::uint64_t packed_edge(Index a, Index b)
+{
+    const std::uint32_t lo = static_cast<std::uint32_t>(std::min(a, b));
+    const std::uint32_t hi = static_cast<std::uint32_t>(std::max(a, b));
+    return (static_cast<std::uint64_t>(lo) << 32) | hi;
+}
+
 //! Surface topology of a set of faces (a patch or a faceZone), as PrimitivePatch sees it.
 struct SurfaceTopology
 {
@@ -132,14 +141,14 @@ SurfaceTopology surface_topology(const PolyMesh& mesh, const std::vector<Index>&
 {
     SurfaceTopology t;
     std::vector<Index> points;
-    std::vector<Edge> edges;
+    std::vector<std::uint64_t> edges;
     for (Index f : faces)
     {
         const std::span<const Index> face = mesh.faces[f];
         for (std::size_t i = 0; i < face.size(); ++i)
         {
             points.push_back(face[i]);
-            edges.push_back(make_edge(face[i], face[(i + 1) % face.size()]));
+            edges.push_back(packed_edge(face[i], face[(i + 1) % face.size()]));
         }
     }
     points = as_set(std::move(points));
@@ -476,14 +485,30 @@ void check_topology(Context& c)
         for (Index f = 0; f < n_faces; ++f)
         {
             const std::span<const Index> face = mesh.faces[f];
-            sorted.assign(face.begin(), face.end());
-            std::sort(sorted.begin(), sorted.end());
-            for (std::size_t i = 1; i < sorted.size(); ++i)
-                if (sorted[i] == sorted[i - 1])
-                {
-                    ++n_error;
-                    bad.push_back(f);
-                }
+            // Each repeated vertex counts once per repetition, as OpenFOAM's hash-set insert.
+            Index repeats = 0;
+            if (face.size() <= 16)
+            {
+                for (std::size_t i = 1; i < face.size(); ++i)
+                    for (std::size_t j = 0; j < i; ++j)
+                        if (face[i] == face[j])
+                        {
+                            ++repeats;
+                            break;
+                        }
+            }
+            else
+            {
+                sorted.assign(face.begin(), face.end());
+                std::sort(sorted.begin(), sorted.end());
+                for (std::size_t i = 1; i < sorted.size(); ++i)
+                    repeats += sorted[i] == sorted[i - 1];
+            }
+            if (repeats > 0)
+            {
+                n_error += repeats;
+                bad.push_back(f);
+            }
         }
         if (n_error > 0)
         {
@@ -503,7 +528,7 @@ void check_topology(Context& c)
         std::vector<char> listed(static_cast<std::size_t>(n_cells), 0);
 #pragma omp parallel if (mesh.n_faces() > detail::parallel_threshold)
         {
-            std::vector<Edge> edges;
+            std::vector<std::uint64_t> edges;
 #pragma omp for schedule(static)
             for (Index cell = 0; cell < n_cells; ++cell)
             {
@@ -512,7 +537,7 @@ void check_topology(Context& c)
                 {
                     const std::span<const Index> face = mesh.faces[f];
                     for (std::size_t i = 0; i < face.size(); ++i)
-                        edges.push_back(make_edge(face[i], face[(i + 1) % face.size()]));
+                        edges.push_back(packed_edge(face[i], face[(i + 1) % face.size()]));
                 }
                 std::sort(edges.begin(), edges.end());
                 for (std::size_t i = 0; i < edges.size();)
@@ -563,31 +588,46 @@ void check_topology(Context& c)
         std::vector<char> order_error(static_cast<std::size_t>(n_faces), 0);
 #pragma omp parallel if (mesh.n_faces() > detail::parallel_threshold)
         {
-            std::vector<std::pair<Index, Index>> common; // (other face, count)
-            std::vector<Index> others;
+            // (other face, position in this face) of every vertex shared with a higher face.
+            // Packed as (other face << 32) | position: sorting integers is much faster than
+            // sorting pairs through operator<=>.
+            std::vector<std::uint64_t> shared;
+            std::vector<Index> other_positions;
+            // Whether sorted positions in a face of n vertices form one cyclic run.
+            const auto one_run = [](const std::vector<Index>& pos, Index n) {
+                std::size_t runs = 0;
+                for (std::size_t k = 0; k < pos.size(); ++k)
+                {
+                    const Index prev = (pos[k] + n - 1) % n;
+                    const Index before = pos[(k + pos.size() - 1) % pos.size()];
+                    runs += prev != before;
+                }
+                return runs <= 1;
+            };
 #pragma omp for schedule(dynamic, 1024)
             for (Index f = 0; f < n_faces; ++f)
             {
                 const std::span<const Index> face = mesh.faces[f];
-                others.clear();
-                for (Index p : face)
+                const Index n_f = static_cast<Index>(face.size());
+                shared.clear();
+                for (Index i = 0; i < n_f; ++i)
+                {
+                    const Index p = face[i];
                     for (Index k = pf_offsets[p]; k < pf_offsets[p + 1]; ++k)
                         if (pf_values[k] > f)
-                            others.push_back(pf_values[k]);
-                std::sort(others.begin(), others.end());
-                common.clear();
-                for (std::size_t i = 0; i < others.size();)
-                {
-                    std::size_t j = i;
-                    while (j < others.size() && others[j] == others[i])
-                        ++j;
-                    common.emplace_back(others[i], static_cast<Index>(j - i));
-                    i = j;
+                            shared.push_back(
+                                (static_cast<std::uint64_t>(pf_values[k]) << 32) |
+                                static_cast<std::uint32_t>(i));
                 }
-                for (const auto& [g, n_common] : common)
+                std::sort(shared.begin(), shared.end());
+                for (std::size_t a = 0; a < shared.size();)
                 {
+                    std::size_t b = a;
+                    while (b < shared.size() && (shared[b] >> 32) == (shared[a] >> 32))
+                        ++b;
+                    const Index g = static_cast<Index>(shared[a] >> 32);
+                    const Index n_common = static_cast<Index>(b - a);
                     const std::span<const Index> other = mesh.faces[g];
-                    const Index n_f = static_cast<Index>(face.size());
                     const Index n_g = static_cast<Index>(other.size());
                     if (n_common == n_g || n_common == n_f)
                     {
@@ -599,22 +639,31 @@ void check_topology(Context& c)
                     else if (n_common >= 2)
                     {
                         // Shared vertices must form one consecutive run on both faces.
-                        const auto consecutive = [](std::span<const Index> a,
-                                                    std::span<const Index> b) {
-                            const std::size_t n = a.size();
-                            std::size_t runs = 0;
-                            for (std::size_t i = 0; i < n; ++i)
+                        std::vector<Index>& pos_f = other_positions;
+                        pos_f.clear();
+                        for (std::size_t k = a; k < b; ++k)
+                            pos_f.push_back(static_cast<Index>(shared[k] & 0xffffffffu));
+                        bool ok = one_run(pos_f, n_f);
+                        if (ok)
+                        {
+                            pos_f.clear();
+                            for (std::size_t k = a; k < b; ++k)
                             {
-                                const bool in = std::find(b.begin(), b.end(), a[i]) != b.end();
-                                const bool prev_in =
-                                    std::find(b.begin(), b.end(), a[(i + n - 1) % n]) != b.end();
-                                runs += in && !prev_in;
+                                const Index p = face[shared[k] & 0xffffffffu];
+                                for (Index j = 0; j < n_g; ++j)
+                                    if (other[j] == p)
+                                    {
+                                        pos_f.push_back(j);
+                                        break;
+                                    }
                             }
-                            return runs <= 1;
-                        };
-                        if (!consecutive(face, other) || !consecutive(other, face))
+                            std::sort(pos_f.begin(), pos_f.end());
+                            ok = one_run(pos_f, n_g);
+                        }
+                        if (!ok)
                             order_error[f] = 1;
                     }
+                    a = b;
                 }
             }
         }
@@ -1674,8 +1723,9 @@ QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
     Context context{mesh, cell_faces, geometry, settings, report, printer};
     const std::vector<CellShape> shapes = mesh_stats(context);
     // The paper's measure (not a checkMesh check): minimum over cells where it is defined.
-    report.cell_scaled_jacobian = scaled_jacobian(mesh, cell_faces, shapes);
-    for (Index cell = 0; cell < mesh.n_cells; ++cell)
+    if (settings.scaled_jacobian)
+        report.cell_scaled_jacobian = scaled_jacobian(mesh, cell_faces, shapes);
+    for (Index cell = 0; cell < report.cell_scaled_jacobian.size(); ++cell)
     {
         const double sj = report.cell_scaled_jacobian[cell];
         if (std::isfinite(sj) &&

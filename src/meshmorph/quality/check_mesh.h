@@ -50,6 +50,8 @@ struct CheckMeshSettings
     bool no_topology = false;   //!< -noTopology (skip §3.2)
     bool report_sets = false;   //!< print the "  <<Writing N ... to set X" lines (-writeSets)
     int write_precision = 6;    //!< controlDict writePrecision (%.{p}g)
+    //! Compute the per-cell scaled Jacobian (not a checkMesh check; for JSON/VTK/morph).
+    bool scaled_jacobian = true;
     //! -meshQuality: the criteria from system/meshQualityDict.
     std::optional<MeshQualitySettings> mesh_quality;
 };
