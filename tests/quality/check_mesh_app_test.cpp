@@ -12,6 +12,7 @@
 
 #include "helpers.h"
 #include "meshmorph/app/check_mesh_case.h"
+#include "meshmorph/core/config.h"
 #include "meshmorph/io/write_poly_mesh.h"
 #include "meshmorph/quality/quality_json.h"
 
@@ -192,4 +193,20 @@ TEST(QualityJson, summary_prints_before_and_after)
     EXPECT_NE(out.str().find("mesh checks failed"), std::string::npos);
     EXPECT_EQ(after["meshOK"], false);
     EXPECT_GT(after["negativeVolumeCells"].get<int>(), 0);
+}
+
+TEST(CheckMeshQualityApp, vtk_file_has_the_quality_fields)
+{
+#if MESHMORPH_WITH_VTK
+    const fs::path dir = write_case("app_vtk", damaged_box());
+    const AppRun r = run({"-case", dir.string(), "-vtk", (dir / "quality.vtu").string()});
+    ASSERT_EQ(r.status, app::exit_checks_failed) << r.err;
+    const std::string vtu = read_text(dir / "quality.vtu");
+    for (const char* field : {"nonOrthogonality", "skewness", "aspectRatio", "volume",
+                              "determinant", "scaledJacobian"})
+        EXPECT_NE(vtu.find("Name=\"" + std::string(field) + "\""), std::string::npos) << field;
+    EXPECT_NE(vtu.find("NumberOfCells=\"27\""), std::string::npos);
+#else
+    GTEST_SKIP() << "built without VTK: -vtk is rejected";
+#endif
 }
