@@ -448,6 +448,39 @@ void RbfDeformation::Impl::set_displacements(const Eigen::MatrixXd& H)
     Eigen::MatrixXd W, Qc;
     solve(H, W, Qc);
     model.set_coefficients(W, Qc);
+    if (settings.refinement_steps <= 0)
+        return;
+    // Iterative refinement with the same factorisation: solve again for data + (H - d(h)),
+    // which cancels the error of an ill-conditioned solve to first order (each step gains
+    // about 1 / (cond * eps)). Kept only while it reduces the max residual.
+    Points centres_physical = merged.centres * model.scale;
+    centres_physical.rowwise() += model.centre.transpose();
+    Points got(centres_physical.rows(), 3);
+    model.evaluate(centres_physical, got);
+    Eigen::MatrixXd R = H - Eigen::MatrixXd(got);
+    double error = R.rowwise().norm().maxCoeff();
+    const double target = 1e-14 * H.rowwise().norm().maxCoeff();
+    Eigen::MatrixXd data = H;
+    for (int step = 0; step < settings.refinement_steps && error > target; ++step)
+    {
+        const Eigen::MatrixXd next = data + R;
+        Eigen::MatrixXd W2, Q2;
+        solve(next, W2, Q2);
+        model.set_coefficients(W2, Q2);
+        model.evaluate(centres_physical, got);
+        const Eigen::MatrixXd R2 = H - Eigen::MatrixXd(got);
+        const double error2 = R2.rowwise().norm().maxCoeff();
+        if (!(error2 < error))
+        {
+            model.set_coefficients(W, Qc); // no gain: keep the previous solution
+            break;
+        }
+        W = W2;
+        Qc = Q2;
+        data = next;
+        R = R2;
+        error = error2;
+    }
 }
 
 RbfDeformation::RbfDeformation(const RbfSettings& settings) : impl_(std::make_unique<Impl>())

@@ -51,6 +51,10 @@ struct RbfSettings
     //! Polynomial terms whose pivot in the column-normalised pivoted QR of P falls below this
     //! (relative to the largest) are dropped: coplanar / collinear handles (2D cases).
     double polynomial_rank_tolerance = 1e-9;
+    //! Iterative-refinement steps after each solve (re-solve for the residual with the same
+    //! factorisation, kept only while the max residual at the handles decreases). Makes the
+    //! interpolation exact to round-off even at condition numbers ~1e13 (graded CFD meshes).
+    int refinement_steps = 3;
     //! log::warning when the condition-number estimate exceeds this.
     double condition_warning = 1e12;
     //! Dense kernels need an m x m matrix (8 m^2 bytes: 2 GB at m = 16000). More centres
