@@ -23,6 +23,8 @@
 
 #include "helpers.h"
 #include "meshmorph/app/check_mesh_case.h"
+#include "meshmorph/io/read_poly_mesh.h"
+#include "meshmorph/io/write_poly_mesh.h"
 #include "openfoam_cases.h"
 
 namespace fs = std::filesystem;
@@ -305,4 +307,27 @@ TEST(CheckMeshOracle, written_sets_match_checkmesh_sets)
     const std::string zones =
         "cd '" + dir.string() + "' && setsToZones -noFlipMap > log.setsToZones 2>&1";
     EXPECT_EQ(std::system(zones.c_str()), 0) << read_text(dir / "log.setsToZones");
+}
+
+TEST(CheckMeshOracle, short_edges_and_collapsed_points)
+{
+    REQUIRE_OPENFOAM("short-edge counting");
+    // Two interior points moved to within 1e-9 of a neighbour: edges shorter than 1e-6 of the
+    // bounding box, which -allGeometry reports (count of points on short edges).
+    const fs::path dir = copy_case("curved-block", "quality_oracle_short_edges");
+    io::FoamPolyMesh foam = io::read_poly_mesh(dir);
+    PolyMesh& mesh = foam.mesh;
+    int moved = 0;
+    for (Index f = 0; f < mesh.n_internal_faces() && moved < 2; f += 40)
+    {
+        const std::span<const Index> face = mesh.faces[f];
+        mesh.points.row(face[1]) =
+            mesh.points.row(face[0]) + 1e-9 * (mesh.points.row(face[1]) - mesh.points.row(face[0]));
+        ++moved;
+    }
+    io::write_points(mesh.points, foam.points, dir, "constant");
+    const std::string theirs = run_checkmesh(dir, "-allGeometry");
+    ASSERT_NE(theirs.find("Edges too small"), std::string::npos) << theirs;
+    const OurRun ours = run_ours(dir, {"-allGeometry"});
+    EXPECT_EQ(compare_reports(report_block(theirs), report_block(ours.out)), "");
 }
