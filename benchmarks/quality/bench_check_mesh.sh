@@ -10,7 +10,9 @@
 #   CHECKMESHQUALITY  our executable (default: build/release, build/quality, build/dev ...)
 # Goals on the motorBike tutorial mesh (353k cells, benchmarks/io/make_motorbike.sh):
 #   plain <= 0.5 x checkMesh, -allGeometry -allTopology <= 0.25 x checkMesh.
-# Both tools run with the machine's default thread count (checkMesh is serial).
+# Both tools run with the machine's default thread count (checkMesh is serial). On a loaded
+# machine, OpenMP's spinning barriers cost more than the second thread gains: compare with
+# OMP_WAIT_POLICY=passive or OMP_NUM_THREADS=1 (environment, read at program start).
 # Each pair of reports is also compared (same lines apart from set-writing lines).
 set -euo pipefail
 src=${1:?usage: bench_check_mesh.sh CASE [REPEATS] [CHECKMESHQUALITY]}
