@@ -613,11 +613,12 @@ void check_topology(Context& c)
                 for (Index i = 0; i < n_f; ++i)
                 {
                     const Index p = face[i];
-                    for (Index k = pf_offsets[p]; k < pf_offsets[p + 1]; ++k)
-                        if (pf_values[k] > f)
-                            shared.push_back(
-                                (static_cast<std::uint64_t>(pf_values[k]) << 32) |
-                                static_cast<std::uint32_t>(i));
+                    // A point's faces are stored in ascending order: skip those <= f.
+                    const Index* begin = pf_values.data() + pf_offsets[p];
+                    const Index* end = pf_values.data() + pf_offsets[p + 1];
+                    for (const Index* k = std::upper_bound(begin, end, f); k != end; ++k)
+                        shared.push_back((static_cast<std::uint64_t>(*k) << 32) |
+                                         static_cast<std::uint32_t>(i));
                 }
                 std::sort(shared.begin(), shared.end());
                 for (std::size_t a = 0; a < shared.size();)
