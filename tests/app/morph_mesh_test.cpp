@@ -259,6 +259,81 @@ ffd   { lattice (4 4 4); displacements ( ((1 1 3) (0 0 0.02)) ((2 2 3) (0 0 0.02
     }
 }
 
+TEST(MorphMesh, surface_pointdisplacement_and_handles_from_the_dictionary)
+{
+    const PolyMesh mesh = test::make_box_mesh(4, 4, 4);
+    const fs::path dir = make_case("data_driven", mesh, R"D(
+conflicts last;
+boundary
+{
+    default { type fixed; }
+    zMax    { type surface; file "constant/triSurface/lid.stl"; }
+    yMin    { type pointDisplacement; }
+}
+handles
+{
+    centre { box (0.4 0.4 0.4) (0.6 0.6 0.6); displacement (0.02 0 0); }
+}
+)D");
+    // Target: the plane z = 1.1 (two large triangles).
+    write_text(dir / "constant/triSurface/lid.stl",
+               "solid lid\n"
+               " facet normal 0 0 1\n  outer loop\n   vertex -5 -5 1.1\n   vertex 5 -5 1.1\n"
+               "   vertex 5 5 1.1\n  endloop\n endfacet\n"
+               " facet normal 0 0 1\n  outer loop\n   vertex -5 -5 1.1\n   vertex 5 5 1.1\n"
+               "   vertex -5 5 1.1\n  endloop\n endfacet\nendsolid lid\n");
+    // yMin moves by -0.03 in y (its boundaryField value), everything else is zero.
+    write_text(dir / "0/pointDisplacement", R"D(FoamFile { version 2.0; format ascii; class pointVectorField; object pointDisplacement; }
+dimensions [0 1 0 0 0 0 0];
+internalField uniform (0 0 0);
+boundaryField
+{
+    yMin { type fixedValue; value uniform (0 -0.03 0); }
+    ".*" { type fixedValue; value uniform (0 0 0); }
+}
+)D");
+    const RunResult r = run({"-case", dir.string(), "-json", (dir / "m.json").string()});
+    ASSERT_EQ(r.code, 0) << r.err << r.log;
+    ASSERT_EQ(times(dir), (std::vector<std::string>{"0", "1"})) << "first time after 0";
+    const Points moved = io::read_points_file(dir / "1/polyMesh/points");
+    const auto at = [&](int i, int j, int k) { return i + 5 * (j + 5 * k); };
+    // Interior of the lid: onto the plane z = 1.1.
+    EXPECT_NEAR(moved(at(2, 2, 4), 2), 1.1, 1e-10);
+    EXPECT_NEAR(moved(at(2, 2, 4), 0), 0.5, 1e-10);
+    // Interior of yMin: the field's value.
+    EXPECT_NEAR(moved(at(2, 0, 2), 1), -0.03, 1e-10);
+    // The handle point at the centre.
+    EXPECT_NEAR(moved(at(2, 2, 2), 0), 0.52, 1e-10);
+    // An interior point of xMin stays.
+    EXPECT_LE((moved.row(at(0, 2, 2)) - mesh.points.row(at(0, 2, 2))).norm(), 1e-10);
+    const nlohmann::json j = nlohmann::json::parse(read_text(dir / "m.json"));
+    EXPECT_EQ(j["handlePoints"].get<int>(), 1);
+    EXPECT_GT(j["conflicts"].get<int>(), 0) << "lid and yMin edges meet the fixed sides";
+}
+
+TEST(MorphMesh, two_d_case_stays_two_d_through_the_files)
+{
+    const PolyMesh mesh = test::make_block_mesh(
+        6, 6, 1, [](double u, double v, double w) { return Vector3(u, v, 0.1 * w); },
+        {"patch", "patch", "patch", "patch", "empty", "empty"});
+    const fs::path dir = make_case("two_d", mesh, R"D(
+conflicts last;
+boundary { yMax { type rotate; origin (0.5 1 0); axis (0 0 1); angle 5; } }
+)D");
+    const RunResult r = run({"-case", dir.string()});
+    ASSERT_EQ(r.code, 0) << r.err << r.log;
+    const Points moved = io::read_points_file(dir / "1/polyMesh/points");
+    const Index layer = 7 * 7;
+    for (Index p = 0; p < layer; ++p)
+    {
+        EXPECT_EQ(moved(p, 2), mesh.points(p, 2));
+        EXPECT_EQ(moved(p + layer, 2), mesh.points(p + layer, 2));
+        EXPECT_EQ(moved(p, 0), moved(p + layer, 0));
+        EXPECT_EQ(moved(p, 1), moved(p + layer, 1));
+    }
+    EXPECT_NE(r.log.find("2D case"), std::string::npos);
+}
+
 //! Runs OpenFOAM's checkMesh at the latest time; returns the number of failed checks
 //! (0 for "Mesh OK."), -1 if the output has neither.
 int openfoam_failed_checks(const fs::path& dir, std::string& output)

@@ -287,6 +287,7 @@ MorphResult morph_case(const MorphOptions& options)
         return (*projector)(file, query);
     };
     Points point_displacement;
+    std::vector<std::optional<Points>> patch_point_displacement;
     const std::vector<PatchAssignment> assignment = assign_patches(mesh, setup);
     if (std::any_of(assignment.begin(), assignment.end(), [](const PatchAssignment& a) {
             return a.motion == MotionType::point_displacement;
@@ -296,8 +297,14 @@ MorphResult morph_case(const MorphOptions& options)
         const std::string time = foam.time == "constant" ? "0" : foam.time;
         const io::PointVectorField field =
             io::read_point_vector_field(case_dir, time, "pointDisplacement", mesh);
-        point_displacement = io::apply_patch_values(field, mesh);
+        // Patches of type pointDisplacement take their boundaryField values (fixedValue /
+        // calculated), else the internalField at their points. Other patches' entries are
+        // not used, so their disagreements do not matter here.
+        point_displacement = field.internal;
+        for (const io::PointPatchField& pf : field.patches)
+            patch_point_displacement.push_back(pf.value);
         inputs.point_displacement = &point_displacement;
+        inputs.patch_point_displacement = &patch_point_displacement;
         log::info() << "Read " << field.path.string();
     }
     result.constraints = build_constraints(mesh, setup, inputs);

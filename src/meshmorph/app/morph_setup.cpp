@@ -654,6 +654,19 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
                                    std::to_string(inputs.point_displacement->rows()) +
                                    " values, the mesh has " + std::to_string(mesh.n_points()) +
                                    " points");
+            if (inputs.patch_point_displacement != nullptr &&
+                pi < inputs.patch_point_displacement->size() &&
+                (*inputs.patch_point_displacement)[pi].has_value())
+            {
+                const Points& values = *(*inputs.patch_point_displacement)[pi];
+                if (values.rows() != static_cast<Eigen::Index>(pts.size()))
+                    throw InvalidInput("pointDisplacement values of patch '" + patch.name +
+                                       "' do not match its number of points");
+                for (std::size_t i = 0; i < pts.size(); ++i)
+                    claims.push_back({pts[i], static_cast<Index>(pi), order, Claim::Kind::value,
+                                      values.row(static_cast<Eigen::Index>(i)).transpose()});
+                break;
+            }
             for (Index p : pts)
                 claims.push_back({p, static_cast<Index>(pi), order, Claim::Kind::value,
                                   inputs.point_displacement->row(p).transpose()});

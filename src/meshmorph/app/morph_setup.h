@@ -157,6 +157,10 @@ struct ConstraintInputs
     //! nPoints x 3 `pointDisplacement` values (internalField with the patch values applied);
     //! required if any patch uses type pointDisplacement.
     const Points* point_displacement = nullptr;
+    //! Optional per-patch values (one entry per mesh patch, nPatchPoints x 3 in patch-local
+    //! order, e.g. a fixedValue boundary entry of the field); where set they replace
+    //! point_displacement on that patch. Disagreements between patches are conflicts.
+    const std::vector<std::optional<Points>>* patch_point_displacement = nullptr;
     //! Closest points on the target surface `file` for each row of `query` (k x 3);
     //! required if any patch uses type surface. May throw IoError/ParseError.
     std::function<Points(const std::string& file, const Points& query)> project_to_surface;
