@@ -408,9 +408,7 @@ MorphResult morph_case(const MorphOptions& options)
                          (reasons.size() > 1 ? " and " + reasons.back() : std::string());
         if (!options.force)
         {
-            result.refused = true;
-            log::error() << "Refusing to write: " << result.refusal
-                         << ". Reduce the motion, change the method or use -force.";
+            result.refused = true; // the caller reports it (run_morph_mesh: exit status 3)
             return result;
         }
         log::warning() << "-force: writing although " << result.refusal;
@@ -548,7 +546,8 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
             << format_seconds(result.timings.write) << "\n";
         if (result.refused)
         {
-            err << "Error: " << result.refusal << "; nothing written (use -force to write anyway)\n";
+            err << "Error: " << result.refusal
+                << ". Nothing written: reduce the motion, change the method or use -force.\n";
             return exit_morph_refused;
         }
         out << (result.after.mesh_ok() ? "Mesh OK."
