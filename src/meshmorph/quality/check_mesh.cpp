@@ -85,6 +85,23 @@ std::vector<Index> flagged(const std::vector<char>& mask)
     return labels;
 }
 
+//! Point -> faces in CSR form; each point's faces in ascending order (a face listing a
+//! point twice appears twice).
+CompactList point_faces_of(const PolyMesh& mesh)
+{
+    CompactList pf;
+    pf.offsets.assign(static_cast<std::size_t>(mesh.n_points()) + 1, 0);
+    for (Index p : mesh.faces.values)
+        ++pf.offsets[p + 1];
+    std::partial_sum(pf.offsets.begin(), pf.offsets.end(), pf.offsets.begin());
+    pf.values.resize(mesh.faces.values.size());
+    std::vector<Index> fill(pf.offsets.begin(), pf.offsets.end() - 1);
+    for (Index f = 0; f < mesh.n_faces(); ++f)
+        for (Index p : mesh.faces[f])
+            pf.values[fill[p]++] = f;
+    return pf;
+}
+
 struct Context
 {
     const PolyMesh& mesh;
@@ -93,6 +110,15 @@ struct Context
     const CheckMeshSettings& settings;
     QualityReport& report;
     Printer& pr;
+
+    //! Point -> faces addressing (CSR, each point's faces ascending), built on first use.
+    const CompactList& point_faces()
+    {
+        if (point_faces_.size() != mesh.n_points())
+            point_faces_ = point_faces_of(mesh);
+        return point_faces_;
+    }
+    CompactList point_faces_;
 
     void fail(const std::string& name)
     {
@@ -270,38 +296,66 @@ std::vector<CellShape> mesh_stats(Context& c)
         out << "    internal points:  " << n_internal_points << "\n";
         if (c.settings.all_topology)
         {
-            std::vector<Edge> edges;
-            std::vector<Edge> boundary_edges;
-            for (Index f = 0; f < mesh.n_faces(); ++f)
+            // Every undirected edge (p, q), p <= q, is found once from its smaller point p
+            // by walking p's faces; an edge is a boundary edge when any boundary face uses it.
+            const CompactList& pf = c.point_faces();
+            const Index n_points = mesh.n_points();
+            const Index n_int_faces = mesh.n_internal_faces();
+            std::int64_t n_edges = 0, n_internal_edges = 0, n_one = 0, n_two = 0;
+#pragma omp parallel if (mesh.n_faces() > detail::parallel_threshold) \
+    reduction(+ : n_edges, n_internal_edges, n_one, n_two)
             {
-                const std::span<const Index> face = mesh.faces[f];
-                for (std::size_t i = 0; i < face.size(); ++i)
+                // mark[q] == p: edge (p, q) already seen; slot[q] its index in `is_boundary`.
+                std::vector<Index> mark(static_cast<std::size_t>(n_points), -1);
+                std::vector<Index> slot(static_cast<std::size_t>(n_points), 0);
+                std::vector<char> is_boundary;
+                std::vector<Index> others;
+#pragma omp for schedule(static)
+                for (Index p = 0; p < n_points; ++p)
                 {
-                    const Edge e = make_edge(face[i], face[(i + 1) % face.size()]);
-                    edges.push_back(e);
-                    if (f >= mesh.n_internal_faces())
-                        boundary_edges.push_back(e);
+                    is_boundary.clear();
+                    others.clear();
+                    const std::span<const Index> faces_of_p = pf[p];
+                    for (std::size_t k = 0; k < faces_of_p.size(); ++k)
+                    {
+                        const Index f = faces_of_p[k];
+                        if (k > 0 && faces_of_p[k - 1] == f)
+                            continue; // p repeated in f: all its occurrences seen below
+                        const std::span<const Index> face = mesh.faces[f];
+                        const std::size_t n = face.size();
+                        const bool boundary_face = f >= n_int_faces;
+                        for (std::size_t i = 0; i < n; ++i)
+                        {
+                            if (face[i] != p)
+                                continue;
+                            for (const Index q : {face[(i + 1) % n], face[(i + n - 1) % n]})
+                            {
+                                if (q < p)
+                                    continue;
+                                if (mark[q] != p)
+                                {
+                                    mark[q] = p;
+                                    slot[q] = static_cast<Index>(is_boundary.size());
+                                    is_boundary.push_back(0);
+                                    others.push_back(q);
+                                }
+                                is_boundary[slot[q]] |= boundary_face;
+                            }
+                        }
+                    }
+                    n_edges += static_cast<std::int64_t>(others.size());
+                    for (std::size_t k = 0; k < others.size(); ++k)
+                    {
+                        if (is_boundary[k])
+                            continue;
+                        ++n_internal_edges;
+                        const int nb = boundary[p] + boundary[others[k]];
+                        n_one += nb == 1;
+                        n_two += nb == 2;
+                    }
                 }
             }
-            edges = [](std::vector<Edge> e) {
-                std::sort(e.begin(), e.end());
-                e.erase(std::unique(e.begin(), e.end()), e.end());
-                return e;
-            }(std::move(edges));
-            std::sort(boundary_edges.begin(), boundary_edges.end());
-            boundary_edges.erase(std::unique(boundary_edges.begin(), boundary_edges.end()),
-                                 boundary_edges.end());
-            Index n_internal_edges = 0, n_one = 0, n_two = 0;
-            for (const Edge& e : edges)
-            {
-                if (std::binary_search(boundary_edges.begin(), boundary_edges.end(), e))
-                    continue;
-                ++n_internal_edges;
-                const int nb = boundary[e.first] + boundary[e.second];
-                n_one += nb == 1;
-                n_two += nb == 2;
-            }
-            out << "    edges:            " << edges.size() << "\n"
+            out << "    edges:            " << n_edges << "\n"
                 << "    internal edges:   " << n_internal_edges << "\n"
                 << "    internal edges using one boundary point:   " << n_one << "\n"
                 << "    internal edges using two boundary points:  " << n_two << "\n";
@@ -572,27 +626,22 @@ void check_topology(Context& c)
             out << "    Topological cell zip-up check OK.\n";
 
         // 8. Face-face connectivity.
-        std::vector<Index> pf_offsets(static_cast<std::size_t>(mesh.n_points()) + 1, 0);
-        for (Index p : mesh.faces.values)
-            ++pf_offsets[p + 1];
-        std::partial_sum(pf_offsets.begin(), pf_offsets.end(), pf_offsets.begin());
-        std::vector<Index> pf_values(mesh.faces.values.size());
-        {
-            std::vector<Index> fill(pf_offsets.begin(), pf_offsets.end() - 1);
-            for (Index f = 0; f < n_faces; ++f)
-                for (Index p : mesh.faces[f])
-                    pf_values[fill[p]++] = f;
-        }
+        const CompactList& point_faces = c.point_faces();
+        const std::vector<Index>& pf_offsets = point_faces.offsets;
+        const std::vector<Index>& pf_values = point_faces.values;
         std::vector<Index> n_baffle(static_cast<std::size_t>(n_faces), 0);
         std::vector<Index> n_dup(static_cast<std::size_t>(n_faces), 0);
         std::vector<char> order_error(static_cast<std::size_t>(n_faces), 0);
 #pragma omp parallel if (mesh.n_faces() > detail::parallel_threshold)
         {
-            // (other face, position in this face) of every vertex shared with a higher face.
-            // Packed as (other face << 32) | position: sorting integers is much faster than
-            // sorting pairs through operator<=>.
-            std::vector<std::uint64_t> shared;
-            std::vector<Index> other_positions;
+            // For face f: count[g] = number of (vertex position i of f, occurrence of g in
+            // the point's faces) pairs for every higher face g sharing a vertex with f (what
+            // OpenFOAM counts), first/last position i seen; `touched` lists those g.
+            std::vector<Index> count(static_cast<std::size_t>(n_faces), 0);
+            std::vector<Index> first_pos(static_cast<std::size_t>(n_faces), 0);
+            std::vector<Index> last_pos(static_cast<std::size_t>(n_faces), 0);
+            std::vector<Index> touched;
+            std::vector<Index> positions;
             // Whether sorted positions in a face of n vertices form one cyclic run.
             const auto one_run = [](const std::vector<Index>& pos, Index n) {
                 std::size_t runs = 0;
@@ -604,30 +653,38 @@ void check_topology(Context& c)
                 }
                 return runs <= 1;
             };
+            // The higher faces of point p: p's faces are stored in ascending order.
+            const auto higher_faces = [&](Index p, Index f) {
+                const Index* begin = pf_values.data() + pf_offsets[p];
+                const Index* end = pf_values.data() + pf_offsets[p + 1];
+                // Branch-free count of the faces <= f (lists are short: faster than a
+                // binary search's mispredicted branches).
+                std::ptrdiff_t n_lower = 0;
+                for (const Index* k = begin; k != end; ++k)
+                    n_lower += *k <= f;
+                return std::span<const Index>(begin + n_lower, end);
+            };
 #pragma omp for schedule(dynamic, 1024)
             for (Index f = 0; f < n_faces; ++f)
             {
                 const std::span<const Index> face = mesh.faces[f];
                 const Index n_f = static_cast<Index>(face.size());
-                shared.clear();
+                touched.clear();
                 for (Index i = 0; i < n_f; ++i)
+                    for (const Index g : higher_faces(face[i], f))
+                    {
+                        if (count[g] == 0)
+                        {
+                            touched.push_back(g);
+                            first_pos[g] = i;
+                        }
+                        ++count[g];
+                        last_pos[g] = i;
+                    }
+                for (const Index g : touched)
                 {
-                    const Index p = face[i];
-                    // A point's faces are stored in ascending order: skip those <= f.
-                    const Index* begin = pf_values.data() + pf_offsets[p];
-                    const Index* end = pf_values.data() + pf_offsets[p + 1];
-                    for (const Index* k = std::upper_bound(begin, end, f); k != end; ++k)
-                        shared.push_back((static_cast<std::uint64_t>(*k) << 32) |
-                                         static_cast<std::uint32_t>(i));
-                }
-                std::sort(shared.begin(), shared.end());
-                for (std::size_t a = 0; a < shared.size();)
-                {
-                    std::size_t b = a;
-                    while (b < shared.size() && (shared[b] >> 32) == (shared[a] >> 32))
-                        ++b;
-                    const Index g = static_cast<Index>(shared[a] >> 32);
-                    const Index n_common = static_cast<Index>(b - a);
+                    const Index n_common = count[g];
+                    count[g] = 0;
                     const std::span<const Index> other = mesh.faces[g];
                     const Index n_g = static_cast<Index>(other.size());
                     if (n_common == n_g || n_common == n_f)
@@ -640,31 +697,39 @@ void check_topology(Context& c)
                     else if (n_common >= 2)
                     {
                         // Shared vertices must form one consecutive run on both faces.
-                        std::vector<Index>& pos_f = other_positions;
-                        pos_f.clear();
-                        for (std::size_t k = a; k < b; ++k)
-                            pos_f.push_back(static_cast<Index>(shared[k] & 0xffffffffu));
-                        bool ok = one_run(pos_f, n_f);
+                        // Positions in f, ascending (with repeats), as OpenFOAM collects them.
+                        positions.clear();
+                        if (n_common == 2)
+                        {
+                            positions.push_back(first_pos[g]);
+                            positions.push_back(last_pos[g]);
+                        }
+                        else
+                        {
+                            for (Index i = first_pos[g]; i <= last_pos[g]; ++i)
+                                for (const Index h : higher_faces(face[i], f))
+                                    if (h == g)
+                                        positions.push_back(i);
+                        }
+                        bool ok = one_run(positions, n_f);
                         if (ok)
                         {
-                            pos_f.clear();
-                            for (std::size_t k = a; k < b; ++k)
+                            for (Index& pos : positions)
                             {
-                                const Index p = face[shared[k] & 0xffffffffu];
+                                const Index p = face[pos];
                                 for (Index j = 0; j < n_g; ++j)
                                     if (other[j] == p)
                                     {
-                                        pos_f.push_back(j);
+                                        pos = j;
                                         break;
                                     }
                             }
-                            std::sort(pos_f.begin(), pos_f.end());
-                            ok = one_run(pos_f, n_g);
+                            std::sort(positions.begin(), positions.end());
+                            ok = one_run(positions, n_g);
                         }
                         if (!ok)
                             order_error[f] = 1;
                     }
-                    a = b;
                 }
             }
         }
@@ -1441,7 +1506,10 @@ void check_geometry(Context& c, FaceValues& fv)
                 {
                     FoamVector w = detail::cross(e_prev, e);
                     const double mag_w = detail::mag(w);
-                    if (mag_w >= max_sin)
+                    // Shortcut: (w & normal) > mag_w / 2 means the normalised product
+                    // checkMesh computes (rounding error ~1e-15: |w/|w|| = 1, |normal| <= 1)
+                    // is far above `small`: a convex corner, no division needed.
+                    if (mag_w >= max_sin && !(detail::dot(w, normal) > 0.5 * mag_w))
                     {
                         w /= mag_w;
                         if (detail::dot(w, normal) < small)
@@ -1577,6 +1645,15 @@ void check_geometry(Context& c, FaceValues& fv)
                     if (j == i)
                         continue;
                     FoamVector u = row(g.face_centres, cf[j]) - ci;
+                    // Shortcut (no sqrt/divisions): when (u & n) / |u| < -2e-6 exactly,
+                    // the rounded normalised product checkMesh computes (error ~1e-15, as
+                    // |u/|u|| = 1 and |n| <= 1) is certainly below -1e-6, so the pair
+                    // passes. Only for |u|^2 well above vsmall^2 and without underflow of
+                    // s^2; every other pair takes OpenFOAM's exact path below.
+                    const double s_un = detail::dot(u, n);
+                    const double m2 = detail::mag_sqr(u);
+                    if (s_un < 0 && m2 > 1e-200 && s_un * s_un > 4e-12 * m2)
+                        continue;
                     u /= std::max(detail::mag(u), vsmall);
                     if (detail::dot(u, n) > -1e-6)
                     {
