@@ -643,12 +643,13 @@ void check_topology(Context& c)
             std::vector<Index> touched;
             std::vector<Index> positions;
             // Whether sorted positions in a face of n vertices form one cyclic run.
+            // (Positions are in [0, n): cyclic predecessors without integer division.)
             const auto one_run = [](const std::vector<Index>& pos, Index n) {
                 std::size_t runs = 0;
                 for (std::size_t k = 0; k < pos.size(); ++k)
                 {
-                    const Index prev = (pos[k] + n - 1) % n;
-                    const Index before = pos[(k + pos.size() - 1) % pos.size()];
+                    const Index prev = pos[k] == 0 ? n - 1 : pos[k] - 1;
+                    const Index before = k == 0 ? pos.back() : pos[k - 1];
                     runs += prev != before;
                 }
                 return runs <= 1;
@@ -669,6 +670,15 @@ void check_topology(Context& c)
             {
                 const std::span<const Index> face = mesh.faces[f];
                 const Index n_f = static_cast<Index>(face.size());
+                // Memory latency dominates here: prefetch the point-face lists of the next
+                // face and the list offsets of the one after (no effect on results).
+                if (f + 2 < n_faces)
+                {
+                    for (const Index p : mesh.faces[f + 1])
+                        __builtin_prefetch(pf_values.data() + pf_offsets[p]);
+                    for (const Index p : mesh.faces[f + 2])
+                        __builtin_prefetch(pf_offsets.data() + p);
+                }
                 touched.clear();
                 for (Index i = 0; i < n_f; ++i)
                     for (const Index g : higher_faces(face[i], f))
@@ -681,6 +691,8 @@ void check_topology(Context& c)
                         ++count[g];
                         last_pos[g] = i;
                     }
+                for (const Index g : touched)
+                    __builtin_prefetch(mesh.faces.offsets.data() + g);
                 for (const Index g : touched)
                 {
                     const Index n_common = count[g];
@@ -1492,32 +1504,39 @@ void check_geometry(Context& c, FaceValues& fv)
                 continue;
             FoamVector normal = row(g.face_areas, f);
             normal /= detail::mag(normal) + rootvsmall;
-            FoamVector e_prev = row(mesh.points, face.front()) - row(mesh.points, face.back());
-            double mag_prev = detail::mag(e_prev);
-            e_prev /= mag_prev + rootvsmall;
+            const std::size_t n = face.size();
+            // Corner i between the raw edges E_prev = p[i] - p[i-1] and E = p[i+1] - p[i].
+            FoamVector raw_prev = row(mesh.points, face.front()) - row(mesh.points, face.back());
             double max_edge_sin = 0;
-            for (std::size_t i = 0; i < face.size(); ++i)
+            for (std::size_t i = 0; i < n; ++i)
             {
-                FoamVector e = row(mesh.points, face[(i + 1) % face.size()]) -
-                               row(mesh.points, face[i]);
-                const double mag_e = detail::mag(e);
-                e /= mag_e + rootvsmall;
-                if (mag_prev > small && mag_e > small)
+                const FoamVector raw = row(mesh.points, face[(i + 1) % n]) - row(mesh.points, face[i]);
+                // Shortcut (no sqrt/division): (E_prev ^ E) & normal > |E_prev ^ E| / 2 (with
+                // margin) is a convex corner: checkMesh's normalised w = e_prev ^ e is the
+                // same vector scaled by a positive factor, so (w/|w|) & normal > 1/2 up to
+                // rounding (~1e-14 when |w| >= sin 10 deg, |normal| <= 1), far above `small`:
+                // never counted. Every other corner takes checkMesh's exact path below.
+                const FoamVector w_raw = detail::cross(raw_prev, raw);
+                const double d_raw = detail::dot(w_raw, normal);
+                if (!(d_raw > 0 && d_raw * d_raw > 0.25 * (1 + 1e-9) * detail::mag_sqr(w_raw)))
                 {
-                    FoamVector w = detail::cross(e_prev, e);
-                    const double mag_w = detail::mag(w);
-                    // Shortcut: (w & normal) > mag_w / 2 means the normalised product
-                    // checkMesh computes (rounding error ~1e-15: |w/|w|| = 1, |normal| <= 1)
-                    // is far above `small`: a convex corner, no division needed.
-                    if (mag_w >= max_sin && !(detail::dot(w, normal) > 0.5 * mag_w))
+                    const double mag_prev = detail::mag(raw_prev);
+                    const FoamVector e_prev = raw_prev / (mag_prev + rootvsmall);
+                    const double mag_e = detail::mag(raw);
+                    const FoamVector e = raw / (mag_e + rootvsmall);
+                    if (mag_prev > small && mag_e > small)
                     {
-                        w /= mag_w;
-                        if (detail::dot(w, normal) < small)
-                            max_edge_sin = std::max(max_edge_sin, mag_w);
+                        FoamVector w = detail::cross(e_prev, e);
+                        const double mag_w = detail::mag(w);
+                        if (mag_w >= max_sin)
+                        {
+                            w /= mag_w;
+                            if (detail::dot(w, normal) < small)
+                                max_edge_sin = std::max(max_edge_sin, mag_w);
+                        }
                     }
                 }
-                e_prev = e;
-                mag_prev = mag_e;
+                raw_prev = raw;
             }
             concavity[f] = max_edge_sin;
         }
