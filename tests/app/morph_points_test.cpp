@@ -9,6 +9,7 @@
 #include "helpers.h"
 #include "meshmorph/app/morph_mesh.h"
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/deform/greedy_rbf_deformation.h"
 #include "meshmorph/deform/rbf_deformation.h"
 
 namespace meshmorph::app
@@ -44,8 +45,52 @@ TEST(MorphPoints, rbf_ends_exactly_at_prescriptions_and_fixed_points_stay)
         const Eigen::RowVector3d got = m.displacement.row(c.points[i]);
         EXPECT_LE((got - want).norm(), 1e-9 * 0.1) << "point " << c.points[i];
         if (want.norm() == 0.0)
+        {
             EXPECT_LE(got.norm(), 1e-10);
+        }
     }
+}
+
+TEST(MorphPoints, snapping_sets_constraints_exactly_and_reports_the_fit_residual)
+{
+    // A greedy fit with a loose tolerance misses most constraints; snapping must put every
+    // constrained point exactly on its prescription, report the pre-snap residual, and
+    // leave unconstrained points on the fitted field.
+    const PolyMesh mesh = test::make_box_mesh(8, 8, 8);
+    MorphSetup setup;
+    BoundaryEntry top = make_entry("zMax", MotionType::scale);
+    top.motion.origin = Vector3(0.5, 0.5, 0.0);
+    top.motion.factor = Vector3(1.2, 0.9, 1.1);
+    setup.boundary.push_back(top);
+    setup.conflicts = ConflictRule::last;
+    const Constraints c = build_constraints(mesh, setup);
+
+    GreedySettings loose;
+    loose.tolerance = 0.2;
+    loose.rms_tolerance = 0.1;
+    GreedyRbfDeformation plain_fit(loose);
+    const PointMorph plain = morph_points(mesh, c, plain_fit, true, false);
+    GreedyRbfDeformation snapped_fit(loose);
+    const PointMorph snapped = morph_points(mesh, c, snapped_fit, true, true);
+
+    ASSERT_GT(plain.relative_fit_residual, 1e-6) << "the loose greedy fit should not be exact";
+    EXPECT_FALSE(plain.snapped);
+    EXPECT_EQ(plain.max_constraint_error, plain.max_fit_residual);
+    EXPECT_TRUE(snapped.snapped);
+    EXPECT_EQ(snapped.max_fit_residual, plain.max_fit_residual);
+    EXPECT_EQ(snapped.max_constraint_error, 0.0);
+    std::vector<char> constrained(static_cast<std::size_t>(mesh.n_points()), 0);
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+    {
+        constrained[c.points[i]] = 1;
+        EXPECT_EQ(snapped.displacement.row(c.points[i]),
+                  c.displacements.row(static_cast<Eigen::Index>(i)));
+    }
+    for (Index p = 0; p < mesh.n_points(); ++p)
+        if (!constrained[p])
+        {
+            EXPECT_EQ(snapped.displacement.row(p), plain.displacement.row(p)) << "point " << p;
+        }
 }
 
 TEST(MorphPoints, rbf_with_linear_term_reproduces_an_affine_boundary_motion_inside)

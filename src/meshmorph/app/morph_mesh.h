@@ -40,8 +40,15 @@ struct PointMorph
     Index n_constraints = 0;          //!< constraints of the final fit (slip points included)
     Index n_slip = 0;
     double max_prescribed = 0.0;      //!< max |prescribed displacement|
-    double max_constraint_error = 0.0; //!< max_i |d(x_i) - prescribed_i| (absolute)
+    //! max_i |displacement_i - prescribed_i| over the constrained points of the field returned
+    //! (after snapping, if requested: then 0).
+    double max_constraint_error = 0.0;
     double relative_constraint_error = 0.0; //!< divided by max(max_prescribed, 1e-12 diag)
+    //! The fitted field's own residual max_i |d(x_i) - prescribed_i| before any snapping:
+    //! round-off of an ill-conditioned direct solve, or the greedy tolerance.
+    double max_fit_residual = 0.0;
+    double relative_fit_residual = 0.0;
+    bool snapped = false; //!< constrained points were set to their prescriptions
     FitReport report;                 //!< of the final fit
     double fit_seconds = 0.0;
     double evaluate_seconds = 0.0;
@@ -49,9 +56,14 @@ struct PointMorph
 
 //! \brief Fit `deformation` to the constraints and evaluate it at every mesh point.
 //! \param fit false: use the deformation as given (FFD with prescribed control points).
+//! \param snap set the constrained points' displacements to their prescriptions after the
+//! evaluation. For interpolating methods (RBF, greedy RBF) the fitted field misses them only
+//! by its residual (round-off, or the greedy tolerance), so boundary points end exactly on
+//! their target while the interior follows the smooth field; the residual is still reported
+//! (max_fit_residual). Not for DM-FFD/FFD, whose residual is the method's least-squares error.
 //! \throw InvalidInput if there are no constraints (and fit is true); SolverError.
 PointMorph morph_points(const PolyMesh& mesh, const Constraints& constraints,
-                        SpaceDeformation& deformation, bool fit = true);
+                        SpaceDeformation& deformation, bool fit = true, bool snap = false);
 
 //! Options of a morphMesh run (the command line).
 struct MorphOptions
