@@ -582,28 +582,54 @@ void check_topology(Context& c)
         std::vector<char> listed(static_cast<std::size_t>(n_cells), 0);
 #pragma omp parallel if (mesh.n_faces() > detail::parallel_threshold)
         {
-            std::vector<std::uint64_t> edges;
+            // Edge use counts per cell in a small open-addressing hash table (faster than
+            // sorting the cell's edges); only the used slots are reset after each cell.
+            constexpr std::uint64_t empty = ~std::uint64_t{0}; // no valid packed edge
+            std::vector<std::uint64_t> keys;
+            std::vector<std::uint32_t> uses;
+            std::vector<std::uint32_t> used_slots;
 #pragma omp for schedule(static)
             for (Index cell = 0; cell < n_cells; ++cell)
             {
-                edges.clear();
+                std::size_t n_edges = 0;
+                for (Index f : c.cell_faces[cell])
+                    n_edges += static_cast<std::size_t>(mesh.faces.item_size(f));
+                int bits = 4;
+                while ((std::size_t{1} << bits) < 2 * n_edges)
+                    ++bits;
+                const std::size_t capacity = std::size_t{1} << bits;
+                if (keys.size() < capacity)
+                {
+                    keys.resize(capacity, empty);
+                    uses.resize(capacity, 0);
+                }
+                const std::size_t mask = capacity - 1;
+                used_slots.clear();
                 for (Index f : c.cell_faces[cell])
                 {
                     const std::span<const Index> face = mesh.faces[f];
                     for (std::size_t i = 0; i < face.size(); ++i)
-                        edges.push_back(packed_edge(face[i], face[(i + 1) % face.size()]));
+                    {
+                        const std::uint64_t e = packed_edge(face[i], face[(i + 1) % face.size()]);
+                        std::size_t h = (e * 0x9E3779B97F4A7C15ull) >> (64 - bits);
+                        while (keys[h] != empty && keys[h] != e)
+                            h = (h + 1) & mask;
+                        if (keys[h] == empty)
+                        {
+                            keys[h] = e;
+                            used_slots.push_back(static_cast<std::uint32_t>(h));
+                        }
+                        ++uses[h];
+                    }
                 }
-                std::sort(edges.begin(), edges.end());
-                for (std::size_t i = 0; i < edges.size();)
+                for (const std::uint32_t h : used_slots)
                 {
-                    std::size_t j = i;
-                    while (j < edges.size() && edges[j] == edges[i])
-                        ++j;
-                    if (j - i == 1)
+                    if (uses[h] == 1)
                         open[cell] = 1;
-                    else if (j - i != 2)
+                    else if (uses[h] != 2)
                         listed[cell] = 1;
-                    i = j;
+                    keys[h] = empty;
+                    uses[h] = 0;
                 }
             }
         }
@@ -634,12 +660,16 @@ void check_topology(Context& c)
         std::vector<char> order_error(static_cast<std::size_t>(n_faces), 0);
 #pragma omp parallel if (mesh.n_faces() > detail::parallel_threshold)
         {
-            // For face f: count[g] = number of (vertex position i of f, occurrence of g in
-            // the point's faces) pairs for every higher face g sharing a vertex with f (what
-            // OpenFOAM counts), first/last position i seen; `touched` lists those g.
-            std::vector<Index> count(static_cast<std::size_t>(n_faces), 0);
-            std::vector<Index> first_pos(static_cast<std::size_t>(n_faces), 0);
-            std::vector<Index> last_pos(static_cast<std::size_t>(n_faces), 0);
+            // For face f: shared[g].count = number of (vertex position i of f, occurrence
+            // of g in the point's faces) pairs for every higher face g sharing a vertex with
+            // f (what OpenFOAM counts), first/last position i seen; `touched` lists those g.
+            // One record per face (a single cache miss per shared face g); count == 0
+            // between faces.
+            struct Shared
+            {
+                Index count = 0, first_pos = 0, last_pos = 0;
+            };
+            std::vector<Shared> shared(static_cast<std::size_t>(n_faces));
             std::vector<Index> touched;
             std::vector<Index> positions;
             // Whether sorted positions in a face of n vertices form one cyclic run.
@@ -683,20 +713,22 @@ void check_topology(Context& c)
                 for (Index i = 0; i < n_f; ++i)
                     for (const Index g : higher_faces(face[i], f))
                     {
-                        if (count[g] == 0)
+                        Shared& sg = shared[g];
+                        if (sg.count == 0)
                         {
                             touched.push_back(g);
-                            first_pos[g] = i;
+                            sg.first_pos = i;
                         }
-                        ++count[g];
-                        last_pos[g] = i;
+                        ++sg.count;
+                        sg.last_pos = i;
                     }
                 for (const Index g : touched)
                     __builtin_prefetch(mesh.faces.offsets.data() + g);
                 for (const Index g : touched)
                 {
-                    const Index n_common = count[g];
-                    count[g] = 0;
+                    const Shared sg = shared[g];
+                    shared[g].count = 0;
+                    const Index n_common = sg.count;
                     const std::span<const Index> other = mesh.faces[g];
                     const Index n_g = static_cast<Index>(other.size());
                     if (n_common == n_g || n_common == n_f)
@@ -713,12 +745,12 @@ void check_topology(Context& c)
                         positions.clear();
                         if (n_common == 2)
                         {
-                            positions.push_back(first_pos[g]);
-                            positions.push_back(last_pos[g]);
+                            positions.push_back(sg.first_pos);
+                            positions.push_back(sg.last_pos);
                         }
                         else
                         {
-                            for (Index i = first_pos[g]; i <= last_pos[g]; ++i)
+                            for (Index i = sg.first_pos; i <= sg.last_pos; ++i)
                                 for (const Index h : higher_faces(face[i], f))
                                     if (h == g)
                                         positions.push_back(i);
