@@ -14,19 +14,6 @@ namespace meshmorph::app
 namespace
 {
 
-void check_keywords(const io::FoamDictionary& dict, const std::vector<std::string>& allowed,
-                    const std::string& what)
-{
-    for (const io::FoamEntry& e : dict.entries())
-        if (std::find(allowed.begin(), allowed.end(), e.keyword()) == allowed.end())
-        {
-            std::string list;
-            for (const std::string& a : allowed)
-                list += (list.empty() ? "" : " ") + a;
-            throw e.error("unknown keyword for " + what + " (valid: " + list + ")");
-        }
-}
-
 std::array<int, 3> read_lattice(const io::FoamDictionary& d)
 {
     const io::FoamEntry& e = d.entry("lattice");
@@ -165,7 +152,7 @@ DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
     // a mistake the user wants to hear about); the chosen one is used.
     if (const io::FoamDictionary* d = dict.find_dict("rbf"))
     {
-        check_keywords(*d, {"kernel", "shape", "polynomial", "supportRadius", "order", "greedy"},
+        d->check_keywords({"kernel", "shape", "polynomial", "supportRadius", "order", "greedy"},
                        "rbf");
         if (const io::FoamEntry* e = d->find("kernel"))
         {
@@ -196,7 +183,7 @@ DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
         if (d->found("greedy"))
         {
             const io::FoamDictionary& g = d->sub_dict("greedy");
-            check_keywords(g, {"tolerance", "rmsTolerance", "maxCentres", "initialCentres",
+            g.check_keywords({"tolerance", "rmsTolerance", "maxCentres", "initialCentres",
                                "batchSize"},
                            "rbf.greedy");
             GreedySettings gs;
@@ -215,7 +202,7 @@ DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
     }
     if (const io::FoamDictionary* d = dict.find_dict("dmffd"))
     {
-        check_keywords(*d, {"lattice", "clamping", "bounds"}, "dmffd");
+        d->check_keywords({"lattice", "clamping", "bounds"}, "dmffd");
         if (d->found("lattice"))
             s.dmffd.lattice.control_points = read_lattice(*d);
         s.dmffd.clamping = d->get_or<double>("clamping", s.dmffd.clamping);
@@ -225,7 +212,7 @@ DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
     }
     if (const io::FoamDictionary* d = dict.find_dict("ffd"))
     {
-        check_keywords(*d, {"lattice", "bounds", "displacements"}, "ffd");
+        d->check_keywords({"lattice", "bounds", "displacements"}, "ffd");
         if (d->found("lattice"))
             s.ffd.control_points = read_lattice(*d);
         s.ffd.box = read_bounds(*d);

@@ -149,19 +149,6 @@ std::vector<std::string> motion_keywords(MotionType type)
     }
 }
 
-void check_keywords(const io::FoamDictionary& dict, const std::vector<std::string>& allowed,
-                    const std::string& what)
-{
-    for (const io::FoamEntry& e : dict.entries())
-        if (std::find(allowed.begin(), allowed.end(), e.keyword()) == allowed.end())
-        {
-            std::string list;
-            for (const std::string& a : allowed)
-                list += (list.empty() ? "" : " ") + a;
-            throw e.error("unknown keyword for " + what + " (valid: " + list + ")");
-        }
-}
-
 //! `box (x0 y0 z0) (x1 y1 z1);` or `box ((x0 y0 z0) (x1 y1 z1));`
 std::pair<Vector3, Vector3> read_box(const io::FoamEntry& e)
 {
@@ -195,7 +182,7 @@ MorphSetup read_morph_setup(const io::FoamDictionary& dict)
 {
     MorphSetup setup;
     setup.dict_path = dict.path();
-    check_keywords(dict, {"method", "rbf", "dmffd", "ffd", "boundary", "handles", "conflicts"},
+    dict.check_keywords({"method", "rbf", "dmffd", "ffd", "boundary", "handles", "conflicts"},
                    "morphDict");
     if (const io::FoamEntry* e = dict.find("conflicts"))
     {
@@ -236,7 +223,7 @@ MorphSetup read_morph_setup(const io::FoamDictionary& dict)
             }
             std::vector<std::string> allowed = motion_keywords(entry.motion.type);
             allowed.push_back("type");
-            check_keywords(d, allowed, "type " + type);
+            d.check_keywords(allowed, "type " + type);
             Motion& m = entry.motion;
             switch (m.type)
             {
@@ -282,7 +269,7 @@ MorphSetup read_morph_setup(const io::FoamDictionary& dict)
                 throw e.error("expected a sub-dictionary { pointZone <name> | box (x0 y0 z0) "
                               "(x1 y1 z1) | points (...); displacement (dx dy dz); }");
             const io::FoamDictionary& d = e.dict();
-            check_keywords(d, {"pointZone", "box", "points", "displacement"}, "a handle");
+            d.check_keywords({"pointZone", "box", "points", "displacement"}, "a handle");
             HandleEntry h;
             h.name = e.keyword();
             h.line = e.line();

@@ -236,6 +236,19 @@ ParseError FoamDictionary::error(const std::string& msg) const
     return ParseError(path_, line_ == 0 ? 1 : line_, msg);
 }
 
+void FoamDictionary::check_keywords(const std::vector<std::string>& allowed,
+                                    const std::string& what) const
+{
+    for (const FoamEntry& e : entries_)
+        if (std::find(allowed.begin(), allowed.end(), e.keyword()) == allowed.end())
+        {
+            std::string list;
+            for (const std::string& a : allowed)
+                list += (list.empty() ? "" : " ") + a;
+            throw e.error("unknown keyword for " + what + " (valid: " + list + ")");
+        }
+}
+
 bool FoamDictionary::remove(const std::string& keyword)
 {
     for (auto it = entries_.begin(); it != entries_.end(); ++it)

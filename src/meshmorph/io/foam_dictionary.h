@@ -212,6 +212,10 @@ public:
     //! Remove the entry with exactly this keyword (regex keys: the written pattern). Returns
     //! whether one was removed.
     bool remove(const std::string& keyword);
+    //! \brief Reject keywords not in `allowed` (a typo must not be silently ignored).
+    //! \throw ParseError at the offending entry: "path:line: unknown keyword for <what>
+    //! (valid: a b c)".
+    void check_keywords(const std::vector<std::string>& allowed, const std::string& what) const;
 
     //! ParseError at this dictionary: "path:line: msg".
     ParseError error(const std::string& msg) const;
