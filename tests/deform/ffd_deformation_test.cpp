@@ -1,10 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Properties of the B-spline lattice and classic FFD: linear precision (affine motions are
 // reproduced everywhere in the box, boundary included), outside policies, Newton local
-// coordinates on parallelepiped lattices, bad input.
+// coordinates on parallelepiped lattices, bad input; non-uniform knots (Cox-de Boor) and knot
+// insertion keep these properties.
 #include <gtest/gtest.h>
 
 #include <omp.h>
+
+#include <cmath>
+#include <utility>
+#include <vector>
 
 #include "deform_test_helpers.h"
 #include "meshmorph/core/exceptions.h"
@@ -173,6 +178,146 @@ TEST(FfdDeformation, evaluation_is_independent_of_thread_count)
     const Points two = displacements(ffd, x);
     omp_set_num_threads(saved);
     EXPECT_TRUE((one.array() == two.array()).all());
+}
+
+namespace
+{
+//! Insert knots at uneven places on all three axes (several in one span, clustered).
+FfdLattice refined_lattice(const FfdBox& box)
+{
+    FfdLattice lattice(box, {4, 5, 4});
+    const double inserts[][2] = {{0, 0.5}, {0, 0.25}, {0, 0.3},  {1, 1.7}, {1, 0.2},
+                                 {2, 0.9}, {0, 0.26}, {2, 0.95}, {1, 1.71}};
+    for (const auto& k : inserts)
+        lattice = lattice.with_inserted_knot(int(k[0]), k[1]);
+    return lattice;
+}
+} // namespace
+
+TEST(FfdLattice, cox_de_boor_equals_the_uniform_closed_form)
+{
+    // The non-uniform evaluation on the uniform knots j - 3 must give the closed form.
+    const int n = 7;
+    std::vector<double> knots(n + 4);
+    for (std::size_t j = 0; j < knots.size(); ++j)
+        knots[j] = double(j) - 3.0;
+    for (double t = 0.0; t <= n - 3; t += 0.0625)
+    {
+        int f0 = 0, f1 = 0;
+        double w0[4], w1[4], d0[4], d1[4];
+        detail::cubic_bspline(t, n, f0, w0, d0);
+        detail::cubic_bspline(t, knots, f1, w1, d1);
+        EXPECT_EQ(f0, f1) << t;
+        for (int r = 0; r < 4; ++r)
+        {
+            EXPECT_NEAR(w0[r], w1[r], 1e-15) << t;
+            EXPECT_NEAR(d0[r], d1[r], 1e-14) << t;
+        }
+    }
+}
+
+TEST(FfdLattice, non_uniform_basis_is_a_partition_of_unity_with_consistent_derivatives)
+{
+    const std::vector<double> knots = {-1.0, -0.6, -0.1, 0.0, 0.05, 0.07, 0.4, 1.0, 1.3, 2.0, 2.2};
+    for (double t = 0.0; t <= 1.0; t += 1.0 / 64)
+    {
+        int first = 0;
+        double w[4], dw[4];
+        detail::cubic_bspline(t, knots, first, w, dw);
+        EXPECT_NEAR(w[0] + w[1] + w[2] + w[3], 1.0, 1e-14) << t;
+        EXPECT_NEAR(dw[0] + dw[1] + dw[2] + dw[3], 0.0, 1e-12) << t;
+        for (int r = 0; r < 4; ++r)
+            EXPECT_GE(w[r], 0.0) << t;
+        // Central differences inside the span (h small against the 0.02-wide span).
+        const double h = 1e-6;
+        if (t - h < 0.0 || t + h > 1.0)
+            continue;
+        int fp = 0, fm = 0;
+        double wp[4], wm[4];
+        detail::cubic_bspline(t + h, knots, fp, wp, nullptr);
+        detail::cubic_bspline(t - h, knots, fm, wm, nullptr);
+        if (fp != first || fm != first)
+            continue; // straddles a knot
+        for (int r = 0; r < 4; ++r)
+            EXPECT_NEAR(dw[r], (wp[r] - wm[r]) / (2.0 * h), 1e-6 * (1.0 + std::abs(dw[r]))) << t;
+    }
+}
+
+TEST(FfdLattice, knot_insertion_keeps_identity_and_affine_reproduction)
+{
+    const Eigen::Matrix3d rot = Eigen::AngleAxisd(0.5, Vector3(1, 1, 0).normalized()).matrix();
+    const Vector3 t(0.3, -0.1, 0.2);
+    for (const FfdBox& box : {FfdBox{}, skewed_box()})
+    {
+        const FfdLattice lattice = refined_lattice(box);
+        ASSERT_EQ(lattice.counts()[0], 8);
+        ASSERT_EQ(lattice.counts()[1], 8);
+        ASSERT_EQ(lattice.counts()[2], 6);
+        EXPECT_FALSE(lattice.is_uniform(0) || lattice.is_uniform(1) || lattice.is_uniform(2));
+        const Points x = points_in(box, 300);
+        // Identity: the undeformed lattice maps every point to itself (linear precision).
+        for (Eigen::Index i = 0; i < x.rows(); ++i)
+        {
+            Index idx[64];
+            double w[64];
+            ASSERT_EQ(lattice.basis(x.row(i).transpose(), FfdOutside::zero, idx, w), 64);
+            Vector3 reproduced = Vector3::Zero();
+            double sum = 0.0;
+            for (int k = 0; k < 64; ++k)
+            {
+                sum += w[k];
+                reproduced += w[k] * lattice.control_points().row(idx[k]).transpose();
+            }
+            EXPECT_NEAR(sum, 1.0, 1e-14);
+            EXPECT_LE((reproduced - x.row(i).transpose()).norm(), 1e-13);
+        }
+        // Affine control motion is reproduced everywhere, boundary included.
+        for (const Eigen::Matrix3d& L : {rot, Eigen::Matrix3d(Vector3(1.3, 0.6, 1.1).asDiagonal())})
+        {
+            FfdDeformation ffd(lattice);
+            ffd.fit(lattice.control_points(),
+                    test::affine_displacements(lattice.control_points(), L, t));
+            EXPECT_LE(
+                (displacements(ffd, x) - test::affine_displacements(x, L, t)).cwiseAbs().maxCoeff(),
+                1e-12);
+        }
+    }
+}
+
+TEST(FfdLattice, knot_insertion_halves_the_span_and_inverts_local_coordinates)
+{
+    const FfdLattice coarse(skewed_box(), {5, 5, 5});
+    const FfdLattice fine = coarse.with_inserted_knot(1, 0.5);
+    EXPECT_TRUE(fine.is_uniform(0) && fine.is_uniform(2) && !fine.is_uniform(1));
+    EXPECT_EQ(fine.counts()[1], 6);
+    EXPECT_EQ(fine.knot_span(1, 0.3), std::make_pair(0.0, 0.5));
+    EXPECT_EQ(fine.knot_span(1, 0.7), std::make_pair(0.5, 1.0));
+    EXPECT_EQ(fine.knot_span(1, 1.5), std::make_pair(1.0, 2.0));
+    // The domain stays [0, 2]: the same box point has the same parameter (Newton, skewed box).
+    const Vector3 u(0.3, 0.4, 0.55);
+    const Vector3 x = fine.box().origin + fine.box().axes * u;
+    EXPECT_LE((fine.local_coordinates(x) - 2.0 * u).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LE((fine.local_coordinates(x) - coarse.local_coordinates(x)).cwiseAbs().maxCoeff(),
+              1e-12);
+}
+
+TEST(FfdLattice, rejects_bad_knots_and_insertions)
+{
+    const FfdLattice lattice(FfdBox{}, {4, 4, 4});
+    EXPECT_THROW(lattice.with_inserted_knot(3, 0.5), InvalidInput);
+    EXPECT_THROW(lattice.with_inserted_knot(0, 0.0), InvalidInput);  // existing knot
+    EXPECT_THROW(lattice.with_inserted_knot(0, 1.0), InvalidInput);  // domain end
+    EXPECT_THROW(lattice.with_inserted_knot(0, -0.5), InvalidInput); // outside the domain
+    EXPECT_THROW(lattice.with_inserted_knot(0, std::nan("")), InvalidInput);
+    const std::vector<double> ok = {-3, -2, -1, 0, 1, 2, 3, 4};
+    EXPECT_NO_THROW(FfdLattice(FfdBox{}, {ok, ok, ok}));
+    EXPECT_TRUE(FfdLattice(FfdBox{}, {ok, ok, ok}).is_uniform(0));
+    const std::vector<double> short_knots = {0, 1, 2, 3, 4, 5, 6};
+    const std::vector<double> repeated = {-3, -2, -1, 0, 0, 2, 3, 4};
+    const std::vector<double> nan_knot = {-3, -2, -1, 0, std::nan(""), 2, 3, 4};
+    EXPECT_THROW(FfdLattice(FfdBox{}, {ok, short_knots, ok}), InvalidInput);
+    EXPECT_THROW(FfdLattice(FfdBox{}, {ok, ok, repeated}), InvalidInput);
+    EXPECT_THROW(FfdLattice(FfdBox{}, {nan_knot, ok, ok}), InvalidInput);
 }
 
 } // namespace meshmorph

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Uniform cubic B-spline lattice: basis values, Greville control points, local coordinates.
+// Cubic B-spline lattice (uniform fast path, non-uniform Cox-de Boor): basis values, Greville
+// control points, local coordinates, knot insertion.
 #include "meshmorph/deform/bspline_basis.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <sstream>
+#include <string>
 
 #include "meshmorph/core/exceptions.h"
 
@@ -48,6 +50,48 @@ void cubic_bspline(double t, int n, int& first, double* w, double* dw)
     }
     first = k;
 }
+
+void cubic_bspline(double t, const std::vector<double>& U, int& first, double* w, double* dw)
+{
+    const int n = static_cast<int>(U.size()) - 4;
+    t = std::clamp(t, U[3], U[std::size_t(n)]);
+    // Span k with U[k] <= t < U[k+1], k in [3, n-1] (t = U[n] belongs to the last span).
+    int k = static_cast<int>(std::upper_bound(U.begin() + 3, U.begin() + n, t) - U.begin()) - 1;
+    k = std::clamp(k, 3, n - 1);
+    double left[4], right[4], N[4], N2[3] = {0.0, 0.0, 0.0};
+    N[0] = 1.0;
+    for (int j = 1; j <= 3; ++j)
+    {
+        left[j] = t - U[std::size_t(k + 1 - j)];
+        right[j] = U[std::size_t(k + j)] - t;
+        double saved = 0.0;
+        for (int r = 0; r < j; ++r)
+        {
+            const double temp = N[r] / (right[r + 1] + left[j - r]);
+            N[r] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        N[j] = saved;
+        if (j == 2)
+            for (int r = 0; r < 3; ++r)
+                N2[r] = N[r];
+    }
+    for (int r = 0; r < 4; ++r)
+        w[r] = N[r];
+    if (dw)
+    {
+        // N'_{i,3} = 3 (N_{i,2} / (U_{i+3} - U_i) - N_{i+1,2} / (U_{i+4} - U_{i+1})), i = k-3+r;
+        // on this span N_{k-3,2} = N_{k+1,2} = 0.
+        for (int r = 0; r < 4; ++r)
+        {
+            const std::size_t i = std::size_t(k - 3 + r);
+            const double a = r >= 1 ? N2[r - 1] / (U[i + 3] - U[i]) : 0.0;
+            const double b = r <= 2 ? N2[r] / (U[i + 4] - U[i + 1]) : 0.0;
+            dw[r] = 3.0 * (a - b);
+        }
+    }
+    first = k - 3;
+}
 } // namespace detail
 
 namespace
@@ -69,25 +113,121 @@ FfdLattice::FfdLattice(const FfdBox& box, const std::array<int, 3>& counts)
     : box_(box), counts_(counts)
 {
     check_counts(counts);
-    if (!box.origin.allFinite() || !box.axes.allFinite())
+    for (int a = 0; a < 3; ++a)
+    {
+        std::vector<double>& U = knots_[std::size_t(a)];
+        U.resize(std::size_t(counts[std::size_t(a)] + 4));
+        for (std::size_t j = 0; j < U.size(); ++j)
+            U[j] = double(j) - 3.0;
+    }
+    initialise();
+}
+
+FfdLattice::FfdLattice(const FfdBox& box, const std::array<std::vector<double>, 3>& knots)
+    : box_(box), knots_(knots)
+{
+    for (int a = 0; a < 3; ++a)
+    {
+        const std::vector<double>& U = knots_[std::size_t(a)];
+        if (U.size() < 8)
+            throw InvalidInput("FFD lattice: axis " + std::to_string(a) + " has " +
+                               std::to_string(U.size()) +
+                               " knots; a cubic B-spline lattice needs at least 8 (4 control "
+                               "points)");
+        for (std::size_t j = 0; j < U.size(); ++j)
+            if (!std::isfinite(U[j]) || (j > 0 && !(U[j] > U[j - 1])))
+                throw InvalidInput("FFD lattice: the knots of axis " + std::to_string(a) +
+                                   " must be finite and strictly increasing (knot " +
+                                   std::to_string(j) + ")");
+        counts_[std::size_t(a)] = static_cast<int>(U.size()) - 4;
+    }
+    initialise();
+}
+
+void FfdLattice::initialise()
+{
+    if (!box_.origin.allFinite() || !box_.axes.allFinite())
         throw InvalidInput("FFD lattice box is not finite");
-    const double det = box.axes.determinant();
-    const double scale = box.axes.colwise().norm().prod();
+    const double det = box_.axes.determinant();
+    const double scale = box_.axes.colwise().norm().prod();
     if (!(std::abs(det) > 1e-12 * scale) || !(scale > 0.0))
         throw InvalidInput("FFD lattice box is degenerate (its edge vectors are linearly "
                            "dependent or zero)");
-    inverse_axes_ = box.axes.inverse();
-    const Eigen::Matrix3d off = box.axes - Eigen::Matrix3d(box.axes.diagonal().asDiagonal());
+    inverse_axes_ = box_.axes.inverse();
+    const Eigen::Matrix3d off = box_.axes - Eigen::Matrix3d(box_.axes.diagonal().asDiagonal());
     axis_aligned_ = off.cwiseAbs().maxCoeff() == 0.0;
+    for (int a = 0; a < 3; ++a)
+    {
+        const std::vector<double>& U = knots_[std::size_t(a)];
+        const int n = counts_[std::size_t(a)];
+        bool uniform = true;
+        for (std::size_t j = 0; j < U.size(); ++j)
+            uniform = uniform && U[j] == double(j) - 3.0;
+        uniform_[std::size_t(a)] = uniform;
+        lo_[a] = U[3];
+        hi_[a] = U[std::size_t(n)];
+    }
+    // Greville abscissae per axis, as box fractions. The uniform formula is kept verbatim so
+    // uniform lattices are bit-identical to the original construction.
+    std::array<std::vector<double>, 3> g;
+    for (int a = 0; a < 3; ++a)
+    {
+        const std::vector<double>& U = knots_[std::size_t(a)];
+        const int n = counts_[std::size_t(a)];
+        g[std::size_t(a)].resize(std::size_t(n));
+        for (int i = 0; i < n; ++i)
+        {
+            const std::size_t ui = std::size_t(i);
+            g[std::size_t(a)][ui] =
+                uniform_[std::size_t(a)]
+                    ? double(i - 1) / (n - 3)
+                    : ((U[ui + 1] + U[ui + 2] + U[ui + 3]) / 3.0 - lo_[a]) / (hi_[a] - lo_[a]);
+        }
+    }
     control_.resize(size(), 3);
-    for (int k = 0; k < counts[2]; ++k)
-        for (int j = 0; j < counts[1]; ++j)
-            for (int i = 0; i < counts[0]; ++i)
+    for (int k = 0; k < counts_[2]; ++k)
+        for (int j = 0; j < counts_[1]; ++j)
+            for (int i = 0; i < counts_[0]; ++i)
             {
-                const Vector3 u(double(i - 1) / (counts[0] - 3), double(j - 1) / (counts[1] - 3),
-                                double(k - 1) / (counts[2] - 3));
-                control_.row(index(i, j, k)) = (box.origin + box.axes * u).transpose();
+                const Vector3 u(g[0][std::size_t(i)], g[1][std::size_t(j)], g[2][std::size_t(k)]);
+                control_.row(index(i, j, k)) = (box_.origin + box_.axes * u).transpose();
             }
+}
+
+void FfdLattice::axis_basis(int a, double t, int& first, double* w, double* dw) const
+{
+    if (uniform_[std::size_t(a)])
+        detail::cubic_bspline(t, counts_[std::size_t(a)], first, w, dw);
+    else
+        detail::cubic_bspline(t, knots_[std::size_t(a)], first, w, dw);
+}
+
+std::pair<double, double> FfdLattice::knot_span(int a, double t) const
+{
+    const std::vector<double>& U = knots_[std::size_t(a)];
+    const int n = counts_[std::size_t(a)];
+    t = std::clamp(t, U[3], U[std::size_t(n)]);
+    int k = static_cast<int>(std::upper_bound(U.begin() + 3, U.begin() + n, t) - U.begin()) - 1;
+    k = std::clamp(k, 3, n - 1);
+    return {U[std::size_t(k)], U[std::size_t(k + 1)]};
+}
+
+FfdLattice FfdLattice::with_inserted_knot(int a, double t) const
+{
+    if (a < 0 || a > 2)
+        throw InvalidInput("FFD knot insertion: axis " + std::to_string(a) + " is not 0, 1 or 2");
+    if (!std::isfinite(t) || !(t > lo_[a] && t < hi_[a]))
+        throw InvalidInput("FFD knot insertion: parameter outside the lattice domain");
+    const std::pair<double, double> span = knot_span(a, t);
+    // Knots closer than 1e-9 of the span would make a nearly repeated knot (ill-conditioned
+    // basis, dividing by ~0 in Cox-de Boor).
+    const double gap = 1e-9 * (span.second - span.first);
+    if (!(t - span.first > gap && span.second - t > gap))
+        throw InvalidInput("FFD knot insertion: parameter coincides with an existing knot");
+    std::array<std::vector<double>, 3> knots = knots_;
+    std::vector<double>& U = knots[std::size_t(a)];
+    U.insert(std::upper_bound(U.begin(), U.end(), t), t);
+    return FfdLattice(box_, knots);
 }
 
 FfdLattice FfdLattice::bounding(const Eigen::Ref<const Points>& points,
@@ -119,14 +259,14 @@ FfdLattice FfdLattice::bounding(const Eigen::Ref<const Points>& points,
 
 Vector3 FfdLattice::local_coordinates(const Vector3& x) const
 {
-    const Vector3 spans(counts_[0] - 3, counts_[1] - 3, counts_[2] - 3);
-    Vector3 t = (inverse_axes_ * (x - box_.origin)).cwiseProduct(spans);
+    const Vector3 spans = hi_ - lo_;
+    Vector3 t = (inverse_axes_ * (x - box_.origin)).cwiseProduct(spans) + lo_;
     if (axis_aligned_)
         return t;
     // Outside the box the spline map is not defined (the basis is clamped): keep the affine
     // coordinates, the outside policy decides.
     for (int a = 0; a < 3; ++a)
-        if (!(t[a] >= 0.0 && t[a] <= spans[a]))
+        if (!(t[a] >= lo_[a] && t[a] <= hi_[a]))
             return t;
     // Newton on x(t) = sum c_p N_p(t); exact after one step for an undeformed lattice, kept
     // general so that a pre-deformed lattice works too.
@@ -138,8 +278,7 @@ Vector3 FfdLattice::local_coordinates(const Vector3& x) const
         int first[3];
         double w[3][4], dw[3][4];
         for (int a = 0; a < 3; ++a)
-            detail::cubic_bspline(std::clamp(t[a], 0.0, spans[a]), counts_[a], first[a], w[a],
-                                  dw[a]);
+            axis_basis(a, std::clamp(t[a], lo_[a], hi_[a]), first[a], w[a], dw[a]);
         // Residual first: the usual case (undeformed lattice) stops here without a Jacobian.
         const double* cp = control_.data();
         for (int c = 0; c < 4; ++c)
@@ -181,21 +320,21 @@ Vector3 FfdLattice::local_coordinates(const Vector3& x) const
 int FfdLattice::basis(const Vector3& x, FfdOutside outside, Index* index_out, double* weight) const
 {
     Vector3 t = local_coordinates(x);
-    constexpr double snap = 1e-9;
     for (int a = 0; a < 3; ++a)
     {
-        const double hi = counts_[a] - 3;
-        if (!(t[a] >= -snap && t[a] <= hi + snap))
+        // 1e-9 mean knot spans (exactly 1e-9 for a uniform lattice).
+        const double snap = 1e-9 * (hi_[a] - lo_[a]) / (counts_[a] - 3);
+        if (!(t[a] >= lo_[a] - snap && t[a] <= hi_[a] + snap))
         {
             if (outside == FfdOutside::zero || !std::isfinite(t[a]))
                 return 0;
         }
-        t[a] = std::clamp(t[a], 0.0, hi);
+        t[a] = std::clamp(t[a], lo_[a], hi_[a]);
     }
     int first[3];
     double w[3][4];
     for (int a = 0; a < 3; ++a)
-        detail::cubic_bspline(t[a], counts_[a], first[a], w[a], nullptr);
+        axis_basis(a, t[a], first[a], w[a], nullptr);
     int n = 0;
     for (int c = 0; c < 4; ++c)
         for (int b = 0; b < 4; ++b)

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "meshmorph/core/exceptions.h"
@@ -12,6 +13,39 @@
 
 namespace meshmorph
 {
+namespace
+{
+//! Halve domain knot spans of axis a that are more than ratio times an adjacent domain span,
+//! until none is. Terminates: the smallest span is never split, and a split span is > ratio
+//! >= 2 times a neighbour, so its halves stay >= the smallest span; spans are bounded below.
+FfdLattice graded(FfdLattice lattice, int a, double ratio)
+{
+    while (true)
+    {
+        const std::vector<double>& U = lattice.knots(a);
+        const std::size_t n = std::size_t(lattice.counts()[std::size_t(a)]);
+        double split = 0.0;
+        bool found = false;
+        for (std::size_t j = 3; j + 1 < n && !found; ++j)
+        {
+            const double left = U[j + 1] - U[j], right = U[j + 2] - U[j + 1];
+            if (left > ratio * right)
+            {
+                split = 0.5 * (U[j] + U[j + 1]);
+                found = true;
+            }
+            else if (right > ratio * left)
+            {
+                split = 0.5 * (U[j + 1] + U[j + 2]);
+                found = true;
+            }
+        }
+        if (!found)
+            return lattice;
+        lattice = lattice.with_inserted_knot(a, split);
+    }
+}
+} // namespace
 
 DmffdDeformation::DmffdDeformation(const DmffdSettings& settings) : settings_(settings)
 {
@@ -30,11 +64,20 @@ void DmffdDeformation::fit(const Eigen::Ref<const Points>& handles,
                            const Eigen::Ref<const Points>& displacements)
 {
     detail::check_fit_arguments(handles, displacements);
+    history_.clear();
+    converged_ = false;
+    fit_lattice(make_lattice(settings_.lattice, handles), handles, displacements);
+}
+
+void DmffdDeformation::fit_lattice(const FfdLattice& lattice,
+                                   const Eigen::Ref<const Points>& handles,
+                                   const Eigen::Ref<const Points>& displacements)
+{
     ffd_.reset();
     report_ = FitReport{};
     report_.method = "dmffd";
     report_.solver = "LAPACK dgesdd pseudo-inverse";
-    FfdDeformation ffd(make_lattice(settings_.lattice, handles), settings_.lattice.outside);
+    FfdDeformation ffd(lattice, settings_.lattice.outside);
     const Eigen::Index m = handles.rows();
     const Eigen::Index n = ffd.lattice().size();
     const Eigen::Index r = std::min(m, n);
@@ -91,35 +134,65 @@ void DmffdDeformation::fit_refined(const Eigen::Ref<const Points>& handles,
 {
     if (!(refinement.tolerance >= 0.0))
         throw InvalidInput("DM-FFD refinement tolerance must be >= 0");
+    if (!(refinement.grading == 0.0 || refinement.grading >= 2.0))
+        throw InvalidInput("DM-FFD refinement grading must be 0 (off) or >= 2");
+    if (!(refinement.axes[0] || refinement.axes[1] || refinement.axes[2]))
+        throw InvalidInput("DM-FFD refinement: no axis enabled for control-plane insertion");
     detail::check_fit_arguments(handles, displacements);
-    if (!settings_.lattice.box)
-        settings_.lattice.box = make_lattice(settings_.lattice, handles).box();
-    Index refinements = 0;
+    history_.clear();
+    converged_ = false;
+    FfdLattice lattice = make_lattice(settings_.lattice, handles);
+    Index insertions = 0;
+    Points residual(handles.rows(), 3);
     while (true)
     {
-        fit(handles, displacements);
+        fit_lattice(lattice, handles, displacements);
+        history_.push_back(DmffdRefinementStep{lattice.size(), report_.rank, report_.max_residual,
+                                               report_.rms_residual});
         if (report_.max_residual <= refinement.tolerance * report_.max_displacement)
-            break;
-        std::array<int, 3>& n = settings_.lattice.control_points;
-        int axis = 0;
-        double spacing = -1.0;
-        for (int a = 0; a < 3; ++a)
         {
-            const double h = settings_.lattice.box->axes.col(a).norm() / (n[std::size_t(a)] - 3);
-            if (h > spacing)
+            converged_ = true;
+            break;
+        }
+        // Worst handle that the lattice can influence (handles outside the box with the zero
+        // policy cannot be helped by refinement).
+        evaluate(handles, residual);
+        residual -= displacements;
+        Eigen::Index worst = -1;
+        double worst_error = -1.0;
+        Index idx[64];
+        double w[64];
+        for (Eigen::Index i = 0; i < handles.rows(); ++i)
+        {
+            const double e = residual.row(i).squaredNorm();
+            if (e > worst_error &&
+                lattice.basis(handles.row(i).transpose(), settings_.lattice.outside, idx, w) > 0)
             {
-                spacing = h;
-                axis = a;
+                worst_error = e;
+                worst = i;
             }
         }
-        std::array<int, 3> next = n;
-        next[std::size_t(axis)] = 2 * n[std::size_t(axis)] - 3;
-        if (Index(next[0]) * next[1] * next[2] > refinement.max_control_points)
+        if (worst < 0)
             break;
-        n = next;
-        ++refinements;
+        const Vector3 t = lattice.local_coordinates(handles.row(worst).transpose());
+        FfdLattice next = lattice;
+        for (int a = 0; a < 3; ++a)
+            if (refinement.axes[std::size_t(a)])
+            {
+                const std::pair<double, double> span = next.knot_span(a, t[a]);
+                next = next.with_inserted_knot(a, 0.5 * (span.first + span.second));
+                if (refinement.grading > 0.0)
+                    next = graded(std::move(next), a, refinement.grading);
+            }
+        if (next.size() > refinement.max_control_points)
+            break;
+        lattice = std::move(next);
+        ++insertions;
     }
-    report_.iterations = refinements;
+    report_.iterations = insertions;
+    log::debug() << "DM-FFD refinement: " << insertions << " insertions, " << lattice.size()
+                 << " control points, max residual " << report_.max_residual
+                 << (converged_ ? " (converged)" : " (budget reached)");
 }
 
 void DmffdDeformation::refit(const Eigen::Ref<const Points>& displacements)

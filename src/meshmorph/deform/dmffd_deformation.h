@@ -3,7 +3,9 @@
 //! displacements through the clamped pseudo-inverse of the basis matrix Phi.
 #pragma once
 
+#include <array>
 #include <optional>
+#include <vector>
 
 #include "meshmorph/deform/ffd_deformation.h"
 
@@ -21,11 +23,31 @@ struct DmffdSettings
     double clamping = 1e-2;
 };
 
-//! Lattice refinement for DM-FFD (paper Sec. 3.4, simplified, see fit_refined()).
+//! Adaptive lattice refinement for DM-FFD by control-plane (knot) insertion (paper Sec. 3.4,
+//! see DmffdDeformation::fit_refined()).
 struct DmffdRefinement
 {
     double tolerance = 1e-3;          //!< stop when max residual <= tolerance * max |dh|
     Index max_control_points = 20000; //!< never refine beyond this lattice size
+    //! Axes that receive new control planes. The paper refines x and y only for its planar
+    //! benchmark (planes across a flat direction only add useless DoFs). At least one.
+    std::array<bool, 3> axes{true, true, true};
+    //! Grading: after an insertion, knot spans larger than grading x an adjacent span (on a
+    //! refined axis) are halved too, until none is. A point's value depends on the 4 x 4 x 4
+    //! control points of the 7 spans around it; without grading a point on the edge of a
+    //! finely refined cell next to a coarse one keeps its error however often its own cell is
+    //! split (the refinement stalls). Must be >= 2 (halving a span must satisfy it), or 0 to
+    //! switch grading off (the paper's plain insertion).
+    double grading = 2.0;
+};
+
+//! One fit of DmffdDeformation::fit_refined(): the lattice and the residuals it reached.
+struct DmffdRefinementStep
+{
+    Index control_points = 0; //!< lattice size (DoF = 3 x control_points)
+    Index rank = 0;           //!< numerical rank of Phi after clamping
+    double max_residual = 0.0;
+    double rms_residual = 0.0;
 };
 
 //! DM-FFD: C = Phi^+ H with Phi_ij = N_j(u(h_i)) (m x n, built dense) and the pseudo-inverse
@@ -46,16 +68,24 @@ public:
     //! logged and they show up in the residuals.
     void fit(const Eigen::Ref<const Points>& handles,
              const Eigen::Ref<const Points>& displacements) override;
-    //! \brief fit(), then refine the lattice until the max residual is within
-    //! refinement.tolerance or the next lattice would exceed max_control_points.
-    //! Refinement doubles the resolution (n -> 2n - 3 control points, half the knot spacing)
-    //! along the axis with the largest knot spacing, over a fixed box (the first lattice's).
-    //! This is a uniform refinement, not the paper's insertion of control planes in the
-    //! worst cells (which needs non-uniform knots). report().iterations counts refinements;
-    //! settings().lattice.control_points holds the final resolution.
+    //! \brief Adaptive DM-FFD (paper Sec. 3.4): fit() on the settings' lattice, then repeat
+    //! { find the handle with the largest residual (among handles inside the box); on every
+    //! axis enabled in refinement.axes insert a knot at the midpoint of the knot span that
+    //! contains the handle's parameter (a new control plane through that lattice cell, its
+    //! span halved), then grade the knot spans (see DmffdRefinement::grading); refit } until max
+    //! residual <= tolerance * max |dh| or the next lattice would exceed max_control_points. Each
+    //! refit is a fresh SVD of the new basis matrix (cost ~ 4 m n r per step; no SVD update). The
+    //! box stays the first lattice's; the final, generally non-uniform lattice is ffd().lattice()
+    //! (settings() are not changed). report().iterations counts insertions; refinement_history()
+    //! has one step per fit. \throw InvalidInput (as fit(), tolerance < 0, no axis enabled),
+    //! SolverError.
     void fit_refined(const Eigen::Ref<const Points>& handles,
                      const Eigen::Ref<const Points>& displacements,
                      const DmffdRefinement& refinement);
+    //! Steps of the last fit_refined() (DoF, max / RMS residual per fit); empty after fit().
+    const std::vector<DmffdRefinementStep>& refinement_history() const { return history_; }
+    //! Whether the last fit_refined() met its tolerance (false when the budget stopped it).
+    bool refinement_converged() const { return converged_; }
     //! New displacements for the same handles, reusing the SVD (O((m + n) r)).
     void refit(const Eigen::Ref<const Points>& displacements);
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
@@ -71,7 +101,12 @@ public:
     Eigen::MatrixXd handle_basis(const Eigen::Ref<const Points>& points) const;
 
 private:
+    void fit_lattice(const FfdLattice& lattice, const Eigen::Ref<const Points>& handles,
+                     const Eigen::Ref<const Points>& displacements);
+
     DmffdSettings settings_;
+    std::vector<DmffdRefinementStep> history_;
+    bool converged_ = false;
     std::optional<FfdDeformation> ffd_;
     Points handles_;
     Eigen::MatrixXd U_;         // m x r
