@@ -147,8 +147,6 @@ struct Context
 
 using Edge = std::pair<Index, Index>;
 
-Edge make_edge(Index a, Index b) { return a < b ? Edge{a, b} : Edge{b, a}; }
-
 //! An undirected edge as one sortable integer (smaller label in the high half).
 std::uint64_t packed_edge(Index a, Index b)
 {
@@ -1851,7 +1849,7 @@ QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
     report.n_cells = mesh.n_cells;
     report.n_patches = static_cast<Index>(mesh.patches.size());
     Printer printer(settings.write_precision);
-    Context context{mesh, cell_faces, geometry, settings, report, printer};
+    Context context{mesh, cell_faces, geometry, settings, report, printer, {}};
     const std::vector<CellShape> shapes = mesh_stats(context);
     // The paper's measure (not a checkMesh check): minimum over cells where it is defined.
     if (settings.scaled_jacobian)
