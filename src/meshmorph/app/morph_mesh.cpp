@@ -21,7 +21,6 @@
 #include "meshmorph/core/progress.h"
 #include "meshmorph/io/foam_dictionary.h"
 #include "meshmorph/core/triangle_surface.h"
-#include "meshmorph/deform/rbf_deformation.h"
 #include "meshmorph/io/foam_file.h"
 #include "meshmorph/io/point_field.h"
 #include "meshmorph/io/read_poly_mesh.h"
@@ -92,41 +91,6 @@ void evaluate_with_progress(const SpaceDeformation& deformation, const Points& x
     }
 }
 
-//! \brief Iterative refinement of a direct RBF fit: refit to H + (H - d(h)) with the same
-//! factorisation, which cancels the error of the ill-conditioned solve to first order.
-//! Snappy meshes (tiny cells near the body inside a large domain) give condition numbers
-//! ~1e13, i.e. residuals ~1e-7 relative after one solve; each step gains ~1/(cond eps).
-void refine_interpolation(SpaceDeformation& deformation, const Points& handles,
-                          const Points& prescribed)
-{
-    auto* rbf = dynamic_cast<RbfDeformation*>(&deformation);
-    if (rbf == nullptr || prescribed.rows() == 0)
-        return;
-    const double scale = std::max(prescribed.rowwise().norm().maxCoeff(), constants::vsmall);
-    // Target: the acceptance bound 1e-9 relative, with a margin.
-    const double target = 1e-11 * scale;
-    Points data = prescribed;
-    Points d(handles.rows(), 3);
-    rbf->evaluate(handles, d);
-    double error = (d - prescribed).rowwise().norm().maxCoeff();
-    for (int step = 0; step < 4 && error > target; ++step)
-    {
-        const Points previous_data = data;
-        data += prescribed - d;
-        rbf->refit(data);
-        rbf->evaluate(handles, d);
-        const double new_error = (d - prescribed).rowwise().norm().maxCoeff();
-        log::debug() << "RBF iterative refinement step " << step + 1 << ": max residual "
-                     << error << " -> " << new_error;
-        if (!(new_error < error))
-        {
-            rbf->refit(previous_data); // no gain: keep the better fit
-            break;
-        }
-        error = new_error;
-    }
-}
-
 } // namespace
 
 PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeformation& deformation,
@@ -182,8 +146,8 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
             result.n_slip = static_cast<Index>(c.slip_points.size());
         }
         const Points handles = gather(x, points);
+        // RbfDeformation refines its own solve iteratively (RbfSettings::refinement_steps).
         deformation.fit(handles, prescribed);
-        refine_interpolation(deformation, gather(x_eval, points), prescribed);
         result.report = deformation.report();
     }
     else
