@@ -148,12 +148,8 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
         const Points handles = gather(x, points);
         // RbfDeformation refines its own solve iteratively (RbfSettings::refinement_steps).
         deformation.fit(handles, prescribed);
-        result.report = deformation.report();
     }
-    else
-    {
-        result.report = deformation.report();
-    }
+    result.report = deformation.report();
     result.fit_seconds = seconds_since(fit_start);
     result.n_constraints = static_cast<Index>(points.size());
 
@@ -268,6 +264,7 @@ MorphResult morph_case(const MorphOptions& options)
     Points point_displacement;
     std::vector<std::optional<Points>> patch_point_displacement;
     const std::vector<PatchAssignment> assignment = assign_patches(mesh, setup);
+    inputs.patches = &assignment;
     if (std::any_of(assignment.begin(), assignment.end(), [](const PatchAssignment& a) {
             return a.motion == MotionType::point_displacement;
         }))
@@ -331,7 +328,9 @@ MorphResult morph_case(const MorphOptions& options)
     // Quality before.
     stage_start = Clock::now();
     CheckMeshSettings check_settings;
-    result.before = check_mesh(mesh, check_settings);
+    // The topology does not change: one cell->faces addressing serves both checks.
+    const CompactList cf = cell_faces(mesh);
+    result.before = check_mesh(mesh, cf, compute_geometry(mesh, cf), check_settings);
     result.timings.check = seconds_since(stage_start);
 
     // Fit and evaluate.
@@ -375,7 +374,7 @@ MorphResult morph_case(const MorphOptions& options)
     stage_start = Clock::now();
     PolyMesh moved = mesh;
     moved.points += result.morph.displacement;
-    result.after = check_mesh(moved, check_settings);
+    result.after = check_mesh(moved, cf, compute_geometry(moved, cf), check_settings);
     result.timings.check += seconds_since(stage_start);
     {
         std::ostringstream summary;

@@ -559,7 +559,7 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
     const std::string& dict = setup.dict_path;
     Constraints out;
     out.conflict_rule = setup.conflicts;
-    out.patches = assign_patches(mesh, setup);
+    out.patches = inputs.patches != nullptr ? *inputs.patches : assign_patches(mesh, setup);
     const double diag = mesh_diagonal(mesh);
     // Two prescriptions agree when they differ by less than this: far below any motion
     // meaningful for a mesh, far above round-off of the closed-form motions.

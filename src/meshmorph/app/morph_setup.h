@@ -164,6 +164,8 @@ struct ConstraintInputs
     //! Closest points on the target surface `file` for each row of `query` (k x 3);
     //! required if any patch uses type surface. May throw IoError/ParseError.
     std::function<Points(const std::string& file, const Points& query)> project_to_surface;
+    //! assign_patches(mesh, setup) if the caller already computed it (else it is computed).
+    const std::vector<PatchAssignment>* patches = nullptr;
 };
 
 //! The resolved constraint set.

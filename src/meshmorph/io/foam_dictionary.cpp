@@ -26,7 +26,7 @@ namespace
 // its magic bytes, a warning when both exist); nullopt when neither exists.
 std::optional<std::string> read_file_plain_or_gz(const fs::path& path)
 {
-    if (!resolve_foam_file(path))
+    if (!foam_file_exists(path)) // no lookup warning here: read_foam_file gives it once
         return std::nullopt;
     return read_foam_file(path).data;
 }

@@ -3,13 +3,8 @@
 #include "meshmorph/io/vtk_writer.h"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <set>
 #include <string_view>
-
-#include <unistd.h>
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -29,6 +24,7 @@
 
 #include "meshmorph/core/cell_shapes.h"
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/io/foam_file.h"
 
 namespace meshmorph::io
 {
@@ -126,40 +122,6 @@ std::string serialise(Writer* writer, vtkDataObject* data, const std::filesystem
     return writer->GetOutputString();
 }
 
-// Write bytes to a temporary file beside path, then rename over path, so readers never see a
-// partial file and a failure leaves any previous file in place.
-void write_atomically(const std::filesystem::path& path, const std::string& bytes)
-{
-    const std::filesystem::path dir =
-        path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-    const std::filesystem::path tmp =
-        dir / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()));
-    {
-        std::ofstream os(tmp, std::ios::binary | std::ios::trunc);
-        if (!os)
-            throw IoError(path.string() + ": cannot create '" + tmp.string() +
-                          "': " + std::strerror(errno));
-        os.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        os.flush();
-        if (!os)
-        {
-            const std::string reason = std::strerror(errno);
-            os.close();
-            std::error_code ignored;
-            std::filesystem::remove(tmp, ignored);
-            throw IoError(path.string() + ": write failed: " + reason);
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec)
-    {
-        std::error_code ignored;
-        std::filesystem::remove(tmp, ignored);
-        throw IoError(path.string() + ": cannot rename temporary file: " + ec.message());
-    }
-}
-
 } // namespace
 
 void write_vtu(const std::filesystem::path& path, const PolyMesh& mesh,
@@ -212,7 +174,7 @@ void write_vtu(const std::filesystem::path& path, const PolyMesh& mesh,
         grid->GetCellData()->AddArray(to_vtk(f));
 
     vtkNew<vtkXMLUnstructuredGridWriter> writer;
-    write_atomically(path, serialise(writer.Get(), grid, path));
+    write_file_atomic(path, serialise(writer.Get(), grid, path));
 }
 
 void write_vtp_patches(const std::filesystem::path& path, const PolyMesh& mesh,
@@ -291,7 +253,7 @@ void write_vtp_patches(const std::filesystem::path& path, const PolyMesh& mesh,
     poly->GetFieldData()->AddArray(names);
 
     vtkNew<vtkXMLPolyDataWriter> writer;
-    write_atomically(path, serialise(writer.Get(), poly, path));
+    write_file_atomic(path, serialise(writer.Get(), poly, path));
 }
 
 } // namespace meshmorph::io

@@ -7,6 +7,7 @@
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/io/boundary_io.h"
+#include "meshmorph/io/case_instance.h"
 #include "meshmorph/io/foam_file.h"
 #include "meshmorph/io/foam_lists.h"
 
@@ -102,9 +103,7 @@ void write_zone_file(const std::vector<Zone>& zones, const std::optional<FoamFil
 
 std::string poly_mesh_location(const std::string& instance, const std::string& region)
 {
-    if (region.empty() || region == "region0")
-        return instance + "/polyMesh";
-    return instance + "/" + region + "/polyMesh";
+    return poly_mesh_dir({}, instance, region).generic_string();
 }
 
 FoamFileInfo default_file_info(const std::string& object, FoamFormat format, bool compress)
