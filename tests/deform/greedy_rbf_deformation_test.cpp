@@ -6,6 +6,7 @@
 
 #include "deform_test_helpers.h"
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
 #include "meshmorph/deform/greedy_rbf_deformation.h"
 
 namespace meshmorph
@@ -106,6 +107,63 @@ TEST(GreedyRbfDeformation, rejects_bad_input)
     GreedyRbfDeformation greedy;
     EXPECT_THROW(greedy.fit(Points(0, 3), Points(0, 3)), InvalidInput);
     EXPECT_THROW(greedy.fit(test::random_points(4), Points::Zero(3, 3)), InvalidInput);
+}
+
+} // namespace meshmorph
+
+namespace meshmorph
+{
+
+TEST(GreedyRbfDeformation, logs_each_round_and_the_rounds_grow_like_log_of_the_centres)
+{
+    const Points x = test::sphere_points(6000, Vector3(0.5, 0.5, 0.5), 0.5);
+    const Points d = test::smooth_field(x);
+    GreedySettings s;
+    s.tolerance = 1e-9; // not reachable within the budget: every round runs
+    s.rms_tolerance = 1e-9;
+    s.max_centres = 1280;
+    GreedyRbfDeformation greedy(s);
+    log::CaptureScope capture;
+    greedy.fit(x, d);
+    const std::string& text = capture.text();
+    std::size_t lines = 0;
+    for (std::size_t at = text.find("greedy RBF round"); at != std::string::npos;
+         at = text.find("greedy RBF round", at + 1))
+        ++lines;
+    EXPECT_EQ(lines, greedy.history().size()) << text;
+    EXPECT_NE(text.find("centres, max residual"), std::string::npos);
+    // Each round adds half the centres: from 20 initial centres to 1280 takes
+    // log(64) / log(1.5) = 10.3 rounds, plus the first (the initial set) and the last (the
+    // budget): at most 13.
+    EXPECT_LE(greedy.history().size(), 13u);
+    EXPECT_EQ(greedy.report().num_centres, 1280);
+}
+
+TEST(GreedyRbfDeformation, stops_at_the_best_round_when_more_centres_make_the_fit_worse)
+{
+    // Near-discontinuous data, like a tyre lifted off a fixed floor: a plane of fixed points
+    // and, a hair above it, a lifted sphere. A global interpolant of this oscillates as
+    // centres are added; the fit must keep its best round, never a worse one.
+    const Points floor = test::random_points(3000, 0.0, 1.0, 17);
+    Points plane = floor;
+    plane.col(2).setZero();
+    const Points ball = test::sphere_points(3000, Vector3(0.5, 0.5, 0.2001), 0.2);
+    Points x(plane.rows() + ball.rows(), 3);
+    x << plane, ball;
+    Points d = Points::Zero(x.rows(), 3);
+    d.bottomRows(ball.rows()).col(2).setConstant(0.05);
+    GreedySettings s;
+    s.tolerance = 1e-6;
+    s.rms_tolerance = 1e-6;
+    s.max_centres = 3000;
+    GreedyRbfDeformation greedy(s);
+    greedy.fit(x, d);
+    const std::vector<double>& rms = greedy.rms_history();
+    ASSERT_FALSE(rms.empty());
+    const double best = *std::min_element(rms.begin(), rms.end());
+    EXPECT_NEAR(greedy.report().rms_residual, best, 1e-12 * 0.05);
+    if (greedy.stopped_growing())
+        EXPECT_GT(rms.back(), best) << "the last round was the worse one that stopped it";
 }
 
 } // namespace meshmorph

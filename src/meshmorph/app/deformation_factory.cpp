@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/deform/corrected_deformation.h"
 #include "meshmorph/io/foam_dictionary.h"
 
 namespace meshmorph::app
@@ -46,11 +47,12 @@ std::optional<FfdBox> read_bounds(const io::FoamDictionary& d)
 }
 
 //! Expect punctuation c at tokens[i] and advance.
-void expect_punct(const io::FoamEntry& e, const std::vector<io::FoamValueToken>& t,
-                  std::size_t& i, char c)
+void expect_punct(const io::FoamEntry& e, const std::vector<io::FoamValueToken>& t, std::size_t& i,
+                  char c)
 {
     if (i >= t.size() || !t[i].is_punct(c))
-        throw e.error(std::string("expected '") + c + "' in a list of ((i j k) (dx dy dz)), found " +
+        throw e.error(std::string("expected '") + c +
+                      "' in a list of ((i j k) (dx dy dz)), found " +
                       (i < t.size() ? t[i].describe() : std::string("end of entry")));
     ++i;
 }
@@ -85,8 +87,8 @@ std::vector<ControlDisplacement> read_control_displacements(const io::FoamEntry&
                               (i < t.size() ? t[i].describe() : std::string("end of entry")));
             const std::int64_t v = t[i++].label;
             if (v < 0 || v >= counts[a])
-                throw e.error("control point index " + std::to_string(v) +
-                              " out of range [0, " + std::to_string(counts[a] - 1) + "]");
+                throw e.error("control point index " + std::to_string(v) + " out of range [0, " +
+                              std::to_string(counts[a] - 1) + "]");
             c.index[a] = static_cast<int>(v);
         }
         expect_punct(e, t, i, ')');
@@ -103,6 +105,28 @@ std::vector<ControlDisplacement> read_control_displacements(const io::FoamEntry&
     return out;
 }
 
+//! `idw { exponents (3 5); alpha 0.2; theta 0.25; }`
+IdwSettings read_idw_settings(const io::FoamDictionary& d)
+{
+    d.check_keywords({"exponents", "alpha", "theta"}, "idw");
+    IdwSettings s;
+    if (const io::FoamEntry* e = d.find("exponents"))
+    {
+        const std::vector<std::int32_t> ab = e->get<std::vector<std::int32_t>>();
+        if (ab.size() != 2 || ab[0] < 1 || ab[1] <= ab[0] || ab[1] > 12)
+            throw e->error("expected (a b) with 1 <= a < b <= 12, e.g. (3 5)");
+        s.far_exponent = ab[0];
+        s.near_exponent = ab[1];
+    }
+    s.alpha = d.get_or<double>("alpha", s.alpha);
+    if (!(s.alpha > 0.0))
+        throw d.entry("alpha").error("alpha must be > 0");
+    s.theta = d.get_or<double>("theta", s.theta);
+    if (!(s.theta >= 0.0 && s.theta <= 0.7))
+        throw d.entry("theta").error("theta must be in [0, 0.7] (0: direct sum)");
+    return s;
+}
+
 } // namespace
 
 std::string to_string(DeformationMethod method)
@@ -115,6 +139,8 @@ std::string to_string(DeformationMethod method)
         return "dmffd";
     case DeformationMethod::ffd:
         return "ffd";
+    case DeformationMethod::idw:
+        return "idw";
     }
     return "?";
 }
@@ -127,7 +153,9 @@ DeformationMethod deformation_method_from_string(const std::string& name)
         return DeformationMethod::dmffd;
     if (name == "ffd")
         return DeformationMethod::ffd;
-    throw InvalidInput("unknown method '" + name + "' (valid: rbf dmffd ffd)");
+    if (name == "idw")
+        return DeformationMethod::idw;
+    throw InvalidInput("unknown method '" + name + "' (valid: rbf dmffd ffd idw)");
 }
 
 DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
@@ -153,7 +181,7 @@ DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
     if (const io::FoamDictionary* d = dict.find_dict("rbf"))
     {
         d->check_keywords({"kernel", "shape", "polynomial", "supportRadius", "order", "greedy"},
-                       "rbf");
+                          "rbf");
         if (const io::FoamEntry* e = d->find("kernel"))
         {
             try
@@ -183,13 +211,14 @@ DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
         if (d->found("greedy"))
         {
             const io::FoamDictionary& g = d->sub_dict("greedy");
-            g.check_keywords({"tolerance", "rmsTolerance", "maxCentres", "initialCentres",
-                               "batchSize"},
-                           "rbf.greedy");
+            g.check_keywords(
+                {"tolerance", "rmsTolerance", "maxCentres", "initialCentres", "batchSize"},
+                "rbf.greedy");
+            // Each key alone: an unset key keeps its default (rmsTolerance unset: no RMS
+            // criterion beyond the max one), whatever else is set.
             GreedySettings gs;
             gs.tolerance = g.get_or<double>("tolerance", gs.tolerance);
-            gs.rms_tolerance = g.get_or<double>("rmsTolerance", std::min(gs.rms_tolerance,
-                                                                         gs.tolerance));
+            gs.rms_tolerance = g.get_or<double>("rmsTolerance", gs.tolerance);
             gs.max_centres = g.get_or<std::int32_t>("maxCentres", gs.max_centres);
             gs.initial_centres = g.get_or<std::int32_t>("initialCentres", gs.initial_centres);
             gs.batch_size = g.get_or<std::int32_t>("batchSize", gs.batch_size);
@@ -200,6 +229,8 @@ DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
             s.greedy = gs;
         }
     }
+    if (const io::FoamDictionary* d = dict.find_dict("idw"))
+        s.idw = read_idw_settings(*d);
     if (const io::FoamDictionary* d = dict.find_dict("dmffd"))
     {
         d->check_keywords({"lattice", "clamping", "bounds"}, "dmffd");
@@ -236,6 +267,11 @@ bool needs_fit(const DeformationSettings& settings)
     return settings.method != DeformationMethod::ffd;
 }
 
+bool is_exact(const DeformationSettings& settings)
+{
+    return settings.method == DeformationMethod::rbf || settings.method == DeformationMethod::idw;
+}
+
 std::unique_ptr<SpaceDeformation> make_deformation(const DeformationSettings& s,
                                                    const Eigen::Ref<const Points>& points,
                                                    Index n_constraints)
@@ -244,24 +280,21 @@ std::unique_ptr<SpaceDeformation> make_deformation(const DeformationSettings& s,
     {
     case DeformationMethod::rbf:
     {
+        // Either way the IDW correction of the residual makes the field exact at every
+        // constraint (a direct fit leaves only round-off to correct).
+        std::unique_ptr<SpaceDeformation> global;
         if (s.greedy || n_constraints > s.direct_limit)
         {
-            GreedySettings g;
-            if (s.greedy)
-                g = *s.greedy;
-            else
-            {
-                // Automatic: tight enough that boundary points end within 1e-6 of the
-                // largest prescription, bounded in memory like the direct solve.
-                g.tolerance = 1e-6;
-                g.rms_tolerance = 1e-7;
-                g.max_centres = s.direct_limit;
-            }
+            GreedySettings g = s.greedy.value_or(GreedySettings{});
             g.rbf = s.rbf;
-            return std::make_unique<GreedyRbfDeformation>(g);
+            global = std::make_unique<GreedyRbfDeformation>(g);
         }
-        return std::make_unique<RbfDeformation>(s.rbf);
+        else
+            global = std::make_unique<RbfDeformation>(s.rbf);
+        return std::make_unique<CorrectedDeformation>(std::move(global), s.idw);
     }
+    case DeformationMethod::idw:
+        return std::make_unique<IdwDeformation>(s.idw);
     case DeformationMethod::dmffd:
     {
         DmffdSettings d = s.dmffd;
@@ -292,14 +325,22 @@ std::string describe(const DeformationSettings& s, Index n_constraints)
     case DeformationMethod::rbf:
         out << "rbf (" << to_string(s.rbf.kernel) << ", "
             << (s.rbf.polynomial ? "linear polynomial" : "no polynomial") << ", ";
-        if (s.greedy)
-            out << "greedy, tolerance " << s.greedy->tolerance << ", max " << s.greedy->max_centres
-                << " centres)";
-        else if (n_constraints > s.direct_limit)
-            out << "greedy (automatic above " << s.direct_limit
-                << " constraints), tolerance 1e-06)";
+        if (s.greedy || n_constraints > s.direct_limit)
+        {
+            const GreedySettings g = s.greedy.value_or(GreedySettings{});
+            out << "greedy"
+                << (s.greedy
+                        ? ""
+                        : " (automatic above " + std::to_string(s.direct_limit) + " constraints)")
+                << ", tolerance " << g.tolerance << ", max " << g.max_centres
+                << " centres; IDW correction of the residual: exact)";
+        }
         else
             out << "direct, exact)";
+        break;
+    case DeformationMethod::idw:
+        out << "idw (exponents " << s.idw.far_exponent << " " << s.idw.near_exponent << ", alpha "
+            << s.idw.alpha << ", theta " << s.idw.theta << ", exact)";
         break;
     case DeformationMethod::dmffd:
     {

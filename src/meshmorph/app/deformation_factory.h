@@ -6,8 +6,9 @@
 //! method      rbf;                 // rbf | dmffd | ffd
 //! rbf   { kernel triharmonic; shape 1; polynomial linear;
 //!         greedy { tolerance 1e-6; maxCentres 20000; } }   // greedy optional
-//! dmffd { lattice (10 10 10); clamping 1e-2; }            // optional: bounds ((x0 y0 z0) (x1 y1 z1))
-//! ffd   { lattice (4 4 4); bounds ((0 0 0) (1 1 1)); displacements ( ((1 2 3) (0 0 0.01)) ); }
+//! dmffd { lattice (10 10 10); clamping 1e-2; }            // optional: bounds ((x0 y0 z0) (x1 y1
+//! z1)) ffd   { lattice (4 4 4); bounds ((0 0 0) (1 1 1)); displacements ( ((1 2 3) (0 0 0.01)) );
+//! }
 //! ```
 //! RBF without a `greedy` sub-dictionary solves directly (exact interpolation) up to
 //! `direct_limit` constraints and switches to greedy centre selection above it (a dense
@@ -25,6 +26,7 @@
 #include "meshmorph/deform/dmffd_deformation.h"
 #include "meshmorph/deform/ffd_deformation.h"
 #include "meshmorph/deform/greedy_rbf_deformation.h"
+#include "meshmorph/deform/idw_deformation.h"
 #include "meshmorph/deform/rbf_deformation.h"
 
 namespace meshmorph::io
@@ -39,11 +41,12 @@ enum class DeformationMethod
 {
     rbf,
     dmffd,
-    ffd
+    ffd,
+    idw
 };
 
 std::string to_string(DeformationMethod method);
-//! \throw InvalidInput for an unknown name (message lists rbf dmffd ffd).
+//! \throw InvalidInput for an unknown name (message lists rbf dmffd ffd idw).
 DeformationMethod deformation_method_from_string(const std::string& name);
 
 //! One prescribed FFD control-point displacement.
@@ -60,9 +63,10 @@ struct DeformationSettings
     RbfSettings rbf;
     //! Set when the dictionary has `rbf { greedy { ... } }`: always greedy.
     std::optional<GreedySettings> greedy;
-    //! Direct RBF up to this many constraints, greedy (default settings, tolerance 1e-6)
-    //! above.
+    //! Direct RBF up to this many constraints, greedy (GreedySettings' defaults) above.
     Index direct_limit = 5000;
+    //! `method idw`, and the correction that makes a greedy RBF exact (`idw { ... }`).
+    IdwSettings idw;
     DmffdSettings dmffd;
     FfdSettings ffd;
     std::vector<ControlDisplacement> ffd_displacements;
@@ -85,6 +89,9 @@ std::unique_ptr<SpaceDeformation> make_deformation(const DeformationSettings& se
 //! Whether the deformation made by make_deformation() for these settings is fitted to the
 //! constraints (false for FFD: its control points are prescribed).
 bool needs_fit(const DeformationSettings& settings);
+//! Whether the fitted field interpolates every constraint (rbf, idw) rather than fitting
+//! it in the least-squares sense (dmffd) or ignoring it (ffd).
+bool is_exact(const DeformationSettings& settings);
 
 //! Short description for the log, e.g. "rbf (triharmonic, linear polynomial, direct)".
 std::string describe(const DeformationSettings& settings, Index n_constraints);

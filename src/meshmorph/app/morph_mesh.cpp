@@ -14,13 +14,15 @@
 
 #include "meshmorph/app/banner.h"
 #include "meshmorph/app/deformation_factory.h"
+#include "meshmorph/app/morph_steps.h"
 #include "meshmorph/app/options.h"
 #include "meshmorph/core/config.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/core/progress.h"
-#include "meshmorph/io/foam_dictionary.h"
+#include "meshmorph/core/stopwatch.h"
 #include "meshmorph/core/triangle_surface.h"
+#include "meshmorph/io/foam_dictionary.h"
 #include "meshmorph/io/foam_file.h"
 #include "meshmorph/io/point_field.h"
 #include "meshmorph/io/read_poly_mesh.h"
@@ -38,157 +40,19 @@ namespace fs = std::filesystem;
 namespace
 {
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start)
+std::string fraction_done(const std::vector<StepRecord>& steps)
 {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-//! Rows `indices` of `x`.
-Points gather(const Points& x, const std::vector<Index>& indices)
-{
-    Points out(static_cast<Eigen::Index>(indices.size()), 3);
-    for (std::size_t i = 0; i < indices.size(); ++i)
-        out.row(static_cast<Eigen::Index>(i)) = x.row(indices[i]);
-    return out;
-}
-
-//! Positions at which d is evaluated: in 2D cases the projection onto the reference empty
-//! plane, so that both planes get the same displacement.
-Points evaluation_positions(const Points& x, const Constraints& c)
-{
-    if (!c.empty_normal)
-        return x;
-    const Vector3 n = *c.empty_normal;
-    Points out = x;
-    const Eigen::VectorXd offset = (x * n).array() - c.empty_offset;
-    out -= offset * n.transpose();
-    return out;
-}
-
-void remove_empty_normal(Points& d, const Constraints& c)
-{
-    if (!c.empty_normal)
-        return;
-    const Vector3 n = *c.empty_normal;
-    const Eigen::VectorXd normal = d * n;
-    d -= normal * n.transpose();
-}
-
-//! Evaluate in chunks so long evaluations report progress.
-void evaluate_with_progress(const SpaceDeformation& deformation, const Points& x, Points& out,
-                            const std::string& task)
-{
-    out.resize(x.rows(), 3);
-    const Eigen::Index chunk = 1 << 16;
-    ProgressScope progress(task, x.rows());
-    for (Eigen::Index begin = 0; begin < x.rows(); begin += chunk)
-    {
-        const Eigen::Index n = std::min(chunk, x.rows() - begin);
-        deformation.evaluate(x.middleRows(begin, n), out.middleRows(begin, n));
-        progress.update(begin + n);
-    }
+    double done = 0.0;
+    for (const StepRecord& s : steps)
+        if (s.accepted)
+            done = s.to;
+    std::ostringstream o;
+    o.precision(4);
+    o << done;
+    return o.str();
 }
 
 } // namespace
-
-PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeformation& deformation,
-                        bool fit, bool snap)
-{
-    PointMorph result;
-    const Points& x = mesh.points;
-    const Points x_eval = evaluation_positions(x, c);
-
-    std::vector<Index> points = c.points;
-    Points prescribed = c.displacements;
-    const auto fit_start = Clock::now();
-    if (fit)
-    {
-        if (points.empty() && c.slip_points.empty())
-            throw InvalidInput("nothing to fit: no point has a prescribed displacement (every "
-                               "patch is free or slip and there are no handles)");
-        if (!c.slip_points.empty())
-        {
-            // First fit without the slip points; their prescription is the tangential part
-            // of that field (zero if nothing else is prescribed).
-            Points slip_values = Points::Zero(static_cast<Eigen::Index>(c.slip_points.size()), 3);
-            if (!points.empty())
-            {
-                deformation.fit(gather(x, points), prescribed);
-                Points d_slip(slip_values.rows(), 3);
-                deformation.evaluate(gather(x_eval, c.slip_points), d_slip);
-                for (Eigen::Index i = 0; i < d_slip.rows(); ++i)
-                    slip_values.row(i) =
-                        (c.slip_projectors[static_cast<std::size_t>(i)] * d_slip.row(i).transpose())
-                            .transpose();
-                remove_empty_normal(slip_values, c);
-            }
-            // Merge, keeping the point order sorted (the handle order does not matter to the
-            // fit, but sorted order keeps runs reproducible).
-            std::vector<std::pair<Index, Vector3>> all;
-            all.reserve(points.size() + c.slip_points.size());
-            for (std::size_t i = 0; i < points.size(); ++i)
-                all.emplace_back(points[i],
-                                 prescribed.row(static_cast<Eigen::Index>(i)).transpose());
-            for (std::size_t i = 0; i < c.slip_points.size(); ++i)
-                all.emplace_back(c.slip_points[i],
-                                 slip_values.row(static_cast<Eigen::Index>(i)).transpose());
-            std::sort(all.begin(), all.end(),
-                      [](const auto& a, const auto& b) { return a.first < b.first; });
-            points.resize(all.size());
-            prescribed.resize(static_cast<Eigen::Index>(all.size()), 3);
-            for (std::size_t i = 0; i < all.size(); ++i)
-            {
-                points[i] = all[i].first;
-                prescribed.row(static_cast<Eigen::Index>(i)) = all[i].second.transpose();
-            }
-            result.n_slip = static_cast<Index>(c.slip_points.size());
-        }
-        const Points handles = gather(x, points);
-        // RbfDeformation refines its own solve iteratively (RbfSettings::refinement_steps).
-        deformation.fit(handles, prescribed);
-    }
-    result.report = deformation.report();
-    result.fit_seconds = seconds_since(fit_start);
-    result.n_constraints = static_cast<Index>(points.size());
-
-    const auto eval_start = Clock::now();
-    evaluate_with_progress(deformation, x_eval, result.displacement, "evaluate");
-    remove_empty_normal(result.displacement, c);
-    result.evaluate_seconds = seconds_since(eval_start);
-
-    // Residual of the fitted field at the constrained points.
-    for (std::size_t i = 0; i < points.size(); ++i)
-    {
-        const Eigen::Index r = static_cast<Eigen::Index>(i);
-        result.max_prescribed = std::max(result.max_prescribed, prescribed.row(r).norm());
-        result.max_fit_residual =
-            std::max(result.max_fit_residual,
-                     (result.displacement.row(points[i]) - prescribed.row(r)).norm());
-    }
-    double diag = 1.0;
-    if (mesh.n_points() > 0)
-        diag = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
-    const double scale = std::max(result.max_prescribed, 1e-12 * diag);
-    result.relative_fit_residual = result.max_fit_residual / scale;
-    if (snap && fit)
-    {
-        for (std::size_t i = 0; i < points.size(); ++i)
-            result.displacement.row(points[i]) = prescribed.row(static_cast<Eigen::Index>(i));
-        remove_empty_normal(result.displacement, c);
-        result.snapped = true;
-    }
-    // The error of the field actually applied (0 after snapping, up to the 2D projection).
-    for (std::size_t i = 0; i < points.size(); ++i)
-        result.max_constraint_error =
-            std::max(result.max_constraint_error,
-                     (result.displacement.row(points[i]) -
-                      prescribed.row(static_cast<Eigen::Index>(i)))
-                         .norm());
-    result.relative_constraint_error = result.max_constraint_error / scale;
-    return result;
-}
 
 namespace
 {
@@ -216,8 +80,8 @@ public:
             if (path.is_relative())
                 path = case_dir_ / path;
             TriangleSurface surface = read_surface(path);
-            log::info() << "Read target surface " << path.string() << ": "
-                        << surface.n_triangles() << " triangles";
+            log::info() << "Read target surface " << path.string() << ": " << surface.n_triangles()
+                        << " triangles";
             it = trees_.emplace(file, std::make_shared<SurfaceTree>(std::move(surface))).first;
         }
         return it->second->closest_points(query);
@@ -241,10 +105,11 @@ MorphResult morph_case(const MorphOptions& options)
         dict_path = case_dir / dict_path;
 
     // Everything that can fail on user input happens before anything is written.
-    auto stage_start = Clock::now();
+    Stopwatch stage;
     const io::FoamDictionary dict = io::read_dictionary(dict_path);
     MorphSetup setup = read_morph_setup(dict);
     const DeformationSettings settings = read_deformation_settings(dict, options.method);
+    const StepSettings step_settings = read_step_settings(dict);
     result.method = to_string(settings.method);
 
     io::PolyMeshReadOptions read_options;
@@ -253,21 +118,19 @@ MorphResult morph_case(const MorphOptions& options)
     const PolyMesh& mesh = foam.mesh;
     result.instance = foam.points_instance;
     log::info() << "Read mesh from " << foam.points_dir.string() << ": " << mesh.n_points()
-                << " points, " << mesh.n_cells << " cells, " << mesh.patches.size()
-                << " patches";
+                << " points, " << mesh.n_cells << " cells, " << mesh.patches.size() << " patches";
 
     ConstraintInputs inputs;
     auto projector = std::make_shared<SurfaceProjector>(case_dir);
-    inputs.project_to_surface = [projector](const std::string& file, const Points& query) {
-        return (*projector)(file, query);
-    };
+    inputs.project_to_surface = [projector](const std::string& file, const Points& query)
+    { return (*projector)(file, query); };
     Points point_displacement;
     std::vector<std::optional<Points>> patch_point_displacement;
     const std::vector<PatchAssignment> assignment = assign_patches(mesh, setup);
     inputs.patches = &assignment;
-    if (std::any_of(assignment.begin(), assignment.end(), [](const PatchAssignment& a) {
-            return a.motion == MotionType::point_displacement;
-        }))
+    if (std::any_of(assignment.begin(), assignment.end(),
+                    [](const PatchAssignment& a)
+                    { return a.motion == MotionType::point_displacement; }))
     {
         // <time>/pointDisplacement of the time read (0/ when the mesh came from constant/).
         const std::string time = foam.time == "constant" ? "0" : foam.time;
@@ -298,7 +161,7 @@ MorphResult morph_case(const MorphOptions& options)
     if (options.vtk)
         throw InvalidInput("-vtk: this build has no VTK support (MESHMORPH_WITH_VTK=OFF)");
 #endif
-    result.timings.read = seconds_since(stage_start);
+    result.timings.read = stage.seconds();
     log::info() << "Read case and " << dict_path.string() << " in "
                 << format_seconds(result.timings.read) << " s";
 
@@ -309,10 +172,9 @@ MorphResult morph_case(const MorphOptions& options)
     log::info() << "Constraints: " << c.points.size() << " prescribed points, "
                 << c.slip_points.size() << " slip points, " << c.n_free_points
                 << " free boundary points, " << c.n_handle_points << " handle points"
-                << (c.n_handle_overrides > 0
-                        ? " (" + std::to_string(c.n_handle_overrides) +
-                              " boundary points overridden by handles)"
-                        : std::string());
+                << (c.n_handle_overrides > 0 ? " (" + std::to_string(c.n_handle_overrides) +
+                                                   " boundary points overridden by handles)"
+                                             : std::string());
     if (c.empty_normal)
         log::info() << "2D case: no motion normal to the empty planes (normal "
                     << c.empty_normal->transpose() << ")";
@@ -326,56 +188,68 @@ MorphResult morph_case(const MorphOptions& options)
     }
 
     // Quality before.
-    stage_start = Clock::now();
+    stage.restart();
     CheckMeshSettings check_settings;
+    // The per-cell scaled Jacobian is not a checkMesh check: only for the JSON and VTK
+    // output (as in checkMeshQuality), it costs as much as the checks themselves.
+    check_settings.scaled_jacobian = !options.json.empty() || options.vtk;
     // The topology does not change: one cell->faces addressing serves both checks.
     const CompactList cf = cell_faces(mesh);
     result.before = check_mesh(mesh, cf, compute_geometry(mesh, cf), check_settings);
-    result.timings.check = seconds_since(stage_start);
+    result.timings.check = stage.seconds();
 
-    // Fit and evaluate.
+    // Fit and evaluate, in steps.
     const Index n_fit = static_cast<Index>(c.points.size() + c.slip_points.size());
     log::info() << "Method: " << describe(settings, n_fit);
-    std::unique_ptr<SpaceDeformation> deformation = make_deformation(settings, mesh.points, n_fit);
-    // Interpolating methods: constrained points end exactly at their prescriptions (the
-    // issue's "either way", also for greedy); the fit residual is reported below.
-    const bool snap = settings.method == DeformationMethod::rbf;
-    result.morph = morph_points(mesh, c, *deformation, needs_fit(settings), snap);
-    result.timings.fit = result.morph.fit_seconds;
-    result.timings.evaluate = result.morph.evaluate_seconds;
+    log::info() << "Steps: " << describe(step_settings);
+    const DeformationMaker make = [&](const Points& points)
+    { return make_deformation(settings, points, n_fit); };
+    const InvalidCells invalid_before{result.before.negative_volume_cells,
+                                      result.before.incorrectly_oriented_face_pyramids};
+    SteppedMorph stepped =
+        morph_in_steps(mesh, cf, c, step_settings, make, needs_fit(settings), invalid_before);
+    result.steps = stepped.steps;
+    for (const StepRecord& s : stepped.steps)
+    {
+        result.timings.fit += s.fit_seconds;
+        result.timings.evaluate += s.evaluate_seconds;
+        result.timings.check += s.check_seconds;
+    }
+    result.morph = std::move(stepped.last);
+    result.morph.displacement = std::move(stepped.displacement);
+    measure_constraint_error(c, mesh.points, result.morph);
     const FitReport& r = result.morph.report;
-    log::info() << "Fitted " << result.morph.n_constraints << " constraints with "
-                << r.num_centres << (settings.method == DeformationMethod::rbf ? " centres" : " control points")
+    log::info() << "Fitted " << result.morph.n_constraints << " constraints with " << r.num_centres
+                << (settings.method == DeformationMethod::rbf ? " centres" : " control points")
                 << (r.solver.empty() ? std::string() : " (" + r.solver + ")")
                 << (r.condition_estimate > 0 ? ", condition ~ " + fmt(r.condition_estimate) : "")
                 << " in " << format_seconds(result.timings.fit) << " s";
     log::info() << "Evaluated " << mesh.n_points() << " points in "
                 << format_seconds(result.timings.evaluate) << " s; max displacement "
                 << fmt(result.morph.displacement.rowwise().norm().maxCoeff());
-    log::info() << "Max fit residual " << fmt(result.morph.max_fit_residual) << " ("
-                << fmt(result.morph.relative_fit_residual) << " of the largest prescribed "
-                << "displacement " << fmt(result.morph.max_prescribed) << ")";
-    if (result.morph.snapped)
-        log::info() << "Constrained points set to their prescriptions: max constraint error "
-                    << fmt(result.morph.max_constraint_error);
-    else
-        log::info() << "Max constraint error " << fmt(result.morph.max_constraint_error) << " ("
-                    << fmt(result.morph.relative_constraint_error) << " relative)";
-    if (settings.method == DeformationMethod::rbf && result.morph.relative_fit_residual > 1e-9)
-        log::warning() << "the RBF field misses the constrained points by up to "
-                       << fmt(result.morph.relative_fit_residual)
-                       << " (relative) before they are set to their prescriptions: "
-                       << (r.method == "greedy-rbf"
-                               ? "the greedy tolerance"
-                               : "ill-conditioning (condition ~ " +
-                                     fmt(r.condition_estimate) + ")");
+    if (r.method.ends_with("+idw"))
+        log::info() << "Global RBF residual " << fmt(r.max_residual) << " ("
+                    << fmt(r.max_residual / std::max(r.max_displacement, 1e-300))
+                    << " relative), taken up by the local IDW correction";
+    log::info() << "Max constraint error " << fmt(result.morph.max_constraint_error) << " ("
+                << fmt(result.morph.relative_constraint_error)
+                << " of the largest prescribed displacement " << fmt(result.morph.max_prescribed)
+                << ")";
+    if (is_exact(settings) && stepped.completed && result.morph.relative_constraint_error > 1e-9)
+        log::warning() << "the constrained points miss their prescriptions by up to "
+                       << fmt(result.morph.relative_constraint_error)
+                       << " (relative): report this case, the field should interpolate them";
 
     // Quality after.
-    stage_start = Clock::now();
+    stage.restart();
+    if (!stepped.completed)
+        log::warning() << "stopped at " << fraction_done(result.steps)
+                       << " of the motion: even a step of 1/" << step_settings.max_steps
+                       << " of it creates invalid cells";
     PolyMesh moved = mesh;
-    moved.points += result.morph.displacement;
-    result.after = check_mesh(moved, cf, compute_geometry(moved, cf), check_settings);
-    result.timings.check += seconds_since(stage_start);
+    moved.points = std::move(stepped.points); // exactly the points stepped.geometry is of
+    result.after = check_mesh(moved, cf, stepped.geometry, check_settings);
+    result.timings.check += stage.seconds();
     {
         std::ostringstream summary;
         print_quality_summary(summary, quality_json(result.before), quality_json(result.after));
@@ -405,10 +279,10 @@ MorphResult morph_case(const MorphOptions& options)
     }
 
     // Write.
-    stage_start = Clock::now();
+    stage.restart();
     io::FoamFileInfo like = foam.points;
-    result.points_file = io::write_points(moved.points, like, case_dir, result.output_instance,
-                                          foam.region);
+    result.points_file =
+        io::write_points(moved.points, like, case_dir, result.output_instance, foam.region);
     result.written = true;
 #if MESHMORPH_WITH_VTK
     if (options.vtk)
@@ -428,7 +302,7 @@ MorphResult morph_case(const MorphOptions& options)
         io::write_vtu(result.vtk_file, moved, point_data, cell_data);
     }
 #endif
-    result.timings.write = seconds_since(stage_start);
+    result.timings.write = stage.seconds();
     log::info() << "Wrote " << result.points_file.string() << " in "
                 << format_seconds(result.timings.write) << " s";
     if (!result.vtk_file.empty())
@@ -456,6 +330,18 @@ std::string morph_json(const MorphResult& result)
     j["conflictRule"] = to_string(result.constraints.conflict_rule);
     j["solver"] = result.morph.report.solver;
     j["conditionEstimate"] = result.morph.report.condition_estimate;
+    j["steps"] = nlohmann::json::array();
+    for (const StepRecord& s : result.steps)
+        j["steps"].push_back({{"from", s.from},
+                              {"to", s.to},
+                              {"centres", s.centres},
+                              {"globalResidual", s.max_global_residual},
+                              {"negativeVolumeCells", s.invalid.negative_volume_cells},
+                              {"incorrectlyOrientedFacePyramids", s.invalid.wrong_pyramids},
+                              {"accepted", s.accepted},
+                              {"fit", s.fit_seconds},
+                              {"evaluate", s.evaluate_seconds},
+                              {"check", s.check_seconds}});
     j["timings"] = {{"read", result.timings.read},
                     {"fit", result.timings.fit},
                     {"evaluate", result.timings.evaluate},
@@ -477,10 +363,12 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
     Options options(
         "morphMesh",
         "Morphs the polyMesh of an OpenFOAM case with a space deformation (RBF by default,\n"
-        "DM-FFD or FFD) fitted to the boundary and handle prescriptions of system/morphDict,\n"
-        "then checks the result like checkMesh. Without -overwrite only <next time>/polyMesh/\n"
-        "points is written (read it with -latestTime); a morph that creates negative-volume\n"
-        "cells or wrongly oriented face pyramids is not written unless -force.\n"
+        "IDW, DM-FFD or FFD) fitted to the boundary and handle prescriptions of\n"
+        "system/morphDict, in steps refitted on the moved mesh ('steps auto': one step,\n"
+        "halved while a step inverts cells), then checks the result like checkMesh.\n"
+        "Without -overwrite only <next time>/polyMesh/points is written (read it with\n"
+        "-latestTime); a morph that creates negative-volume cells or wrongly oriented face\n"
+        "pyramids is not written unless -force.\n"
         "Conflicting prescriptions on shared points follow the dictionary's 'conflicts' rule\n"
         "(default fixed: such points do not move); handles override boundary prescriptions.",
         {{"case", "DIR", "Case directory (default: the current directory)"},
@@ -489,7 +377,7 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
          {"latestTime", "", "Morph the mesh at the latest time"},
          {"overwrite", "", "Replace the points of the mesh instance instead of writing a new time"},
          {"noOverwrite", "", "Write a new time directory (the default)"},
-         {"method", "rbf|dmffd|ffd", "Override the dictionary's method"},
+         {"method", "rbf|dmffd|ffd|idw", "Override the dictionary's method"},
          {"json", "FILE", "Write constraints, timings and before/after quality as JSON"},
          {"vtk", "", "Also write VTK/morphMesh_<time>.vtu with the displacement and quality"},
          {"force", "", "Write even if the morph creates invalid cells"}},
@@ -543,9 +431,9 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
                 << ". Nothing written: reduce the motion, change the method or use -force.\n";
             return exit_morph_refused;
         }
-        out << (result.after.mesh_ok() ? "Mesh OK."
-                                       : "Failed " + std::to_string(result.after.failed_checks) +
-                                             " mesh checks.")
+        out << (result.after.mesh_ok()
+                    ? "Mesh OK."
+                    : "Failed " + std::to_string(result.after.failed_checks) + " mesh checks.")
             << "\n";
         print_end(out);
         return exit_morph_ok;

@@ -47,7 +47,10 @@ const std::vector<std::pair<ConflictRule, std::string>>& rule_names()
     return names;
 }
 
-bool is_constraint_type(const std::string& type) { return type == "empty" || type == "wedge"; }
+bool is_constraint_type(const std::string& type)
+{
+    return type == "empty" || type == "wedge";
+}
 
 bool is_processor_type(const std::string& type)
 {
@@ -108,6 +111,7 @@ struct Claim
     Index order = 0; //!< entry order in the dictionary (wedge: -1)
     Kind kind = Kind::value;
     Vector3 value = Vector3::Zero(); //!< value: displacement; slip: plane normal
+    Index rotation = -1; //!< value claimed by a rotate entry: index into Constraints::rotations
 };
 
 //! Projector removing the components along the given unit normals (an orthonormal basis of
@@ -182,8 +186,9 @@ MorphSetup read_morph_setup(const io::FoamDictionary& dict)
 {
     MorphSetup setup;
     setup.dict_path = dict.path();
-    dict.check_keywords({"method", "rbf", "dmffd", "ffd", "boundary", "handles", "conflicts"},
-                   "morphDict");
+    dict.check_keywords(
+        {"method", "rbf", "dmffd", "ffd", "idw", "steps", "boundary", "handles", "conflicts"},
+        "morphDict");
     if (const io::FoamEntry* e = dict.find("conflicts"))
     {
         try
@@ -274,8 +279,8 @@ MorphSetup read_morph_setup(const io::FoamDictionary& dict)
             h.name = e.keyword();
             h.line = e.line();
             h.displacement = d.get<Vector3>("displacement");
-            const int n_selections = int(d.found("pointZone")) + int(d.found("box")) +
-                                     int(d.found("points"));
+            const int n_selections =
+                int(d.found("pointZone")) + int(d.found("box")) + int(d.found("points"));
             if (n_selections != 1)
                 throw e.error("give exactly one of pointZone, box or points");
             if (d.found("pointZone"))
@@ -424,8 +429,8 @@ std::vector<PatchAssignment> assign_patches(const PolyMesh& mesh, const MorphSet
             catch (const std::regex_error& err)
             {
                 throw ParseError(dict, entry.line,
-                                 "boundary entry \"" + entry.key + "\": invalid regular expression (" +
-                                     err.what() + ")");
+                                 "boundary entry \"" + entry.key +
+                                     "\": invalid regular expression (" + err.what() + ")");
             }
         }
         else if (entry.key == "default")
@@ -535,8 +540,8 @@ std::vector<PatchAssignment> assign_patches(const PolyMesh& mesh, const MorphSet
         {
             const std::vector<std::string> groups = patch_groups(patch);
             if (entry.is_regex ? std::regex_match(patch.name, *regexes[e])
-                               : (patch.name == entry.key ||
-                                  std::find(groups.begin(), groups.end(), entry.key) != groups.end()))
+                               : (patch.name == entry.key || std::find(groups.begin(), groups.end(),
+                                                                       entry.key) != groups.end()))
                 names_something = true; // e.g. a regex matching only empty patches
         }
         if (names_something)
@@ -592,7 +597,8 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
 
     // Collect claims per point.
     std::vector<Claim> claims;
-    std::map<std::string, std::vector<std::pair<Index, Index>>> surface_requests; // file -> (claim, point)
+    std::map<std::string, std::vector<std::pair<Index, Index>>>
+        surface_requests;                               // file -> (claim, point)
     std::map<std::string, std::string> surface_entries; // file -> "boundary entry ..." for messages
     std::map<std::string, std::size_t> surface_lines;
     for (std::size_t pi = 0; pi < mesh.patches.size(); ++pi)
@@ -621,26 +627,26 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
                                      "it (use type surface with the patch's geometry instead)");
             }
             for (Index p : pts)
-                claims.push_back({p, static_cast<Index>(pi), order, Claim::Kind::slip,
-                                  plane->first});
+                claims.push_back(
+                    {p, static_cast<Index>(pi), order, Claim::Kind::slip, plane->first});
             continue;
         }
         switch (motion.type)
         {
         case MotionType::free:
             for (Index p : pts)
-                claims.push_back({p, static_cast<Index>(pi), order, Claim::Kind::free,
-                                  Vector3::Zero()});
+                claims.push_back(
+                    {p, static_cast<Index>(pi), order, Claim::Kind::free, Vector3::Zero()});
             break;
         case MotionType::point_displacement:
             if (inputs.point_displacement == nullptr)
-                throw ParseError(dict, line, what + ": type pointDisplacement needs a "
-                                                    "pointDisplacement field, none was read");
+                throw ParseError(dict, line,
+                                 what + ": type pointDisplacement needs a "
+                                        "pointDisplacement field, none was read");
             if (inputs.point_displacement->rows() != mesh.n_points())
-                throw InvalidInput("pointDisplacement has " +
-                                   std::to_string(inputs.point_displacement->rows()) +
-                                   " values, the mesh has " + std::to_string(mesh.n_points()) +
-                                   " points");
+                throw InvalidInput(
+                    "pointDisplacement has " + std::to_string(inputs.point_displacement->rows()) +
+                    " values, the mesh has " + std::to_string(mesh.n_points()) + " points");
             if (inputs.patch_point_displacement != nullptr &&
                 pi < inputs.patch_point_displacement->size() &&
                 (*inputs.patch_point_displacement)[pi].has_value())
@@ -660,18 +666,26 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
             break;
         case MotionType::surface:
             if (!inputs.project_to_surface)
-                throw ParseError(dict, line, what + ": type surface needs a target surface "
-                                                    "reader, none was given");
+                throw ParseError(dict, line,
+                                 what + ": type surface needs a target surface "
+                                        "reader, none was given");
             surface_entries.try_emplace(motion.file, what);
             surface_lines.try_emplace(motion.file, line);
             for (Index p : pts)
             {
                 surface_requests[motion.file].emplace_back(static_cast<Index>(claims.size()), p);
-                claims.push_back({p, static_cast<Index>(pi), order, Claim::Kind::value,
-                                  Vector3::Zero()});
+                claims.push_back(
+                    {p, static_cast<Index>(pi), order, Claim::Kind::value, Vector3::Zero()});
             }
             break;
         default:
+        {
+            Index rotation = -1;
+            if (motion.type == MotionType::rotate)
+            {
+                rotation = static_cast<Index>(out.rotations.size());
+                out.rotations.push_back(motion);
+            }
             for (Index p : pts)
             {
                 // 2D: evaluate at the projection onto the reference empty plane, so both
@@ -681,8 +695,9 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
                 if (out.empty_normal)
                     x -= (out.empty_normal->dot(x) - out.empty_offset) * *out.empty_normal;
                 claims.push_back({p, static_cast<Index>(pi), order, Claim::Kind::value,
-                                  motion.displacement(x)});
+                                  motion.displacement(x), rotation});
             }
+        }
         }
     }
     for (const auto& [file, requests] : surface_requests)
@@ -705,9 +720,9 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
         if (closest.rows() != query.rows())
             throw std::logic_error("project_to_surface returned a wrong number of points");
         for (std::size_t i = 0; i < requests.size(); ++i)
-            claims[requests[i].first].value =
-                (closest.row(static_cast<Eigen::Index>(i)) - query.row(static_cast<Eigen::Index>(i)))
-                    .transpose();
+            claims[requests[i].first].value = (closest.row(static_cast<Eigen::Index>(i)) -
+                                               query.row(static_cast<Eigen::Index>(i)))
+                                                  .transpose();
     }
     std::stable_sort(claims.begin(), claims.end(),
                      [](const Claim& a, const Claim& b) { return a.point < b.point; });
@@ -719,6 +734,7 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
         bool is_slip;
         Vector3 value;
         Eigen::Matrix3d projector;
+        Index rotation = -1;
     };
     std::vector<Resolved> resolved;
     resolved.reserve(claims.size());
@@ -753,7 +769,8 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
                 if (std::abs(values.front()->value.dot(s->value)) > agree_tol)
                     conflict = true; // a motion that would leave the slip plane
 
-        const auto slip_result = [&](const std::vector<const Claim*>& planes) {
+        const auto slip_result = [&](const std::vector<const Claim*>& planes)
+        {
             std::vector<Vector3> normals;
             for (const Claim* s : planes)
                 normals.push_back(s->value);
@@ -770,7 +787,7 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
                 resolved.push_back(slip_result(slips));
             else
                 resolved.push_back({point, false, values.front()->value,
-                                    Eigen::Matrix3d::Identity()});
+                                    Eigen::Matrix3d::Identity(), values.front()->rotation});
             continue;
         }
 
@@ -816,7 +833,8 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
             if (winner->kind == Claim::Kind::slip)
                 resolved.push_back(slip_result(slips));
             else
-                resolved.push_back({point, false, winner->value, Eigen::Matrix3d::Identity()});
+                resolved.push_back(
+                    {point, false, winner->value, Eigen::Matrix3d::Identity(), winner->rotation});
             break;
         }
         }
@@ -836,7 +854,8 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
     }
 
     // Handles: selected points, later handles checked against earlier ones.
-    std::map<Index, std::pair<Vector3, std::vector<Index>>> handle_values; // point -> (value, handles)
+    std::map<Index, std::pair<Vector3, std::vector<Index>>>
+        handle_values; // point -> (value, handles)
     for (std::size_t h = 0; h < setup.handles.size(); ++h)
     {
         const HandleEntry& handle = setup.handles[h];
@@ -852,10 +871,10 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
                 std::string zones;
                 for (const Zone& z : mesh.point_zones)
                     zones += (zones.empty() ? "" : " ") + z.name;
-                throw ParseError(dict, handle.line,
-                                 "handles entry '" + handle.name + "': no pointZone '" +
-                                     handle.zone + "' in the mesh (pointZones: " +
-                                     (zones.empty() ? "none" : zones) + ")");
+                throw ParseError(
+                    dict, handle.line,
+                    "handles entry '" + handle.name + "': no pointZone '" + handle.zone +
+                        "' in the mesh (pointZones: " + (zones.empty() ? "none" : zones) + ")");
             }
             selected = it->labels;
             break;
@@ -873,8 +892,10 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
             for (Eigen::Index k = 0; k < handle.points.rows(); ++k)
             {
                 Eigen::Index nearest = 0;
-                (mesh.points.rowwise() - handle.points.row(k)).rowwise().squaredNorm().minCoeff(
-                    &nearest);
+                (mesh.points.rowwise() - handle.points.row(k))
+                    .rowwise()
+                    .squaredNorm()
+                    .minCoeff(&nearest);
                 selected.push_back(static_cast<Index>(nearest));
             }
             break;
@@ -950,11 +971,13 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
     std::vector<Index> points;
     std::vector<Vector3> values;
     auto hv = handle_values.begin();
-    const auto take_handles_below = [&](Index limit) {
+    const auto take_handles_below = [&](Index limit)
+    {
         while (hv != handle_values.end() && hv->first < limit)
         {
             points.push_back(hv->first);
             values.push_back(hv->second.first);
+            out.rotation_of.push_back(-1);
             ++hv;
         }
     };
@@ -976,6 +999,7 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
         {
             points.push_back(r.point);
             values.push_back(r.value);
+            out.rotation_of.push_back(r.rotation);
         }
     }
     take_handles_below(std::numeric_limits<Index>::max());

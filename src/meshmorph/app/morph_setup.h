@@ -63,12 +63,12 @@ MotionType motion_type_from_string(const std::string& word);
 struct Motion
 {
     MotionType type = MotionType::fixed;
-    Vector3 vector = Vector3::Zero();  //!< translate
-    Vector3 origin = Vector3::Zero();  //!< rotate, scale
-    Vector3 axis = Vector3::UnitZ();   //!< rotate (need not be unit)
-    double angle_degrees = 0.0;        //!< rotate
-    Vector3 factor = Vector3::Ones();  //!< scale
-    std::string file;                  //!< surface: path as written (relative to the case)
+    Vector3 vector = Vector3::Zero(); //!< translate
+    Vector3 origin = Vector3::Zero(); //!< rotate, scale
+    Vector3 axis = Vector3::UnitZ();  //!< rotate (need not be unit)
+    double angle_degrees = 0.0;       //!< rotate
+    Vector3 factor = Vector3::Ones(); //!< scale
+    std::string file;                 //!< surface: path as written (relative to the case)
 
     //! Prescribed displacement at x for the closed-form types (fixed, translate, rotate,
     //! scale). \pre type is one of those.
@@ -81,7 +81,7 @@ struct BoundaryEntry
     std::string key;       //!< patch name, group name or regex as written
     bool is_regex = false; //!< key was quoted (OpenFOAM: a quoted key is a regex)
     Motion motion;
-    std::size_t line = 0;  //!< line in the dictionary (0 if unknown), for messages
+    std::size_t line = 0; //!< line in the dictionary (0 if unknown), for messages
 };
 
 //! How points selected by several disagreeing prescriptions are resolved.
@@ -109,10 +109,10 @@ struct HandleEntry
     };
     std::string name;
     Selection selection = Selection::box;
-    std::string zone;                      //!< point_zone
-    Vector3 box_min = Vector3::Zero();     //!< box
-    Vector3 box_max = Vector3::Zero();     //!< box
-    Points points;                         //!< points: k x 3 positions
+    std::string zone;                  //!< point_zone
+    Vector3 box_min = Vector3::Zero(); //!< box
+    Vector3 box_max = Vector3::Zero(); //!< box
+    Points points;                     //!< points: k x 3 positions
     Vector3 displacement = Vector3::Zero();
     std::size_t line = 0;
 };
@@ -139,10 +139,10 @@ MorphSetup read_morph_setup(const io::FoamDictionary& dict);
 struct PatchAssignment
 {
     std::string patch;
-    std::string patch_type;  //!< the patch's own type (wall, empty, ...)
+    std::string patch_type; //!< the patch's own type (wall, empty, ...)
     MotionType motion = MotionType::fixed;
-    std::string matched_by;  //!< "name", "group <g>", "regex \"...\"", "default", "empty", "wedge"
-    Index entry = -1;        //!< index into MorphSetup::boundary; -1 when implicit
+    std::string matched_by; //!< "name", "group <g>", "regex \"...\"", "default", "empty", "wedge"
+    Index entry = -1;       //!< index into MorphSetup::boundary; -1 when implicit
     Index n_points = 0;
 };
 
@@ -175,6 +175,10 @@ struct Constraints
     //! (already without the component normal to the empty planes in 2D cases).
     std::vector<Index> points;
     Points displacements;
+    //! Per entry of points: index into rotations when a rotate entry prescribes it (-1 for
+    //! every other prescription), so that a morph in steps turns such points along their arc.
+    std::vector<Index> rotation_of;
+    std::vector<Motion> rotations;
     //! Points that slide: their displacement is P d(x) with the projector P (removes the
     //! normals of the slip/wedge planes they lie on), decided after a first fit.
     std::vector<Index> slip_points;
@@ -184,7 +188,7 @@ struct Constraints
     double empty_offset = 0.0;
 
     std::vector<PatchAssignment> patches;
-    Index n_free_points = 0;      //!< boundary points left unconstrained (type free)
+    Index n_free_points = 0; //!< boundary points left unconstrained (type free)
     Index n_handle_points = 0;
     Index n_handle_overrides = 0; //!< boundary points whose prescription a handle replaced
     Index n_conflicts = 0;        //!< points with disagreeing prescriptions

@@ -5,6 +5,8 @@ set(MESHMORPH_APP_SOURCES
     meshmorph/app/banner.cpp
     meshmorph/app/check_mesh_case.cpp
     meshmorph/app/morph_setup.cpp
+    meshmorph/app/point_morph.cpp
+    meshmorph/app/morph_steps.cpp
     meshmorph/app/morph_mesh.cpp
     meshmorph/app/deformation_factory.cpp
 )

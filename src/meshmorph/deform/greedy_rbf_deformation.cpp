@@ -13,6 +13,7 @@
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
+#include "meshmorph/core/stopwatch.h"
 #include "meshmorph/deform/lapack.h"
 #include "meshmorph/deform/rbf_evaluator.h"
 #include "meshmorph/deform/rbf_setup.h"
@@ -158,6 +159,18 @@ public:
         }
     }
 
+    //! Keeps the first r selected centres. The leading r x r block of a Cholesky factor is
+    //! the factor of the leading block, so nothing is recomputed.
+    void truncate(Eigen::Index r)
+    {
+        if (r >= r_)
+            return;
+        sel_.resize(std::size_t(r));
+        Lam_.conservativeResize(Lam_.rows(), r);
+        AU_.conservativeResize(AU_.rows(), r);
+        r_ = r;
+    }
+
     double condition_lower_bound() const
     {
         if (r_ == 0)
@@ -203,8 +216,10 @@ struct GreedyRbfDeformation::Impl
     FitReport report;
     bool fitted = false;
     bool converged = false;
+    bool stopped_growing = false; //!< stopped because the residual grew (see fit())
     std::vector<Index> centre_indices;
     std::vector<double> history;
+    std::vector<double> rms_history;
     // Kept after fit for handle_basis(); system refers to model, merged.centres and P.
     Index num_inputs = 0;
     detail::MergedHandles merged;
@@ -232,11 +247,14 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
                                const Eigen::Ref<const Points>& displacements)
 {
     detail::check_fit_arguments(constraints, displacements);
+    const Stopwatch clock;
     Impl& d = *impl_;
     const GreedySettings& s = d.settings;
     d.fitted = false;
     d.converged = false;
+    d.stopped_growing = false;
     d.history.clear();
+    d.rms_history.clear();
     d.report = FitReport{};
     d.report.method = "greedy-rbf";
     d.report.solver = "incremental Lagrange null-space Cholesky (dtrsm + dpotrf)";
@@ -334,9 +352,8 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
     add(initial);
 
     const double max_disp = H.rows() > 0 ? H.rowwise().norm().maxCoeff() : 0.0;
-    Points got(N, 3);
-    Eigen::Index iterations = 0;
-    while (true)
+    const double rel = 1.0 / std::max(max_disp, 1e-300);
+    const auto set_model = [&]
     {
         Eigen::MatrixXd W, Q;
         system.solve(H, W, Q);
@@ -347,16 +364,44 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
             C.row(p + i) = X.row(system.selected()[std::size_t(i)]);
         d.model.set_centres(C);
         d.model.set_coefficients(W, Q);
+    };
+    Points got(N, 3);
+    Eigen::Index iterations = 0;
+    double best_rms = std::numeric_limits<double>::infinity();
+    Eigen::Index best_size = 0;
+    while (true)
+    {
+        set_model();
         d.model.evaluate(Xphys, got);
         const Eigen::VectorXd err = (Eigen::MatrixXd(got) - H).rowwise().norm();
         const double max_err = err.maxCoeff();
         const double rms = std::sqrt(err.squaredNorm() / double(N));
         d.history.push_back(max_err);
+        d.rms_history.push_back(rms);
+        log::info() << "    greedy RBF round " << iterations << ": " << p + system.size()
+                    << " centres, max residual " << max_err * rel << ", rms " << rms * rel
+                    << " (relative), " << clock.seconds() << " s";
         if (max_err <= s.tolerance * max_disp && rms <= s.rms_tolerance * max_disp)
         {
             d.converged = true;
             break;
         }
+        if (rms > best_rms)
+        {
+            // More centres made the fit worse: the data vary too sharply for a global
+            // interpolant at this resolution (a moving wall touching a fixed one), and the
+            // interpolant oscillates. Keep the best round; the caller's local correction
+            // (CorrectedDeformation) takes up the rest.
+            system.truncate(best_size);
+            set_model();
+            d.stopped_growing = true;
+            log::info() << "    greedy RBF: the rms residual grew (" << rms * rel << " > "
+                        << best_rms * rel << "): keeping the " << p + best_size
+                        << " centres of the best round";
+            break;
+        }
+        best_rms = rms;
+        best_size = system.size();
         std::vector<Eigen::Index> cand;
         for (Eigen::Index i = 0; i < N; ++i)
             if (!is_centre[std::size_t(i)] && !rejected[std::size_t(i)] && err[i] > 0.0)
@@ -369,8 +414,7 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
         const Eigen::Index centres = p + system.size();
         if (centres >= budget)
             break;
-        Eigen::Index b =
-            s.batch_size > 0 ? s.batch_size : std::clamp<Eigen::Index>(centres / 4, 1, 256);
+        Eigen::Index b = s.batch_size > 0 ? s.batch_size : std::max<Eigen::Index>(centres / 2, 1);
         b = std::min({b, Eigen::Index(cand.size()), budget - centres});
         std::partial_sort(cand.begin(), cand.begin() + b, cand.end(),
                           [&](Eigen::Index a, Eigen::Index c)
@@ -394,11 +438,10 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
     d.report.iterations = Index(iterations);
     d.report.condition_estimate = system.condition_lower_bound();
     detail::residual_report(*this, constraints, displacements, d.report);
-    if (!d.converged)
-        log::warning() << "greedy RBF: stopped at " << d.report.num_centres
-                       << " centres without meeting the tolerance (max residual "
-                       << d.report.max_residual << ", max displacement "
-                       << d.report.max_displacement << ")";
+    if (!d.converged && !d.stopped_growing)
+        log::info() << "    greedy RBF: the budget of " << budget << " centres (maxCentres) "
+                    << "ends the refinement at max residual " << d.report.max_residual * rel
+                    << " (relative; tolerance " << s.tolerance << ")";
 }
 
 void GreedyRbfDeformation::evaluate(const Eigen::Ref<const Points>& points,
@@ -427,6 +470,14 @@ const std::vector<Index>& GreedyRbfDeformation::centre_indices() const
 const std::vector<double>& GreedyRbfDeformation::history() const
 {
     return impl_->history;
+}
+const std::vector<double>& GreedyRbfDeformation::rms_history() const
+{
+    return impl_->rms_history;
+}
+bool GreedyRbfDeformation::stopped_growing() const
+{
+    return impl_->stopped_growing;
 }
 
 Eigen::MatrixXd GreedyRbfDeformation::handle_basis(const Eigen::Ref<const Points>& points) const

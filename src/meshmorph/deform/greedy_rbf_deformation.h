@@ -17,14 +17,18 @@ struct GreedySettings
     //! Centres before the first refinement: the polynomial-unisolvent set plus farthest-point
     //! samples. 0: automatic, max(polynomial terms, min(20, constraints)).
     Index initial_centres = 0;
-    //! Stop when max_i |d(x_i) - dx_i| <= tolerance * max_i |dx_i| ...
-    double tolerance = 1e-3;
-    //! ... and the RMS error <= rms_tolerance * max_i |dx_i|.
-    double rms_tolerance = 1e-4;
+    //! Stop when max_i |d(x_i) - dx_i| <= tolerance * max_i |dx_i| ... The default is a
+    //! coarse global field: morphMesh makes it exact with a local correction of the
+    //! residual (CorrectedDeformation), which is cheaper and more robust near sharp features
+    //! (a tyre on the ground) than thousands of global centres.
+    double tolerance = 1e-2;
+    //! ... and the RMS error <= rms_tolerance * max_i |dx_i| (equal to tolerance: implied).
+    double rms_tolerance = 1e-2;
     //! Centre budget: stop (not converged) when reached.
-    Index max_centres = 4000;
-    //! Centres added per iteration (the worst points). 0: automatic, a quarter of the current
-    //! centres, at least 1 and at most 256.
+    Index max_centres = 2000;
+    //! Centres added per round (the worst points). 0: automatic, half as many as there are
+    //! centres (the count grows by 1.5 a round: the number of rounds grows like
+    //! log(centres), and the last round overshoots the centres needed by at most 1.5x).
     Index batch_size = 0;
 };
 
@@ -68,8 +72,13 @@ public:
     //! displacements H (m x 3) of the constraints, for the centres selected by the last fit;
     //! columns of constraints that are not centres are zero. \throw InvalidInput.
     Eigen::MatrixXd handle_basis(const Eigen::Ref<const Points>& points) const;
-    //! Max residual after each iteration (absolute), for convergence plots.
+    //! Max residual after each round (absolute), for convergence plots.
     const std::vector<double>& history() const;
+    //! RMS residual after each round (absolute).
+    const std::vector<double>& rms_history() const;
+    //! True when the refinement stopped because a round made the RMS residual grow; the
+    //! fit then keeps the centres of the best round (its residual is the smallest RMS).
+    bool stopped_growing() const;
 
 private:
     struct Impl;

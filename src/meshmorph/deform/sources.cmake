@@ -9,9 +9,12 @@ set(MESHMORPH_DEFORM_SOURCES
     meshmorph/deform/dmffd_deformation.cpp
     meshmorph/deform/greedy_rbf_deformation.cpp
     meshmorph/deform/handle_basis.cpp
+    meshmorph/deform/idw_tree.cpp
+    meshmorph/deform/idw_deformation.cpp
+    meshmorph/deform/corrected_deformation.cpp
 )
 # sqrt in the blocked RBF evaluator vectorises only without errno semantics.
-set_source_files_properties(meshmorph/deform/rbf_evaluator.cpp
+set_source_files_properties(meshmorph/deform/rbf_evaluator.cpp meshmorph/deform/idw_tree.cpp
     PROPERTIES COMPILE_OPTIONS "-fno-math-errno")
 meshmorph_add_component(deform
     SOURCES ${MESHMORPH_DEFORM_SOURCES}

@@ -10,14 +10,15 @@
 #include "meshmorph/quality/check_mesh.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <iomanip>
 #include <numeric>
 #include <sstream>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/quality/cell_validity.h"
 #include "meshmorph/quality/foam_vector.h"
 #include "meshmorph/quality/scaled_jacobian.h"
 
@@ -135,8 +136,7 @@ struct Context
         if (labels.empty() && !print_when_empty)
             return;
         if (settings.report_sets)
-            pr.out << "  <<Writing " << labels.size() << " " << what << " to set " << name
-                   << "\n";
+            pr.out << "  <<Writing " << labels.size() << " " << what << " to set " << name << "\n";
         if (!labels.empty())
             report.sets.push_back({name, kind, std::move(labels)});
     }
@@ -235,12 +235,14 @@ SurfaceTopology surface_topology(const PolyMesh& mesh, const std::vector<Index>&
         // Union faces sharing an edge through p.
         std::vector<Index> comp(pf.size());
         std::iota(comp.begin(), comp.end(), 0);
-        const auto find = [&](Index a) {
+        const auto find = [&](Index a)
+        {
             while (comp[a] != a)
                 a = comp[a] = comp[comp[a]];
             return a;
         };
-        const auto neighbours_of = [&](Index f) {
+        const auto neighbours_of = [&](Index f)
+        {
             const std::span<const Index> face = mesh.faces[f];
             const std::size_t n = face.size();
             std::array<Index, 2> nb{-1, -1};
@@ -469,8 +471,8 @@ void check_topology(Context& c)
         {
             // Every face has an owner cell, so points unused by faces are exactly the points
             // unused by cells.
-            out << " ***Unused points found in the mesh, number unused by faces: "
-                << unused.size() << " number unused by cells: " << unused.size() << "\n";
+            out << " ***Unused points found in the mesh, number unused by faces: " << unused.size()
+                << " number unused by cells: " << unused.size() << "\n";
             c.fail("unusedPoints");
             c.set("unusedPoints", MeshSet::Kind::point, unused, "unused points", true);
         }
@@ -674,7 +676,8 @@ void check_topology(Context& c)
             std::vector<Index> positions;
             // Whether sorted positions in a face of n vertices form one cyclic run.
             // (Positions are in [0, n): cyclic predecessors without integer division.)
-            const auto one_run = [](const std::vector<Index>& pos, Index n) {
+            const auto one_run = [](const std::vector<Index>& pos, Index n)
+            {
                 std::size_t runs = 0;
                 for (std::size_t k = 0; k < pos.size(); ++k)
                 {
@@ -685,7 +688,8 @@ void check_topology(Context& c)
                 return runs <= 1;
             };
             // The higher faces of point p: p's faces are stored in ascending order.
-            const auto higher_faces = [&](Index p, Index f) {
+            const auto higher_faces = [&](Index p, Index f)
+            {
                 const Index* begin = pf_values.data() + pf_offsets[p];
                 const Index* end = pf_values.data() + pf_offsets[p + 1];
                 // Branch-free count of the faces <= f (lists are short: faster than a
@@ -792,8 +796,8 @@ void check_topology(Context& c)
                 out << "  <<Number of duplicate (not baffle) faces found: " << duplicates
                     << ". This might indicate a problem.\n";
             if (order_errors > 0)
-                out << "  <<Number of faces with non-consecutive shared points: "
-                    << order_errors << ". This might indicate a problem.\n";
+                out << "  <<Number of faces with non-consecutive shared points: " << order_errors
+                    << ". This might indicate a problem.\n";
         }
         else
             out << "    Face-face connectivity OK.\n";
@@ -822,7 +826,8 @@ void check_topology(Context& c)
     {
         std::vector<Index> parent(static_cast<std::size_t>(n_cells));
         std::iota(parent.begin(), parent.end(), 0);
-        const auto find = [&](Index a) {
+        const auto find = [&](Index a)
+        {
             while (parent[a] != a)
                 a = parent[a] = parent[parent[a]];
             return a;
@@ -874,7 +879,8 @@ void check_topology(Context& c)
     if (all_geometry)
         out << " Bounding box";
     out << "\n";
-    const auto row_out = [&](const std::string& name, const std::vector<Index>& faces) {
+    const auto row_out = [&](const std::string& name, const std::vector<Index>& faces)
+    {
         const SurfaceTopology t = surface_topology(mesh, faces);
         out << "    " << c.pr.w(name, 20) << c.pr.w(std::to_string(faces.size()), 9)
             << c.pr.w(std::to_string(t.n_points), 9) << c.pr.w(t.type, 34);
@@ -893,8 +899,8 @@ void check_topology(Context& c)
         out << "    No faceZones found.\n";
     else
     {
-        out << "    " << c.pr.w("FaceZone", 20) << c.pr.w("Faces", 9)
-            << c.pr.w("Points", 9) << c.pr.w("Surface topology", 34);
+        out << "    " << c.pr.w("FaceZone", 20) << c.pr.w("Faces", 9) << c.pr.w("Points", 9)
+            << c.pr.w("Surface topology", 34);
         if (all_geometry)
             out << " Bounding box";
         out << "\n";
@@ -906,8 +912,8 @@ void check_topology(Context& c)
         out << "    No cellZones found.\n";
     else
     {
-        out << "    " << c.pr.w("CellZone", 20) << c.pr.w("Cells", 13)
-            << c.pr.w("Points", 13) << c.pr.w("Volume", 13) << "BoundingBox\n";
+        out << "    " << c.pr.w("CellZone", 20) << c.pr.w("Cells", 13) << c.pr.w("Points", 13)
+            << c.pr.w("Volume", 13) << "BoundingBox\n";
         std::vector<char> in_zone(static_cast<std::size_t>(mesh.n_points()), 0);
         for (const Zone& z : mesh.cell_zones)
         {
@@ -931,9 +937,8 @@ void check_topology(Context& c)
             }
             out << "    " << c.pr.w(z.name, 19) << ' '
                 << c.pr.w(std::to_string(z.labels.size()), 12) << ' '
-                << c.pr.w(std::to_string(n_points), 12) << ' '
-                << c.pr.w(c.pr.s(volume), 12) << ' ' << c.pr.v(lo) << " " << c.pr.v(hi)
-                << "\n";
+                << c.pr.w(std::to_string(n_points), 12) << ' ' << c.pr.w(c.pr.s(volume), 12) << ' '
+                << c.pr.v(lo) << " " << c.pr.v(hi) << "\n";
         }
     }
     out << "\n";
@@ -1041,7 +1046,8 @@ void check_geometry(Context& c, FaceValues& fv)
         r.boundary_openness = {o.x, o.y, o.z};
         if (std::max({std::abs(o.x), std::abs(o.y), std::abs(o.z)}) > 1e-6)
         {
-            out << " ***Boundary openness " << pr.v(o) << " possible hole in boundary description.\n";
+            out << " ***Boundary openness " << pr.v(o)
+                << " possible hole in boundary description.\n";
             c.fail("boundaryOpenness");
         }
         else
@@ -1148,8 +1154,8 @@ void check_geometry(Context& c, FaceValues& fv)
             c.set("zeroAreaFaces", MeshSet::Kind::face, zero, "zero area faces");
         }
         else
-            out << "    Minimum face area = " << pr.s(lo_a) << ". Maximum face area = "
-                << pr.s(hi_a) << ".  Face area magnitudes OK.\n";
+            out << "    Minimum face area = " << pr.s(lo_a)
+                << ". Maximum face area = " << pr.s(hi_a) << ".  Face area magnitudes OK.\n";
     }
 
     // G4 cell volumes.
@@ -1220,8 +1226,8 @@ void check_geometry(Context& c, FaceValues& fv)
         {
             r.max_non_orthogonality =
                 detail::rad_to_deg(std::acos(std::min(1.0, std::max(-1.0, min_cos))));
-            r.avg_non_orthogonality = detail::rad_to_deg(
-                std::acos(std::min(1.0, std::max(-1.0, sum_cos / n_summed))));
+            r.avg_non_orthogonality =
+                detail::rad_to_deg(std::acos(std::min(1.0, std::max(-1.0, sum_cos / n_summed))));
             out << "    Mesh non-orthogonality Max: " << pr.s(r.max_non_orthogonality)
                 << " average: " << pr.s(r.avg_non_orthogonality) << "\n";
         }
@@ -1240,23 +1246,7 @@ void check_geometry(Context& c, FaceValues& fv)
 
     // G6 face pyramids.
     {
-        std::vector<char> n_err(static_cast<std::size_t>(n_faces), 0);
-#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
-        for (Index f = 0; f < n_faces; ++f)
-        {
-            const FoamVector cf = row(g.face_centres, f);
-            const FoamVector af = row(g.face_areas, f);
-            const double own_vol =
-                -((1.0 / 3.0) * detail::dot(af, row(g.cell_centres, mesh.owner[f]) - cf));
-            char n = own_vol < -small;
-            if (f < n_int)
-            {
-                const double nei_vol =
-                    (1.0 / 3.0) * detail::dot(af, row(g.cell_centres, mesh.neighbour[f]) - cf);
-                n += nei_vol < -small;
-            }
-            n_err[f] = n;
-        }
+        const std::vector<char> n_err = face_pyramid_errors(mesh, g);
         Index errors = 0;
         std::vector<Index> faces;
         for (Index f = 0; f < n_faces; ++f)
@@ -1542,7 +1532,8 @@ void check_geometry(Context& c, FaceValues& fv)
             double max_edge_sin = 0;
             for (std::size_t i = 0; i < n; ++i)
             {
-                const FoamVector raw = row(mesh.points, face[(i + 1) % n]) - row(mesh.points, face[i]);
+                const FoamVector raw =
+                    row(mesh.points, face[(i + 1) % n]) - row(mesh.points, face[i]);
                 // Shortcut (no sqrt/division): (E_prev ^ E) & normal > |E_prev ^ E| / 2 (with
                 // margin) is a convex corner: checkMesh's normalised w = e_prev ^ e is the
                 // same vector scaled by a positive factor, so (w/|w|) & normal > 1/2 up to
@@ -1719,8 +1710,8 @@ void check_geometry(Context& c, FaceValues& fv)
         r.concave_cells = static_cast<Index>(cells.size());
         if (!cells.empty())
         {
-            out << " ***Concave cells (using face planes) found, number of cells: "
-                << cells.size() << "\n";
+            out << " ***Concave cells (using face planes) found, number of cells: " << cells.size()
+                << "\n";
             c.fail("concaveCells");
             c.set("concaveCells", MeshSet::Kind::cell, cells, "concave cells", true);
         }
@@ -1812,11 +1803,11 @@ void validate(const PolyMesh& mesh)
         for (Index p : mesh.faces[f])
             if (p < 0 || p >= n_points)
                 throw InvalidInput("face " + std::to_string(f) + " has vertex label " +
-                                   std::to_string(p) + " outside [0, " +
-                                   std::to_string(n_points) + ")");
+                                   std::to_string(p) + " outside [0, " + std::to_string(n_points) +
+                                   ")");
     if (static_cast<Index>(mesh.owner.size()) != mesh.n_faces())
-        throw InvalidInput("owner has " + std::to_string(mesh.owner.size()) +
-                           " entries for " + std::to_string(mesh.n_faces()) + " faces");
+        throw InvalidInput("owner has " + std::to_string(mesh.owner.size()) + " entries for " +
+                           std::to_string(mesh.n_faces()) + " faces");
     if (mesh.n_internal_faces() > mesh.n_faces())
         throw InvalidInput("more neighbour entries than faces");
     for (Index cell : mesh.owner)
@@ -1824,16 +1815,15 @@ void validate(const PolyMesh& mesh)
             throw InvalidInput("owner label " + std::to_string(cell) + " outside [0, nCells)");
     for (Index cell : mesh.neighbour)
         if (cell < 0 || cell >= mesh.n_cells)
-            throw InvalidInput("neighbour label " + std::to_string(cell) +
-                               " outside [0, nCells)");
+            throw InvalidInput("neighbour label " + std::to_string(cell) + " outside [0, nCells)");
 }
 
 } // namespace
 
 void check_mesh_quality_dict(const PolyMesh& mesh, const CompactList& cell_faces,
                              const MeshGeometry& geometry, const MeshQualitySettings& q,
-                             int precision, bool right_justify, std::ostringstream& out, QualityReport& report,
-                             const std::vector<double>& skewness);
+                             int precision, bool right_justify, std::ostringstream& out,
+                             QualityReport& report, const std::vector<double>& skewness);
 
 QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
                          const MeshGeometry& geometry, const CheckMeshSettings& settings)

@@ -4,6 +4,7 @@ set(MESHMORPH_QUALITY_SOURCES
     meshmorph/quality/scaled_jacobian.cpp
     meshmorph/quality/mean_curvature.cpp
     meshmorph/quality/mesh_geometry.cpp
+    meshmorph/quality/cell_validity.cpp
     meshmorph/quality/check_mesh.cpp
     meshmorph/quality/mesh_quality_checks.cpp
     meshmorph/quality/quality_json.cpp

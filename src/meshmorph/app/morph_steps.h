@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Large motions in steps, guided by the checker (morphDict `steps N | auto`).
+//!
+//! The prescribed motion is applied in fractions t_1 < t_2 < ... < 1 of itself: at each
+//! step the deformation is refitted on the mesh moved so far, to the displacements that
+//! take the constrained points from where they are to where fraction t_k puts them
+//! (rotations turn by t_k times their angle, every other prescription moves t_k of its
+//! displacement along a straight line). Slip points are re-derived at every step.
+//!
+//! `steps auto` (the default) starts with one step. A step whose result has more
+//! negative-volume cells or wrongly oriented face pyramids than the original mesh is
+//! redone at half its length, down to 1/max_steps of the motion; the shorter length is
+//! kept for the rest. If even the shortest step fails, the morph stops there and the
+//! result is refused. `steps N` makes N equal steps and never redoes one.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "meshmorph/app/point_morph.h"
+#include "meshmorph/quality/cell_validity.h"
+
+namespace meshmorph::app
+{
+
+struct StepSettings
+{
+    int steps = 0;      //!< 0: auto; N >= 1: N equal steps
+    int max_steps = 64; //!< auto: the shortest step is 1/max_steps of the motion
+};
+
+//! \brief Read `steps auto;` or `steps N;` (absent: auto). \throw ParseError.
+StepSettings read_step_settings(const io::FoamDictionary& dict);
+
+//! What one step (tried or kept) did.
+struct StepRecord
+{
+    double from = 0.0, to = 1.0; //!< fractions of the motion
+    Index centres = 0;
+    double max_global_residual = 0.0; //!< relative residual the local correction took up
+    double fit_seconds = 0.0, evaluate_seconds = 0.0, check_seconds = 0.0;
+    InvalidCells invalid;
+    bool accepted = false;
+};
+
+struct SteppedMorph
+{
+    Points points;                 //!< nPoints x 3, the morphed points
+    Points displacement;           //!< points - original points
+    std::vector<StepRecord> steps; //!< every step tried, in order
+    PointMorph last;               //!< the last step's fit (counts, report)
+    MeshGeometry geometry;         //!< of the final points (for the final check)
+    bool completed = false;        //!< the whole motion was applied
+};
+
+//! Builds a fresh deformation for a step, given the current mesh points.
+using DeformationMaker = std::function<std::unique_ptr<SpaceDeformation>(const Points&)>;
+
+//! \brief Displacements of the constrained points (rows of c.points) from x0 at fraction t.
+Points prescribed_at(const Constraints& c, const Points& x0, double t);
+
+//! \brief Set m.max_prescribed and the constraint errors of m.displacement (from the
+//! original points x0) against the whole prescribed motion of c.
+void measure_constraint_error(const Constraints& c, const Points& x0, PointMorph& m);
+
+//! \brief Morph `mesh` in steps. \param fit false: one step with the deformation as made
+//! (FFD). \param before the original mesh's invalid counts. \throw as morph_points().
+SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
+                            const Constraints& c, const StepSettings& settings,
+                            const DeformationMaker& make, bool fit, const InvalidCells& before);
+
+//! "auto" or the number.
+std::string describe(const StepSettings& settings);
+
+} // namespace meshmorph::app

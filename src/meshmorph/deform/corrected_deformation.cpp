@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Global deformation plus the IDW interpolant of its residual.
+#include "meshmorph/deform/corrected_deformation.h"
+
+#include "meshmorph/core/exceptions.h"
+
+namespace meshmorph
+{
+
+CorrectedDeformation::CorrectedDeformation(std::unique_ptr<SpaceDeformation> global,
+                                           const IdwSettings& correction)
+    : global_(std::move(global)), correction_(correction)
+{
+    if (!global_)
+        throw InvalidInput("CorrectedDeformation: no global deformation given");
+}
+
+CorrectedDeformation::~CorrectedDeformation() = default;
+
+void CorrectedDeformation::fit(const Eigen::Ref<const Points>& handles,
+                               const Eigen::Ref<const Points>& displacements)
+{
+    global_->fit(handles, displacements);
+    Points residual(handles.rows(), 3);
+    global_->evaluate(handles, residual);
+    residual = displacements - residual;
+    correction_.fit(handles, residual);
+    report_ = global_->report();
+    report_.method += "+idw";
+    report_.max_displacement = displacements.rowwise().norm().maxCoeff();
+    report_.max_residual = residual.rowwise().norm().maxCoeff();
+    report_.rms_residual = std::sqrt(residual.rowwise().squaredNorm().mean());
+}
+
+void CorrectedDeformation::evaluate(const Eigen::Ref<const Points>& points,
+                                    Eigen::Ref<Points> out) const
+{
+    global_->evaluate(points, out);
+    Points c(points.rows(), 3);
+    correction_.evaluate(points, c);
+    out += c;
+}
+
+const FitReport& CorrectedDeformation::report() const
+{
+    return report_;
+}
+
+bool CorrectedDeformation::is_fitted() const
+{
+    return global_->is_fitted() && correction_.is_fitted();
+}
+
+} // namespace meshmorph

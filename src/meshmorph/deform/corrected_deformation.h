@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file A coarse global deformation made exact by a local correction: d = g + c, where g
+//! is fitted first (e.g. a greedy RBF to a loose tolerance) and c interpolates g's
+//! residual h_j - g(x_j) at every handle by IDW. c is exact at the handles, a convex
+//! combination of the residuals everywhere (never larger than the largest one) and
+//! dominated near each handle by its neighbours, so the handles end exactly at their
+//! prescriptions without moving them alone (the hybrid RBF/IDW idea of Luke et al., JCP
+//! 2012). A direct, exact g leaves a round-off residual and c does nothing visible.
+#pragma once
+
+#include <memory>
+
+#include "meshmorph/deform/idw_deformation.h"
+
+namespace meshmorph
+{
+
+class CorrectedDeformation : public SpaceDeformation
+{
+public:
+    explicit CorrectedDeformation(std::unique_ptr<SpaceDeformation> global,
+                                  const IdwSettings& correction = {});
+    ~CorrectedDeformation() override;
+
+    //! Fits the global part, evaluates its residual at the handles, fits the correction.
+    void fit(const Eigen::Ref<const Points>& handles,
+             const Eigen::Ref<const Points>& displacements) override;
+    void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
+    //! The global part's report; max/rms residual are those of the global part alone
+    //! (what the correction takes up), max_displacement the prescriptions'.
+    const FitReport& report() const override;
+    bool is_fitted() const override;
+    const SpaceDeformation& global() const { return *global_; }
+
+private:
+    std::unique_ptr<SpaceDeformation> global_;
+    IdwDeformation correction_;
+    FitReport report_;
+};
+
+} // namespace meshmorph

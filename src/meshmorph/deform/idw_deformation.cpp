@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// IDW interpolation: normalisation, the handle tree, threaded evaluation.
+#include "meshmorph/deform/idw_deformation.h"
+
+#include <cmath>
+#include <optional>
+
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/deform/idw_tree.h"
+
+namespace meshmorph
+{
+
+struct IdwDeformation::Impl
+{
+    IdwSettings settings;
+    FitReport report;
+    Vector3 centre = Vector3::Zero();
+    double scale = 1.0; //!< L: the handles' bounding-box diagonal
+    std::optional<detail::IdwTree> tree;
+};
+
+IdwDeformation::IdwDeformation(const IdwSettings& settings) : impl_(std::make_unique<Impl>())
+{
+    if (settings.far_exponent < 1 || settings.near_exponent <= settings.far_exponent)
+        throw InvalidInput("IDW: exponents must satisfy 1 <= a < b (got a = " +
+                           std::to_string(settings.far_exponent) +
+                           ", b = " + std::to_string(settings.near_exponent) + ")");
+    if (!(settings.alpha > 0.0) || !(settings.theta >= 0.0 && settings.theta < 1.0))
+        throw InvalidInput("IDW: alpha must be > 0 and theta in [0, 1)");
+    impl_->settings = settings;
+}
+
+IdwDeformation::~IdwDeformation() = default;
+IdwDeformation::IdwDeformation(IdwDeformation&&) noexcept = default;
+IdwDeformation& IdwDeformation::operator=(IdwDeformation&&) noexcept = default;
+
+void IdwDeformation::fit(const Eigen::Ref<const Points>& handles,
+                         const Eigen::Ref<const Points>& displacements)
+{
+    detail::check_fit_arguments(handles, displacements);
+    Impl& d = *impl_;
+    d.tree.reset();
+    const Vector3 lo = handles.colwise().minCoeff().transpose();
+    const Vector3 hi = handles.colwise().maxCoeff().transpose();
+    d.centre = 0.5 * (lo + hi);
+    d.scale = (hi - lo).norm();
+    if (!(d.scale > 0.0))
+        d.scale = 1.0; // a single handle (or all coincident): d is that handle's value
+    // The same operations as in evaluate(), so a point that is a handle lands on it exactly.
+    const Points normalised = (handles.rowwise() - d.centre.transpose()) * (1.0 / d.scale);
+    const IdwSettings& s = d.settings;
+    const detail::IdwWeight weight{s.far_exponent, s.near_exponent,
+                                   std::pow(s.alpha, s.near_exponent)};
+    d.tree.emplace(normalised, Points(displacements), weight, s.theta);
+    d.report = FitReport{};
+    d.report.method = "idw";
+    d.report.solver = s.theta > 0.0 ? "tree (second-order far field)" : "direct sum";
+    d.report.num_handles = static_cast<Index>(handles.rows());
+    d.report.num_centres = d.report.num_handles;
+    d.report.max_displacement = displacements.rowwise().norm().maxCoeff();
+}
+
+void IdwDeformation::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const
+{
+    const Impl& d = *impl_;
+    detail::check_evaluate_arguments(d.tree.has_value(), points, out, "IDW");
+    const Points normalised = (points.rowwise() - d.centre.transpose()) * (1.0 / d.scale);
+    Points result;
+    d.tree->weighted_mean(normalised, result);
+    out = result;
+}
+
+const FitReport& IdwDeformation::report() const
+{
+    return impl_->report;
+}
+
+bool IdwDeformation::is_fitted() const
+{
+    return impl_->tree.has_value();
+}
+
+} // namespace meshmorph

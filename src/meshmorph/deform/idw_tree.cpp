@@ -1,0 +1,383 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Tree-accelerated IDW sums (see the header): median-split trees over sources and queries,
+// moments per source node, one interaction list per query block, SIMD kernels over the
+// block's points. Built with -fno-math-errno so that sqrt vectorises.
+#include "meshmorph/deform/idw_tree.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
+
+namespace meshmorph::detail
+{
+
+namespace
+{
+
+constexpr Index source_leaf = 16;
+constexpr int block_size = 32;
+
+//! A node of a median-split tree: a contiguous range of the permutation; children at child
+//! and child + 1 (-1: leaf).
+struct SplitNode
+{
+    Index begin, end, child;
+};
+
+//! Splits the points (rows of p) recursively at the median of the longest axis of their
+//! bounding box until at most leaf_size remain. order becomes the permutation that makes
+//! every node a contiguous range. Node 0 is the root.
+std::vector<SplitNode> median_split(const Points& p, std::vector<Index>& order, Index leaf_size)
+{
+    order.resize(static_cast<std::size_t>(p.rows()));
+    std::iota(order.begin(), order.end(), Index{0});
+    std::vector<SplitNode> nodes{{0, static_cast<Index>(p.rows()), -1}};
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+    {
+        const SplitNode node = nodes[k];
+        if (node.end - node.begin <= leaf_size)
+            continue;
+        Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity());
+        Vector3 hi = -lo;
+        for (Index i = node.begin; i < node.end; ++i)
+        {
+            lo = lo.cwiseMin(p.row(order[std::size_t(i)]).transpose());
+            hi = hi.cwiseMax(p.row(order[std::size_t(i)]).transpose());
+        }
+        int axis = 0;
+        (hi - lo).maxCoeff(&axis);
+        const auto first = order.begin() + node.begin;
+        const auto mid = first + (node.end - node.begin) / 2;
+        std::nth_element(first, mid, order.begin() + node.end,
+                         [&](Index a, Index b) {
+                             return p(a, axis) < p(b, axis) || (p(a, axis) == p(b, axis) && a < b);
+                         });
+        const Index split = static_cast<Index>(mid - order.begin());
+        nodes[k].child = static_cast<Index>(nodes.size());
+        nodes.push_back({node.begin, split, -1});
+        nodes.push_back({split, node.end, -1});
+    }
+    return nodes;
+}
+
+//! Symmetric 3x3 stored as xx yy zz xy xz yz: u^T m u and the trace.
+inline double quadratic(const double* m, double ux, double uy, double uz)
+{
+    return ux * ux * m[0] + uy * uy * m[1] + uz * uz * m[2] +
+           2.0 * (ux * uy * m[3] + ux * uz * m[4] + uy * uz * m[5]);
+}
+
+//! r^-a and beta r^-b from 1/r: a fixed (3, 5) fast path and a general one.
+struct Weight35
+{
+    double beta;
+    static constexpr double a = 3.0, b = 5.0;
+    void operator()(double inv_r, double& pa, double& pb) const
+    {
+        const double inv_r2 = inv_r * inv_r;
+        pa = inv_r2 * inv_r;
+        pb = beta * pa * inv_r2;
+    }
+};
+struct WeightGeneral
+{
+    double beta;
+    int ia, ib;
+    double a, b;
+    void operator()(double inv_r, double& pa, double& pb) const
+    {
+        pa = 1.0;
+        for (int k = 0; k < ia; ++k)
+            pa *= inv_r;
+        pb = beta * pa;
+        for (int k = ia; k < ib; ++k)
+            pb *= inv_r;
+    }
+};
+
+//! out[i] = 1 / sqrt(in[i]) for a whole block. With AVX-512: the 14-bit estimate refined by
+//! two Newton steps (56 bits, at least double precision up to a few ulp: these are weights),
+//! about three times faster than sqrt and a division; in = 0 gives NaN (a coincident source,
+//! whose value replaces the sum). Elsewhere the plain expression, which GCC vectorises.
+inline void inverse_sqrt(const double* in, double* out)
+{
+#if defined(__AVX512F__)
+    const __m512d half = _mm512_set1_pd(0.5), three_halves = _mm512_set1_pd(1.5);
+    for (int i = 0; i < block_size; i += 8)
+    {
+        const __m512d x = _mm512_load_pd(in + i);
+        __m512d y = _mm512_rsqrt14_pd(x);
+        const __m512d hx = _mm512_mul_pd(half, x);
+        for (int k = 0; k < 2; ++k)
+            y = _mm512_mul_pd(y, _mm512_fnmadd_pd(hx, _mm512_mul_pd(y, y), three_halves));
+        _mm512_store_pd(out + i, y);
+    }
+#else
+    for (int i = 0; i < block_size; ++i)
+        out[i] = 1.0 / std::sqrt(in[i]);
+#endif
+}
+
+//! One query block in structure-of-arrays form with its accumulators.
+struct Block
+{
+    int n = 0;
+    alignas(64) double x[block_size], y[block_size], z[block_size];
+    alignas(64) double nx[block_size], ny[block_size], nz[block_size], den[block_size];
+    alignas(64) double hit[block_size]; //!< 1 + source index of a coincident source, or 0
+    alignas(64) double r2[block_size], inv_r[block_size]; //!< scratch of the kernels
+
+    void clear_sums()
+    {
+        for (int i = 0; i < block_size; ++i)
+            nx[i] = ny[i] = nz[i] = den[i] = hit[i] = 0.0;
+    }
+};
+
+//! Adds the second-order expansion of a far node to every point of the block.
+template <class W> void add_far(const IdwTree::Node& node, const W& weight, Block& b)
+{
+    const double count = node.count;
+    for (int i = 0; i < block_size; ++i)
+    {
+        const double rx = b.x[i] - node.cx, ry = b.y[i] - node.cy, rz = b.z[i] - node.cz;
+        b.r2[i] = rx * rx + ry * ry + rz * rz;
+    }
+    inverse_sqrt(b.r2, b.inv_r);
+    for (int i = 0; i < block_size; ++i)
+    {
+        const double rx = b.x[i] - node.cx, ry = b.y[i] - node.cy, rz = b.z[i] - node.cz;
+        const double inv_r = b.inv_r[i];
+        const double ux = rx * inv_r, uy = ry * inv_r, uz = rz * inv_r;
+        double pa, pb;
+        weight(inv_r, pa, pb);
+        const double w0 = pa + pb;
+        const double w1 = -(weight.a * pa + weight.b * pb) * inv_r;
+        const double w2 =
+            (weight.a * (weight.a + 1.0) * pa + weight.b * (weight.b + 1.0) * pb) * inv_r * inv_r;
+        const double t = w1 * inv_r;
+        // f(R - delta) ~ f(R) - f'(r) u.delta + 1/2 [f''(r) (u.delta)^2 + f'(r)/r (|delta|^2 -
+        // (u.delta)^2)]; sum delta = 0 about the centroid.
+        const auto second_order = [&](const double* m)
+        {
+            const double q = quadratic(m, ux, uy, uz);
+            return 0.5 * (w2 * q + t * (m[0] + m[1] + m[2] - q));
+        };
+        b.den[i] += count * w0 + second_order(node.second);
+        b.nx[i] += w0 * node.sv[0] -
+                   w1 * (ux * node.first[0][0] + uy * node.first[1][0] + uz * node.first[2][0]) +
+                   second_order(node.second_v[0]);
+        b.ny[i] += w0 * node.sv[1] -
+                   w1 * (ux * node.first[0][1] + uy * node.first[1][1] + uz * node.first[2][1]) +
+                   second_order(node.second_v[1]);
+        b.nz[i] += w0 * node.sv[2] -
+                   w1 * (ux * node.first[0][2] + uy * node.first[1][2] + uz * node.first[2][2]) +
+                   second_order(node.second_v[2]);
+    }
+}
+
+//! Adds one source directly to every point of the block (and notes coincidences).
+template <class W>
+void add_source(double sx, double sy, double sz, double vx, double vy, double vz, double tag,
+                const W& weight, Block& b)
+{
+    for (int i = 0; i < block_size; ++i)
+    {
+        const double dx = b.x[i] - sx, dy = b.y[i] - sy, dz = b.z[i] - sz;
+        b.r2[i] = dx * dx + dy * dy + dz * dz;
+    }
+    inverse_sqrt(b.r2, b.inv_r);
+    for (int i = 0; i < block_size; ++i)
+    {
+        double pa, pb;
+        weight(b.inv_r[i], pa, pb);
+        const double w = pa + pb;
+        b.hit[i] = b.r2[i] <= idw_coincident2 ? tag : b.hit[i];
+        b.nx[i] += w * vx;
+        b.ny[i] += w * vy;
+        b.nz[i] += w * vz;
+        b.den[i] += w;
+    }
+}
+
+} // namespace
+
+IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& weight, double theta)
+    : weight_(weight), theta_(theta)
+{
+    std::vector<Index> order;
+    const std::vector<SplitNode> split = median_split(sources, order, source_leaf);
+    const std::size_t m = order.size();
+    for (std::vector<double>* a : {&sx_, &sy_, &sz_, &vx_, &vy_, &vz_})
+        a->resize(m);
+    for (std::size_t i = 0; i < m; ++i)
+    {
+        sx_[i] = sources(order[i], 0);
+        sy_[i] = sources(order[i], 1);
+        sz_[i] = sources(order[i], 2);
+        vx_[i] = values(order[i], 0);
+        vy_[i] = values(order[i], 1);
+        vz_[i] = values(order[i], 2);
+    }
+    nodes_.resize(split.size());
+#pragma omp parallel for schedule(dynamic, 64) if (split.size() > 256)
+    for (std::size_t k = 0; k < split.size(); ++k)
+    {
+        nodes_[k].begin = split[k].begin;
+        nodes_[k].end = split[k].end;
+        nodes_[k].child = split[k].child;
+        compute_moments(nodes_[k]);
+    }
+}
+
+void IdwTree::compute_moments(Node& node) const
+{
+    const std::size_t b = static_cast<std::size_t>(node.begin),
+                      e = static_cast<std::size_t>(node.end);
+    node.count = static_cast<double>(e - b);
+    double c[3] = {0, 0, 0};
+    for (std::size_t j = b; j < e; ++j)
+    {
+        c[0] += sx_[j];
+        c[1] += sy_[j];
+        c[2] += sz_[j];
+    }
+    node.cx = c[0] / node.count;
+    node.cy = c[1] / node.count;
+    node.cz = c[2] / node.count;
+    double r2 = 0.0;
+    for (std::size_t j = b; j < e; ++j)
+    {
+        const double d[3] = {sx_[j] - node.cx, sy_[j] - node.cy, sz_[j] - node.cz};
+        const double v[3] = {vx_[j], vy_[j], vz_[j]};
+        const double dd[6] = {d[0] * d[0], d[1] * d[1], d[2] * d[2],
+                              d[0] * d[1], d[0] * d[2], d[1] * d[2]};
+        r2 = std::max(r2, dd[0] + dd[1] + dd[2]);
+        for (int k = 0; k < 3; ++k)
+        {
+            node.sv[k] += v[k];
+            for (int a = 0; a < 3; ++a)
+                node.first[a][k] += d[a] * v[k];
+            for (int q = 0; q < 6; ++q)
+                node.second_v[k][q] += dd[q] * v[k];
+        }
+        for (int q = 0; q < 6; ++q)
+            node.second[q] += dd[q];
+    }
+    node.radius = std::sqrt(r2);
+}
+
+namespace
+{
+
+//! Far nodes and near leaves for every point of a block with centre c and radius rho:
+//! a node is far when node.radius < theta (|c - centroid| - rho).
+void interaction_lists(const std::vector<IdwTree::Node>& nodes, double theta, const double c[3],
+                       double rho, std::vector<Index>& far, std::vector<Index>& near)
+{
+    far.clear();
+    near.clear();
+    std::array<Index, 256> stack;
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0)
+    {
+        const Index id = stack[--top];
+        const IdwTree::Node& node = nodes[std::size_t(id)];
+        const double dx = c[0] - node.cx, dy = c[1] - node.cy, dz = c[2] - node.cz;
+        const double gap = std::sqrt(dx * dx + dy * dy + dz * dz) - rho;
+        if (gap > 0.0 && node.radius < theta * gap)
+            far.push_back(id);
+        else if (node.child < 0)
+            near.push_back(id);
+        else
+        {
+            stack[top++] = node.child + 1;
+            stack[top++] = node.child;
+        }
+    }
+}
+
+} // namespace
+
+void IdwTree::weighted_mean(const Points& x, Points& out) const
+{
+    out.resize(x.rows(), 3);
+    if (x.rows() == 0)
+        return;
+    std::vector<Index> order;
+    std::vector<SplitNode> blocks = median_split(x, order, block_size);
+    std::erase_if(blocks, [](const SplitNode& b) { return b.child >= 0; });
+    const bool fast = weight_.far_exponent == 3 && weight_.near_exponent == 5;
+    const Weight35 w35{weight_.beta};
+    const WeightGeneral wg{weight_.beta, weight_.far_exponent, weight_.near_exponent,
+                           double(weight_.far_exponent), double(weight_.near_exponent)};
+    const std::int64_t n_blocks = static_cast<std::int64_t>(blocks.size());
+#pragma omp parallel if (n_blocks > 8)
+    {
+        std::vector<Index> far, near;
+        Block b;
+#pragma omp for schedule(dynamic, 16)
+        for (std::int64_t k = 0; k < n_blocks; ++k)
+        {
+            const SplitNode& q = blocks[std::size_t(k)];
+            b.n = static_cast<int>(q.end - q.begin);
+            double c[3] = {0, 0, 0};
+            for (int i = 0; i < block_size; ++i)
+            {
+                // Unused lanes repeat the first point: harmless work, no branches.
+                const Index p = order[std::size_t(q.begin + (i < b.n ? i : 0))];
+                b.x[i] = x(p, 0);
+                b.y[i] = x(p, 1);
+                b.z[i] = x(p, 2);
+            }
+            for (int i = 0; i < b.n; ++i)
+            {
+                c[0] += b.x[i] / b.n;
+                c[1] += b.y[i] / b.n;
+                c[2] += b.z[i] / b.n;
+            }
+            double rho2 = 0.0;
+            for (int i = 0; i < b.n; ++i)
+                rho2 = std::max(rho2, (b.x[i] - c[0]) * (b.x[i] - c[0]) +
+                                          (b.y[i] - c[1]) * (b.y[i] - c[1]) +
+                                          (b.z[i] - c[2]) * (b.z[i] - c[2]));
+            interaction_lists(nodes_, theta_, c, std::sqrt(rho2), far, near);
+            b.clear_sums();
+            const auto accumulate = [&](const auto& weight)
+            {
+                for (Index id : far)
+                    add_far(nodes_[std::size_t(id)], weight, b);
+                for (Index id : near)
+                {
+                    const Node& leaf = nodes_[std::size_t(id)];
+                    for (Index j = leaf.begin; j < leaf.end; ++j)
+                        add_source(sx_[j], sy_[j], sz_[j], vx_[j], vy_[j], vz_[j],
+                                   static_cast<double>(j + 1), weight, b);
+                }
+            };
+            if (fast)
+                accumulate(w35);
+            else
+                accumulate(wg);
+            for (int i = 0; i < b.n; ++i)
+            {
+                const Index p = order[std::size_t(q.begin + i)];
+                if (b.hit[i] > 0.0)
+                {
+                    const std::size_t j = static_cast<std::size_t>(b.hit[i]) - 1;
+                    out.row(p) << vx_[j], vy_[j], vz_[j];
+                }
+                else
+                    out.row(p) << b.nx[i] / b.den[i], b.ny[i] / b.den[i], b.nz[i] / b.den[i];
+            }
+        }
+    }
+}
+
+} // namespace meshmorph::detail

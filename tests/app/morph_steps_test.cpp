@@ -1,0 +1,235 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Morphs in steps (src/meshmorph/app/morph_steps.*): fractional prescriptions (rotations
+// along their arc), `steps` in morphDict, and a motion that inverts cells in one step but
+// is valid in several, through the morphMesh application.
+#include "meshmorph/app/morph_mesh.h"
+#include "meshmorph/app/morph_steps.h"
+
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "helpers.h"
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
+#include "meshmorph/io/foam_dictionary.h"
+#include "meshmorph/io/read_poly_mesh.h"
+#include "meshmorph/io/write_poly_mesh.h"
+
+namespace meshmorph::app
+{
+namespace
+{
+
+namespace fs = std::filesystem;
+
+void write_text(const fs::path& path, const std::string& text)
+{
+    fs::create_directories(path.parent_path());
+    std::ofstream(path) << text;
+}
+
+//! An ascii STL of the pipe's wall narrowed in its middle: radius 0.5 (1 - depth sin^2)
+//! for z in [0.5, 1.5] (the venturi of tutorials/pipe/Allrun, any depth).
+std::string venturi_stl(double depth)
+{
+    std::ostringstream s;
+    s.precision(12);
+    const double pi = std::numbers::pi;
+    const auto radius = [&](double z)
+    {
+        if (z <= 0.5 || z >= 1.5)
+            return 0.5;
+        const double t = std::sin(pi * (z - 0.5));
+        return 0.5 * (1.0 - depth * t * t);
+    };
+    const auto vertex = [&](double r, double t, double z)
+    { s << "vertex " << r * std::cos(t) << ' ' << r * std::sin(t) << ' ' << z << '\n'; };
+    s << "solid venturi\n";
+    const int nt = 128, nz = 110;
+    for (int k = 0; k < nz; ++k)
+    {
+        const double za = -0.1 + 2.2 * k / nz, zb = -0.1 + 2.2 * (k + 1) / nz;
+        for (int i = 0; i < nt; ++i)
+        {
+            const double ta = 2 * pi * i / nt, tb = 2 * pi * (i + 1) / nt;
+            s << "facet normal 0 0 0\nouter loop\n";
+            vertex(radius(za), ta, za), vertex(radius(za), tb, za), vertex(radius(zb), tb, zb);
+            s << "endloop\nendfacet\nfacet normal 0 0 0\nouter loop\n";
+            vertex(radius(za), ta, za), vertex(radius(zb), tb, zb), vertex(radius(zb), ta, zb);
+            s << "endloop\nendfacet\n";
+        }
+    }
+    s << "endsolid venturi\n";
+    return s.str();
+}
+
+//! The tutorial pipe (2240 hexahedra) squeezed onto a venturi of the given depth.
+fs::path venturi_case(const std::string& name, double depth, const std::string& extra,
+                      const std::string& method = "rbf")
+{
+    const fs::path dir = test::scratch_dir("morph_steps/" + name);
+    const fs::path pipe = fs::path(MESHMORPH_SOURCE_DIR) / "tutorials/pipe";
+    const io::FoamPolyMesh shipped = io::read_poly_mesh(pipe);
+    io::write_poly_mesh(shipped.mesh, io::default_poly_mesh_files(io::FoamFormat::binary), dir,
+                        "constant");
+    fs::create_directories(dir / "system");
+    fs::copy_file(pipe / "system/controlDict", dir / "system/controlDict");
+    write_text(dir / "constant/triSurface/venturi.stl", venturi_stl(depth));
+    write_text(dir / "system/morphDict",
+               "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n"
+               "method " +
+                   method + ";\n" + extra +
+                   "boundary\n{\n    wall { type surface; file "
+                   "\"constant/triSurface/venturi.stl\"; }\n"
+                   "    \"(inlet|outlet)\" { type slip; }\n}\n");
+    return dir;
+}
+
+struct RunResult
+{
+    int code = -1;
+    std::string out, err, log;
+};
+
+RunResult run(const fs::path& dir)
+{
+    const std::string json = (dir / "morph.json").string();
+    std::vector<const char*> argv{"morphMesh", "-case", dir.c_str(), "-json", json.c_str()};
+    std::ostringstream out, err;
+    RunResult r;
+    {
+        log::CaptureScope capture;
+        r.code = run_morph_mesh(static_cast<int>(argv.size()), argv.data(), out, err);
+        r.log = capture.text();
+    }
+    r.out = out.str();
+    r.err = err.str();
+    return r;
+}
+
+nlohmann::json read_json(const fs::path& path)
+{
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+}
+
+} // namespace
+
+TEST(MorphSteps, rotations_turn_along_their_arc_and_other_motions_along_a_line)
+{
+    const PolyMesh mesh = test::make_box_mesh(2, 2, 2);
+    MorphSetup setup;
+    BoundaryEntry turn{"zMax", false, {}, 0};
+    turn.motion.type = MotionType::rotate;
+    turn.motion.origin = Vector3(0.5, 0.5, 0.0);
+    turn.motion.axis = Vector3::UnitZ();
+    turn.motion.angle_degrees = 90.0;
+    BoundaryEntry shift{"zMin", false, {}, 0};
+    shift.motion.type = MotionType::translate;
+    shift.motion.vector = Vector3(0.2, 0.0, 0.0);
+    setup.boundary = {turn, shift};
+    setup.conflicts = ConflictRule::first;
+    const Constraints c = build_constraints(mesh, setup);
+    const Points half = prescribed_at(c, mesh.points, 0.5);
+    const Points full = prescribed_at(c, mesh.points, 1.0);
+    EXPECT_LE((full - c.displacements).cwiseAbs().maxCoeff(), 1e-15);
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+    {
+        const Eigen::Index r = static_cast<Eigen::Index>(i);
+        const Vector3 x = mesh.points.row(c.points[i]).transpose();
+        const Vector3 at_half = x + half.row(r).transpose();
+        if (c.rotation_of[i] >= 0)
+        {
+            // 45 degrees about the axis: same distance from it, the angle halved.
+            const Eigen::Vector2d a = (x - turn.motion.origin).head<2>();
+            const Eigen::Vector2d b = (at_half - turn.motion.origin).head<2>();
+            EXPECT_NEAR(a.norm(), b.norm(), 1e-14) << "point " << c.points[i];
+            if (a.norm() > 0)
+            {
+                EXPECT_NEAR(std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b)),
+                            std::numbers::pi / 4, 1e-14);
+            }
+        }
+        else
+            EXPECT_LE((half.row(r) - 0.5 * full.row(r)).norm(), 1e-16);
+    }
+}
+
+TEST(MorphSteps, steps_key_reads_auto_and_numbers_and_rejects_anything_else)
+{
+    const auto parse = [](const std::string& text)
+    { return read_step_settings(io::parse_dictionary(text, "system/morphDict")); };
+    EXPECT_EQ(parse("").steps, 0);
+    EXPECT_EQ(parse("steps auto;").steps, 0);
+    EXPECT_EQ(parse("steps 4;").steps, 4);
+    for (const char* bad : {"steps 0;", "steps some;", "steps 2.5;", "steps (1 2);"})
+    {
+        try
+        {
+            parse(bad);
+            ADD_FAILURE() << bad << " was accepted";
+        }
+        catch (const ParseError& e)
+        {
+            EXPECT_NE(std::string(e.what()).find("steps"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("morphDict"), std::string::npos) << e.what();
+        }
+    }
+}
+
+TEST(MorphSteps, a_squeeze_that_inverts_cells_in_one_step_is_valid_in_several)
+{
+    // The pipe narrowed to 0.2 of its radius: the direct RBF fit to the final wall inverts
+    // cells; refitted on the mesh moved so far, the same wall is reached validly.
+    const fs::path one = venturi_case("one_step", 0.8, "steps 1;\n");
+    const RunResult refused = run(one);
+    EXPECT_EQ(refused.code, exit_morph_refused) << refused.err << refused.log;
+    EXPECT_FALSE(fs::exists(one / "1")) << "a refused morph writes nothing";
+
+    const fs::path several = venturi_case("auto_steps", 0.8, "");
+    const RunResult r = run(several);
+    ASSERT_EQ(r.code, 0) << r.err << r.log;
+    const nlohmann::json j = read_json(several / "morph.json");
+    const nlohmann::json& steps = j["steps"];
+    ASSERT_GE(steps.size(), 3u);
+    EXPECT_FALSE(steps[0]["accepted"].get<bool>()) << "the whole motion at once fails";
+    EXPECT_GT(steps[0]["incorrectlyOrientedFacePyramids"].get<int>() +
+                  steps[0]["negativeVolumeCells"].get<int>(),
+              0);
+    double reached = 0.0;
+    for (const nlohmann::json& s : steps)
+        if (s["accepted"].get<bool>())
+        {
+            EXPECT_EQ(s["from"].get<double>(), reached) << "accepted steps are contiguous";
+            EXPECT_EQ(s["negativeVolumeCells"].get<int>(), 0);
+            EXPECT_EQ(s["incorrectlyOrientedFacePyramids"].get<int>(), 0);
+            reached = s["to"].get<double>();
+        }
+    EXPECT_EQ(reached, 1.0);
+    EXPECT_EQ(j["after"]["negativeVolumeCells"].get<int>(), 0);
+    EXPECT_EQ(j["after"]["incorrectlyOrientedFacePyramids"].get<int>(), 0);
+    // Every wall point on the target: exact, however many steps.
+    EXPECT_LE(j["relativeConstraintError"].get<double>(), 1e-9);
+    EXPECT_NE(r.log.find("redone in half the length"), std::string::npos) << r.log;
+}
+
+TEST(MorphSteps, idw_method_is_exact_and_never_exceeds_the_largest_prescription)
+{
+    const fs::path dir = venturi_case("idw", 0.3, "", "idw");
+    const RunResult r = run(dir);
+    ASSERT_EQ(r.code, 0) << r.err << r.log;
+    const nlohmann::json j = read_json(dir / "morph.json");
+    EXPECT_EQ(j["method"], "idw");
+    EXPECT_LE(j["relativeConstraintError"].get<double>(), 1e-9);
+    const Points x0 = io::read_points_file(dir / "constant/polyMesh/points");
+    const Points x1 = io::read_points_file(dir / "1/polyMesh/points");
+    const double largest = j["maxPrescribedDisplacement"].get<double>();
+    // Slip points take the field's tangential part, so allow the tree's 6.4e-4.
+    EXPECT_LE((x1 - x0).rowwise().norm().maxCoeff(), largest * (1.0 + 6.4e-4));
+}
+
+} // namespace meshmorph::app
