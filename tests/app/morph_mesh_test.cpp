@@ -361,6 +361,54 @@ int openfoam_failed_checks(const fs::path& dir, std::string& output)
     return -1;
 }
 
+TEST(MorphMesh, two_d_case_onto_a_surface_fits_each_point_pair_once)
+{
+    // A surface target projects the front and back point of a pair separately. Their
+    // prescriptions may differ (a target tilted out of the 2D plane): the pair must reach
+    // the fit as one handle (two handles at one position with different values are an RBF
+    // error), and the case stays 2D.
+    const PolyMesh mesh = test::make_block_mesh(
+        6, 6, 1, [](double u, double v, double w) { return Vector3(u, v, 0.1 * w); },
+        {"patch", "patch", "patch", "patch", "empty", "empty"});
+    for (const double tilt : {0.0, 0.2}) // the plane y = 1.05 + 0.1 x + tilt z
+    {
+        const fs::path dir = make_case("two_d_surface_" + std::to_string(int(tilt * 10)), mesh,
+                                       R"D(
+conflicts last;
+boundary { yMax { type surface; file "constant/triSurface/slope.stl"; } }
+)D");
+        std::ostringstream stl;
+        const auto y = [&](double x, double z) { return 1.05 + 0.1 * x + tilt * z; };
+        stl << "solid slope\n";
+        for (const auto& tri : {std::array<double, 6>{-1, -1, 2, -1, 2, 1},
+                                std::array<double, 6>{-1, -1, 2, 1, -1, 1}})
+        {
+            stl << " facet normal 0 0 0\n  outer loop\n";
+            for (int k = 0; k < 3; ++k)
+                stl << "   vertex " << tri[2 * k] << ' ' << y(tri[2 * k], tri[2 * k + 1]) << ' '
+                    << tri[2 * k + 1] << "\n";
+            stl << "  endloop\n endfacet\n";
+        }
+        stl << "endsolid slope\n";
+        write_text(dir / "constant/triSurface/slope.stl", stl.str());
+        const RunResult r = run({"-case", dir.string(), "-json", (dir / "m.json").string()});
+        ASSERT_EQ(r.code, 0) << "tilt " << tilt << ": " << r.err << r.log;
+        const Points moved = io::read_points_file(dir / "1/polyMesh/points");
+        const Index layer = 7 * 7;
+        for (Index p = 0; p < layer; ++p)
+        {
+            EXPECT_EQ(moved(p, 2), mesh.points(p, 2));
+            EXPECT_EQ(moved(p, 0), moved(p + layer, 0)) << "point " << p;
+            EXPECT_EQ(moved(p, 1), moved(p + layer, 1)) << "point " << p;
+        }
+        if (tilt == 0.0) // both planes agree: exact
+        {
+            const nlohmann::json j = nlohmann::json::parse(read_text(dir / "m.json"));
+            EXPECT_LE(j["relativeConstraintError"].get<double>(), 1e-9);
+        }
+    }
+}
+
 TEST(MorphMesh, openfoam_checkmesh_reads_the_squeezed_pipe_ascii_and_binary)
 {
     if (!test::openfoam_available())

@@ -5,6 +5,7 @@
 #include "meshmorph/app/morph_mesh.h"
 #include "meshmorph/app/morph_steps.h"
 
+#include <algorithm>
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -132,8 +133,13 @@ TEST(MorphSteps, rotations_turn_along_their_arc_and_other_motions_along_a_line)
     shift.motion.type = MotionType::translate;
     shift.motion.vector = Vector3(0.2, 0.0, 0.0);
     setup.boundary = {turn, shift};
-    setup.conflicts = ConflictRule::first;
+    setup.conflicts = ConflictRule::last; // the top's edges rotate (the sides are fixed)
     const Constraints c = build_constraints(mesh, setup);
+    ASSERT_EQ(c.rotation_of.size(), c.points.size());
+    EXPECT_GT(
+        std::count_if(c.rotation_of.begin(), c.rotation_of.end(), [](Index r) { return r >= 0; }),
+        4)
+        << "the top's points rotate";
     const Points half = prescribed_at(c, mesh.points, 0.5);
     const Points full = prescribed_at(c, mesh.points, 1.0);
     EXPECT_LE((full - c.displacements).cwiseAbs().maxCoeff(), 1e-15);
@@ -219,7 +225,9 @@ TEST(MorphSteps, a_squeeze_that_inverts_cells_in_one_step_is_valid_in_several)
 
 TEST(MorphSteps, idw_method_is_exact_and_never_exceeds_the_largest_prescription)
 {
-    const fs::path dir = venturi_case("idw", 0.3, "", "idw");
+    // theta 0: the direct sum, whose values are convex combinations of the prescriptions
+    // (slip points take the tangential part of such a value: no larger either).
+    const fs::path dir = venturi_case("idw", 0.3, "idw { theta 0; }\n", "idw");
     const RunResult r = run(dir);
     ASSERT_EQ(r.code, 0) << r.err << r.log;
     const nlohmann::json j = read_json(dir / "morph.json");
@@ -228,8 +236,62 @@ TEST(MorphSteps, idw_method_is_exact_and_never_exceeds_the_largest_prescription)
     const Points x0 = io::read_points_file(dir / "constant/polyMesh/points");
     const Points x1 = io::read_points_file(dir / "1/polyMesh/points");
     const double largest = j["maxPrescribedDisplacement"].get<double>();
-    // Slip points take the field's tangential part, so allow the tree's 6.4e-4.
-    EXPECT_LE((x1 - x0).rowwise().norm().maxCoeff(), largest * (1.0 + 6.4e-4));
+    // 1e-12: the 17-digit round trip of the points file.
+    EXPECT_LE((x1 - x0).rowwise().norm().maxCoeff(), largest * (1.0 + 1e-12));
+}
+
+TEST(MorphSteps, steps_n_makes_n_equal_steps_and_redoes_none)
+{
+    const fs::path dir = venturi_case("steps_4", 0.8, "steps 4;\n");
+    const RunResult r = run(dir);
+    ASSERT_EQ(r.code, 0) << r.err << r.log;
+    const nlohmann::json steps = read_json(dir / "morph.json")["steps"];
+    ASSERT_EQ(steps.size(), 4u);
+    for (std::size_t k = 0; k < 4; ++k)
+    {
+        EXPECT_EQ(steps[k]["from"].get<double>(), 0.25 * double(k));
+        EXPECT_EQ(steps[k]["to"].get<double>(), 0.25 * double(k + 1));
+        EXPECT_TRUE(steps[k]["accepted"].get<bool>());
+    }
+}
+
+TEST(MorphSteps, when_even_the_shortest_step_fails_the_whole_motion_is_refused_or_forced)
+{
+    // The top of a box pushed through its bottom: no step length helps. The auto steps
+    // halve down to 1/64, then apply the rest at once; nothing is written, and -force
+    // writes the whole motion, never a part of it.
+    const PolyMesh mesh = test::make_box_mesh(3, 3, 3);
+    const fs::path dir = test::scratch_dir("morph_steps/impossible");
+    io::write_poly_mesh(mesh, io::default_poly_mesh_files(io::FoamFormat::ascii), dir, "constant");
+    write_text(dir / "system/controlDict",
+               "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
+               "startTime 0; endTime 1; deltaT 1; writeFormat ascii; writePrecision 17;\n");
+    write_text(dir / "system/morphDict",
+               "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n"
+               "conflicts last;\nboundary { zMax { type translate; vector (0 0 -1.6); } }\n");
+    const RunResult refused = run(dir);
+    EXPECT_EQ(refused.code, exit_morph_refused) << refused.err;
+    EXPECT_FALSE(fs::exists(dir / "1"));
+    const nlohmann::json j = read_json(dir / "morph.json");
+    EXPECT_LT(j["validFraction"].get<double>(), 1.0);
+    EXPECT_FALSE(j["written"].get<bool>());
+    const nlohmann::json& steps = j["steps"];
+    EXPECT_EQ(steps.back()["to"].get<double>(), 1.0) << "the motion is always completed";
+    double shortest = 1.0;
+    for (const nlohmann::json& s : steps)
+        shortest = std::min(shortest, s["to"].get<double>() - s["from"].get<double>());
+    EXPECT_EQ(shortest, 1.0 / 64.0);
+
+    std::vector<const char*> argv{"morphMesh", "-case", dir.c_str(), "-force"};
+    std::ostringstream out, err;
+    {
+        log::CaptureScope capture;
+        EXPECT_EQ(run_morph_mesh(int(argv.size()), argv.data(), out, err), 0) << err.str();
+    }
+    const Points moved = io::read_points_file(dir / "1/polyMesh/points");
+    for (Index p = 0; p < mesh.n_points(); ++p)
+        if (mesh.points(p, 2) == 1.0)
+            EXPECT_NEAR(moved(p, 2), 1.0 - 1.6, 1e-12) << "the top reached its target";
 }
 
 } // namespace meshmorph::app

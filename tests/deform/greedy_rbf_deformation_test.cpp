@@ -157,13 +157,28 @@ TEST(GreedyRbfDeformation, stops_at_the_best_round_when_more_centres_make_the_fi
     s.rms_tolerance = 1e-6;
     s.max_centres = 3000;
     GreedyRbfDeformation greedy(s);
+    log::CaptureScope capture;
     greedy.fit(x, d);
+    ASSERT_TRUE(greedy.stopped_growing()) << capture.text();
+    EXPECT_NE(capture.text().find("keeping the"), std::string::npos);
     const std::vector<double>& rms = greedy.rms_history();
     ASSERT_FALSE(rms.empty());
+    // The kept model is the best round, and the history ends with it.
     const double best = *std::min_element(rms.begin(), rms.end());
+    EXPECT_EQ(rms.back(), best);
     EXPECT_NEAR(greedy.report().rms_residual, best, 1e-12 * 0.05);
-    if (greedy.stopped_growing())
-        EXPECT_GT(rms.back(), best) << "the last round was the worse one that stopped it";
+    // The truncated factorisation is consistent: the handle basis interpolates the kept
+    // centres (row of a centre = its unit vector).
+    const std::vector<Index>& centres = greedy.centre_indices();
+    EXPECT_EQ(Index(centres.size()), greedy.report().num_centres);
+    Points at_centres(Eigen::Index(centres.size()), 3);
+    for (std::size_t i = 0; i < centres.size(); ++i)
+        at_centres.row(Eigen::Index(i)) = x.row(centres[i]);
+    const Eigen::MatrixXd B = greedy.handle_basis(at_centres);
+    for (std::size_t i = 0; i < centres.size(); ++i)
+        for (Eigen::Index j = 0; j < B.cols(); ++j)
+            ASSERT_NEAR(B(Eigen::Index(i), j), j == centres[i] ? 1.0 : 0.0, 1e-8)
+                << "centre " << i << ", constraint " << j;
 }
 
 } // namespace meshmorph

@@ -114,13 +114,42 @@ TEST(IdwDeformation, tree_error_falls_with_the_cube_of_the_opening_ratio_or_fast
     EXPECT_LE(rms_01, rms_02 / 8.0);
 }
 
-TEST(IdwDeformation, default_tree_stays_within_its_measured_accuracy)
+TEST(IdwDeformation, default_tree_keeps_its_documented_accuracy)
 {
-    // Measured with the default theta 0.35: 9.3e-4 max, 2.1e-4 RMS on this set-up (random
-    // queries, many in the far field); 6.4e-4 / 2.3e-5 on the motorBike's mesh points.
+    // The contract in idw_deformation.h: within ~1e-3 of the largest value. Measured with
+    // the default theta 0.35: 9.3e-4 max, 2.1e-4 RMS on this set-up (random queries, many
+    // in the far field); 6.4e-4 / 2.3e-5 on the motorBike's mesh points.
     const auto [max_err, rms_err] = tree_error(body_in_box(), IdwSettings{}.theta);
-    EXPECT_LE(max_err, 1e-3);
-    EXPECT_LE(rms_err, 2.5e-4);
+    EXPECT_LE(max_err, 2e-3);
+    EXPECT_LE(rms_err, 5e-4);
+}
+
+TEST(IdwDeformation, tiny_inputs_one_handle_and_coincident_handles)
+{
+    // One handle: its value everywhere.
+    IdwDeformation one;
+    one.fit(Points::Constant(1, 3, 0.5), Points::Constant(1, 3, 0.1));
+    const Points few = test::random_points(5, 0.0, 1.0, 9); // fewer than a query block
+    EXPECT_LE((displacements(one, few).array() - 0.1).abs().maxCoeff(), 1e-15);
+    // All handles at one place (zero extent): still that place's value, no division by 0.
+    IdwDeformation same;
+    same.fit(Points::Constant(4, 3, 0.3), Points::Constant(4, 3, -0.2));
+    EXPECT_LE((displacements(same, few).array() + 0.2).abs().maxCoeff(), 1e-15);
+    // Two coincident handles among others: exact there (one of the two values), finite and
+    // between them elsewhere.
+    Points h = test::random_points(10, 0.0, 1.0, 13);
+    h.row(9) = h.row(3);
+    Points v = Points::Zero(10, 3);
+    v(3, 0) = 1.0;
+    v(9, 0) = 2.0;
+    IdwDeformation dup(direct());
+    dup.fit(h, v);
+    const Points at = displacements(dup, h.row(3));
+    EXPECT_TRUE(at(0, 0) == 1.0 || at(0, 0) == 2.0) << at;
+    const Points elsewhere = displacements(dup, few);
+    EXPECT_TRUE(elsewhere.allFinite());
+    EXPECT_GE(elsewhere.col(0).minCoeff(), 0.0);
+    EXPECT_LE(elsewhere.col(0).maxCoeff(), 2.0);
 }
 
 TEST(IdwDeformation, the_general_exponent_path_agrees_with_the_direct_sum)

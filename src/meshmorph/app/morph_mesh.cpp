@@ -40,23 +40,6 @@ namespace fs = std::filesystem;
 namespace
 {
 
-std::string fraction_done(const std::vector<StepRecord>& steps)
-{
-    double done = 0.0;
-    for (const StepRecord& s : steps)
-        if (s.accepted)
-            done = s.to;
-    std::ostringstream o;
-    o.precision(4);
-    o << done;
-    return o.str();
-}
-
-} // namespace
-
-namespace
-{
-
 std::string fmt(double v, int precision = 3)
 {
     std::ostringstream o;
@@ -201,7 +184,9 @@ MorphResult morph_case(const MorphOptions& options)
     // Fit and evaluate, in steps.
     const Index n_fit = static_cast<Index>(c.points.size() + c.slip_points.size());
     log::info() << "Method: " << describe(settings, n_fit);
-    log::info() << "Steps: " << describe(step_settings);
+    log::info() << "Steps: "
+                << (needs_fit(settings) ? describe(step_settings)
+                                        : "1 (ffd moves its control points once)");
     const DeformationMaker make = [&](const Points& points)
     { return make_deformation(settings, points, n_fit); };
     const InvalidCells invalid_before{result.before.negative_volume_cells,
@@ -235,17 +220,21 @@ MorphResult morph_case(const MorphOptions& options)
                 << fmt(result.morph.relative_constraint_error)
                 << " of the largest prescribed displacement " << fmt(result.morph.max_prescribed)
                 << ")";
-    if (is_exact(settings) && stepped.completed && result.morph.relative_constraint_error > 1e-9)
+    if (is_exact(settings) && result.morph.relative_constraint_error > 1e-9)
         log::warning() << "the constrained points miss their prescriptions by up to "
                        << fmt(result.morph.relative_constraint_error)
                        << " (relative): report this case, the field should interpolate them";
 
     // Quality after.
     stage.restart();
-    if (!stepped.completed)
-        log::warning() << "stopped at " << fraction_done(result.steps)
-                       << " of the motion: even a step of 1/" << step_settings.max_steps
-                       << " of it creates invalid cells";
+    result.valid_fraction = stepped.valid_fraction;
+    if (stepped.valid_fraction < 1.0)
+        log::warning() << "the motion is valid up to " << format_fraction(stepped.valid_fraction)
+                       << " of itself; beyond, "
+                       << (step_settings.steps == 0
+                               ? "even a step of 1/" + std::to_string(step_settings.max_steps) +
+                                     " of it creates invalid cells"
+                               : "a step creates invalid cells (try more steps, or steps auto)");
     PolyMesh moved = mesh;
     moved.points = std::move(stepped.points); // exactly the points stepped.geometry is of
     result.after = check_mesh(moved, cf, stepped.geometry, check_settings);
@@ -330,6 +319,7 @@ std::string morph_json(const MorphResult& result)
     j["conflictRule"] = to_string(result.constraints.conflict_rule);
     j["solver"] = result.morph.report.solver;
     j["conditionEstimate"] = result.morph.report.condition_estimate;
+    j["validFraction"] = result.valid_fraction;
     j["steps"] = nlohmann::json::array();
     for (const StepRecord& s : result.steps)
         j["steps"].push_back({{"from", s.from},

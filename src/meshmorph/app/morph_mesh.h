@@ -59,6 +59,7 @@ struct MorphResult
     PointMorph morph;
     QualityReport before, after;
     std::vector<StepRecord> steps; //!< every step tried (morph_steps.h)
+    double valid_fraction = 1.0;   //!< of the motion reached without new invalid cells
     MorphTimings timings;
     bool refused = false; //!< new invalid cells, nothing written (no force)
     std::string refusal;  //!< why

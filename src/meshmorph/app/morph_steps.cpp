@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "meshmorph/app/banner.h"
 #include "meshmorph/core/exceptions.h"
@@ -29,12 +30,23 @@ Constraints step_constraints(const Constraints& c, const Points& x0, const Point
     return step;
 }
 
-std::string fraction(double t)
+//! One line per step as it happens: the motion fractions, the fit, the checks and the verdict.
+void log_step(std::size_t number, const StepRecord& r, bool failed, bool redo, bool can_halve)
 {
-    std::ostringstream o;
-    o.precision(4);
-    o << t;
-    return o.str();
+    std::string verdict;
+    if (redo)
+        verdict = ": redone in half the length";
+    else if (failed && can_halve)
+        verdict = " (the shortest step: the rest of the motion in one step, to be refused)";
+    else if (failed)
+        verdict = " (kept: the result will be refused)";
+    log::info() << "Step " << number << ": motion " << format_fraction(r.from) << " -> "
+                << format_fraction(r.to) << ", " << r.centres << " centres, "
+                << r.invalid.negative_volume_cells << " negative-volume cells, "
+                << r.invalid.wrong_pyramids << " wrongly oriented pyramids" << verdict << " [fit "
+                << format_seconds(r.fit_seconds) << " s, evaluate "
+                << format_seconds(r.evaluate_seconds) << " s, check "
+                << format_seconds(r.check_seconds) << " s]";
 }
 
 } // namespace
@@ -56,6 +68,14 @@ StepSettings read_step_settings(const io::FoamDictionary& dict)
     throw e->error("expected 'auto' or a number of steps from 1 to 10000");
 }
 
+std::string format_fraction(double t)
+{
+    std::ostringstream o;
+    o.precision(4);
+    o << t;
+    return o.str();
+}
+
 std::string describe(const StepSettings& s)
 {
     return s.steps == 0 ? "auto (halved on new invalid cells, down to 1/" +
@@ -65,10 +85,12 @@ std::string describe(const StepSettings& s)
 
 Points prescribed_at(const Constraints& c, const Points& x0, double t)
 {
+    if (c.rotation_of.size() != c.points.size())
+        throw std::logic_error("prescribed_at: rotation_of does not match the constraints");
     Points d = t * c.displacements;
     for (std::size_t i = 0; i < c.points.size(); ++i)
     {
-        const Index r = i < c.rotation_of.size() ? c.rotation_of[i] : -1;
+        const Index r = c.rotation_of[i];
         if (r < 0)
             continue;
         Motion partial = c.rotations[static_cast<std::size_t>(r)];
@@ -107,18 +129,24 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
                             const DeformationMaker& make, bool fit, const InvalidCells& before)
 {
     SteppedMorph out;
-    PolyMesh current = mesh; // topology shared by value; only points change
+    // One working mesh: its points are the accepted state, or a trial swapped in and out.
+    PolyMesh current = mesh;
+    Points other;
     const bool is_auto = settings.steps == 0 && fit;
-    const double shortest = is_auto ? 1.0 / settings.max_steps : 1.0;
-    double length = (settings.steps > 0 && fit) ? 1.0 / settings.steps : 1.0;
-    double done = 0.0;
+    const int fixed_steps = (settings.steps > 0 && fit) ? settings.steps : 1;
+    const double shortest = 1.0 / settings.max_steps;
+    // auto: lengths 1/2^k, exact binary fractions; N steps: k/N from an integer counter.
+    double done = 0.0, length = 1.0;
+    int steps_done = 0;
+    bool stuck = false; // auto: even the shortest step failed; the rest goes in one step
     while (done < 1.0)
     {
-        const double to = std::min(1.0, done + length);
-        const bool last_step = 1.0 - to < 1e-12;
         StepRecord record;
         record.from = done;
-        record.to = last_step ? 1.0 : to;
+        if (!is_auto)
+            record.to = steps_done + 1 >= fixed_steps ? 1.0 : double(steps_done + 1) / fixed_steps;
+        else
+            record.to = stuck ? 1.0 : std::min(1.0, done + length);
         const Constraints step = step_constraints(c, mesh.points, current.points, record.to);
         std::unique_ptr<SpaceDeformation> deformation = make(current.points);
         PointMorph m = morph_points(current, step, *deformation, fit);
@@ -127,38 +155,31 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
             m.report.max_residual / std::max(m.report.max_displacement, 1e-300);
         record.fit_seconds = m.fit_seconds;
         record.evaluate_seconds = m.evaluate_seconds;
-        PolyMesh trial = current;
-        trial.points += m.displacement;
+        other = current.points + m.displacement;
+        std::swap(current.points, other); // current: the trial; other: the accepted state
         const Stopwatch check_clock;
-        MeshGeometry geometry = compute_geometry(trial, cell_faces);
-        record.invalid = count_invalid_cells(trial, geometry);
+        MeshGeometry geometry = compute_geometry(current, cell_faces);
+        record.invalid = count_invalid_cells(current, geometry);
         record.check_seconds = check_clock.seconds();
         const bool failed = record.invalid.worse_than(before);
-        record.accepted = !(failed && is_auto && length > shortest * 1.5);
+        const bool redo = failed && is_auto && !stuck && length > shortest * 1.5;
+        record.accepted = !redo;
         out.steps.push_back(record);
-        log::info() << "Step " << out.steps.size() << ": motion " << fraction(record.from) << " -> "
-                    << fraction(record.to) << ", " << record.centres << " centres, "
-                    << record.invalid.negative_volume_cells << " negative-volume cells, "
-                    << record.invalid.wrong_pyramids << " wrongly oriented pyramids"
-                    << (failed ? (record.accepted ? " (shortest step: stopping)"
-                                                  : ": redone in half the length")
-                               : "")
-                    << " [fit " << format_seconds(record.fit_seconds) << " s, evaluate "
-                    << format_seconds(record.evaluate_seconds) << " s, check "
-                    << format_seconds(record.check_seconds) << " s]";
-        if (!record.accepted)
+        log_step(out.steps.size(), record, failed, redo, is_auto && !stuck);
+        if (redo)
         {
+            std::swap(current.points, other); // back to the accepted state
             length *= 0.5;
             continue;
         }
-        current.points = std::move(trial.points);
+        if (failed && out.valid_fraction == 1.0)
+            out.valid_fraction = record.from;
+        stuck = stuck || (failed && is_auto);
         out.last = std::move(m);
         out.geometry = std::move(geometry);
         done = record.to;
-        if (failed && is_auto)
-            break; // even the shortest step inverts cells: the caller refuses the result
+        ++steps_done;
     }
-    out.completed = done >= 1.0;
     out.displacement = current.points - mesh.points;
     out.points = std::move(current.points);
     return out;

@@ -10,8 +10,9 @@
 //! `steps auto` (the default) starts with one step. A step whose result has more
 //! negative-volume cells or wrongly oriented face pyramids than the original mesh is
 //! redone at half its length, down to 1/max_steps of the motion; the shorter length is
-//! kept for the rest. If even the shortest step fails, the morph stops there and the
-//! result is refused. `steps N` makes N equal steps and never redoes one.
+//! kept for the rest. If even the shortest step fails, the rest of the motion is applied in
+//! one step and the result is refused (written with -force: the whole motion, never a part
+//! of it). `steps N` makes N equal steps and never redoes one.
 #pragma once
 
 #include <functional>
@@ -52,7 +53,10 @@ struct SteppedMorph
     std::vector<StepRecord> steps; //!< every step tried, in order
     PointMorph last;               //!< the last step's fit (counts, report)
     MeshGeometry geometry;         //!< of the final points (for the final check)
-    bool completed = false;        //!< the whole motion was applied
+    //! The fraction of the motion reached without new invalid cells (1: all of it). The
+    //! whole motion is always applied: with auto, once even the shortest step fails the
+    //! rest goes in one step, so that -force writes the motion asked for.
+    double valid_fraction = 1.0;
 };
 
 //! Builds a fresh deformation for a step, given the current mesh points.
@@ -70,6 +74,9 @@ void measure_constraint_error(const Constraints& c, const Points& x0, PointMorph
 SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
                             const Constraints& c, const StepSettings& settings,
                             const DeformationMaker& make, bool fit, const InvalidCells& before);
+
+//! A fraction of the motion for the log (4 significant digits).
+std::string format_fraction(double t);
 
 //! "auto" or the number.
 std::string describe(const StepSettings& settings);

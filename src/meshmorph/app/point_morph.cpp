@@ -3,6 +3,7 @@
 #include "meshmorph/app/point_morph.h"
 
 #include <algorithm>
+#include <numeric>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/progress.h"
@@ -60,6 +61,59 @@ void evaluate_with_progress(const SpaceDeformation& deformation, const Points& x
     }
 }
 
+//! The handles to fit: the constrained points at their evaluation positions. In 2D the
+//! front and back point of each pair project onto the same position; they are fitted once
+//! (the first of the pair, averaged with its partner's prescription: they differ only by
+//! round-off for closed-form motions, by the target's own difference for surfaces and
+//! pointDisplacement), so no solver sees two handles at one position.
+struct FitHandles
+{
+    Points positions;
+    Points values;
+};
+
+FitHandles fit_handles(const Points& x_eval, const std::vector<Index>& points,
+                       const Points& prescribed, const Constraints& c)
+{
+    FitHandles h{gather(x_eval, points), prescribed};
+    if (!c.empty_normal || points.size() < 2)
+        return h;
+    std::vector<Eigen::Index> order(points.size());
+    std::iota(order.begin(), order.end(), Eigen::Index{0});
+    const auto less = [&](Eigen::Index a, Eigen::Index b)
+    {
+        for (int k = 0; k < 3; ++k)
+            if (h.positions(a, k) != h.positions(b, k))
+                return h.positions(a, k) < h.positions(b, k);
+        return a < b;
+    };
+    std::sort(order.begin(), order.end(), less);
+    const double diag =
+        (h.positions.colwise().maxCoeff() - h.positions.colwise().minCoeff()).norm();
+    const double same = 1e-10 * std::max(diag, 1e-300); // projection round-off, far below spacing
+    std::vector<char> keep(points.size(), 1);
+    for (std::size_t i = 1; i < order.size(); ++i)
+    {
+        const Eigen::Index a = order[i - 1], b = order[i];
+        if (keep[std::size_t(a)] && (h.positions.row(a) - h.positions.row(b)).norm() <= same)
+        {
+            h.values.row(a) = 0.5 * (h.values.row(a) + h.values.row(b));
+            keep[std::size_t(b)] = 0;
+        }
+    }
+    FitHandles out;
+    const Eigen::Index n = std::count(keep.begin(), keep.end(), 1);
+    out.positions.resize(n, 3);
+    out.values.resize(n, 3);
+    for (Eigen::Index i = 0, k = 0; i < h.positions.rows(); ++i)
+        if (keep[std::size_t(i)])
+        {
+            out.positions.row(k) = h.positions.row(i);
+            out.values.row(k++) = h.values.row(i);
+        }
+    return out;
+}
+
 } // namespace
 
 PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeformation& deformation,
@@ -84,7 +138,8 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
             Points slip_values = Points::Zero(static_cast<Eigen::Index>(c.slip_points.size()), 3);
             if (!points.empty())
             {
-                deformation.fit(gather(x_eval, points), prescribed);
+                const FitHandles first = fit_handles(x_eval, points, prescribed, c);
+                deformation.fit(first.positions, first.values);
                 Points d_slip(slip_values.rows(), 3);
                 deformation.evaluate(gather(x_eval, c.slip_points), d_slip);
                 for (Eigen::Index i = 0; i < d_slip.rows(); ++i)
@@ -116,9 +171,8 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
         }
         // Fitted where the field is evaluated (2D: on the reference empty plane), so an
         // interpolating field meets the constrained points exactly.
-        const Points handles = gather(x_eval, points);
-        // RbfDeformation refines its own solve iteratively (RbfSettings::refinement_steps).
-        deformation.fit(handles, prescribed);
+        const FitHandles handles = fit_handles(x_eval, points, prescribed, c);
+        deformation.fit(handles.positions, handles.values);
     }
     result.report = deformation.report();
     result.fit_seconds = fit_clock.seconds();

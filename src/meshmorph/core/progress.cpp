@@ -20,19 +20,22 @@ namespace
 std::atomic<int> forced{-1};
 } // namespace
 
-void ProgressScope::set_enabled(bool enabled) { forced = enabled ? 1 : 0; }
+void ProgressScope::set_enabled(bool enabled)
+{
+    forced = enabled ? 1 : 0;
+}
 
 ProgressScope::ProgressScope(std::string task, std::int64_t total)
-    : task_(std::move(task)), total_(total), start_(std::chrono::steady_clock::now()),
-      last_(start_)
+    : task_(std::move(task)), total_(total), start_(std::chrono::steady_clock::now()), last_(start_)
 {
     const int f = forced.load();
-    active_ = f == 1 || (f == -1 && isatty(STDERR_FILENO) && log::enabled(log::Level::info));
+    terminal_ = isatty(STDERR_FILENO) != 0;
+    active_ = f == 1 || (f == -1 && log::enabled(log::Level::info));
 }
 
 ProgressScope::~ProgressScope()
 {
-    if (active_ && printed_)
+    if (active_ && printed_ && terminal_)
         std::fprintf(stderr, "\r  %s: done%30s\n", task_.c_str(), "");
 }
 
@@ -45,11 +48,18 @@ void ProgressScope::update(std::int64_t done)
         return;
 #endif
     const auto now = std::chrono::steady_clock::now();
-    if (now - last_ < std::chrono::seconds(1))
+    // A terminal gets a line redrawn every second; a log file a line every 2 s.
+    if (now - last_ < std::chrono::seconds(terminal_ ? 1 : 2))
         return;
     last_ = now;
     printed_ = true;
     const double pct = total_ > 0 ? 100.0 * static_cast<double>(done) / total_ : 0.0;
+    if (!terminal_)
+    {
+        log::info() << "    " << task_ << ": " << static_cast<int>(pct) << "% (" << done << "/"
+                    << total_ << ")";
+        return;
+    }
     std::fprintf(stderr, "\r  %s: %3.0f%% (%lld/%lld)", task_.c_str(), pct,
                  static_cast<long long>(done), static_cast<long long>(total_));
     std::fflush(stderr);

@@ -9,8 +9,9 @@
 namespace meshmorph
 {
 
-//! Reports "  <task>: 42% (420/1000)" at most about once a second on stderr, only when
-//! stderr is a terminal and the log level is info or higher. update() may be called from
+//! Reports "  <task>: 42% (420/1000)": on a terminal redrawn on stderr at most once a
+//! second; otherwise (a redirected log) as an info line at most every 2 s. Only while the
+//! log level is info or higher. update() may be called from
 //! any thread; only OpenMP thread 0 (or a non-OpenMP caller) prints.
 class ProgressScope
 {
@@ -28,6 +29,7 @@ private:
     std::string task_;
     std::int64_t total_;
     bool active_;
+    bool terminal_ = false;
     bool printed_ = false;
     std::chrono::steady_clock::time_point start_;
     std::chrono::steady_clock::time_point last_;

@@ -2,7 +2,8 @@
 //! \file A coarse global deformation made exact by a local correction: d = g + c, where g
 //! is fitted first (e.g. a greedy RBF to a loose tolerance) and c interpolates g's
 //! residual h_j - g(x_j) at every handle by IDW. c is exact at the handles, a convex
-//! combination of the residuals everywhere (never larger than the largest one) and
+//! combination of the residuals everywhere (never larger than the largest one, up to the
+//! IDW tree's error) and
 //! dominated near each handle by its neighbours, so the handles end exactly at their
 //! prescriptions without moving them alone (the hybrid RBF/IDW idea of Luke et al., JCP
 //! 2012). A direct, exact g leaves a round-off residual and c does nothing visible.

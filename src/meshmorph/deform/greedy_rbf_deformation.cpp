@@ -395,6 +395,9 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
             system.truncate(best_size);
             set_model();
             d.stopped_growing = true;
+            d.history.pop_back(); // the histories end with the model kept
+            d.rms_history.pop_back();
+            --iterations;
             log::info() << "    greedy RBF: the rms residual grew (" << rms * rel << " > "
                         << best_rms * rel << "): keeping the " << p + best_size
                         << " centres of the best round";
@@ -414,7 +417,10 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
         const Eigen::Index centres = p + system.size();
         if (centres >= budget)
             break;
-        Eigen::Index b = s.batch_size > 0 ? s.batch_size : std::max<Eigen::Index>(centres / 2, 1);
+        // Automatic: half the centres, at most 4096 a round (the new rows and columns of the
+        // factor are r x b and b x b: 4096 keeps them below ~0.7 GB at r = 20000).
+        Eigen::Index b =
+            s.batch_size > 0 ? s.batch_size : std::clamp<Eigen::Index>(centres / 2, 1, 4096);
         b = std::min({b, Eigen::Index(cand.size()), budget - centres});
         std::partial_sort(cand.begin(), cand.begin() + b, cand.end(),
                           [&](Eigen::Index a, Eigen::Index c)

@@ -27,7 +27,7 @@ struct GreedySettings
     //! Centre budget: stop (not converged) when reached.
     Index max_centres = 2000;
     //! Centres added per round (the worst points). 0: automatic, half as many as there are
-    //! centres (the count grows by 1.5 a round: the number of rounds grows like
+    //! centres, at most 4096 (the count grows by 1.5 a round: the number of rounds grows like
     //! log(centres), and the last round overshoots the centres needed by at most 1.5x).
     Index batch_size = 0;
 };
@@ -77,7 +77,8 @@ public:
     //! RMS residual after each round (absolute).
     const std::vector<double>& rms_history() const;
     //! True when the refinement stopped because a round made the RMS residual grow; the
-    //! fit then keeps the centres of the best round (its residual is the smallest RMS).
+    //! fit then keeps the centres of the best round (its residual is the smallest RMS) and
+    //! history() / rms_history() end with that round (the worse one is not listed).
     bool stopped_growing() const;
 
 private:

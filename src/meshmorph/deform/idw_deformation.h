@@ -2,7 +2,8 @@
 //! \file Inverse-distance weighted (Shepard) interpolation of handle displacements, the
 //! explicit method of MDO Lab's IDWarp (Luke, Collins & Blades, JCP 231, 2012; Secco et al.,
 //! AIAA J. 59, 2021): no linear solve, exact at the handles, and every value a convex
-//! combination of the prescribed ones, so it never exceeds the largest prescription.
+//! combination of the prescribed ones, so it never exceeds the largest prescription (with
+//! the tree, theta > 0, up to the tree's error: ~1e-3 of the largest value).
 #pragma once
 
 #include <memory>
@@ -43,8 +44,8 @@ public:
     IdwDeformation(IdwDeformation&&) noexcept;
     IdwDeformation& operator=(IdwDeformation&&) noexcept;
 
-    //! Builds the handle tree (O(m log m)); no solve. Coincident handles keep the first
-    //! one's displacement.
+    //! Builds the handle tree (O(m log m)); no solve. At a point where several handles
+    //! coincide the value is one of theirs (which one is unspecified).
     void fit(const Eigen::Ref<const Points>& handles,
              const Eigen::Ref<const Points>& displacements) override;
     //! OpenMP over points; per point independent of the thread count.
