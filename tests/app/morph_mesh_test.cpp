@@ -167,6 +167,23 @@ TEST(MorphMesh, json_has_the_interface_keys)
     EXPECT_LE(j["maxConstraintError"].get<double>(), 1e-9 * 0.05);
 }
 
+TEST(MorphMesh, a_failed_run_replaces_an_earlier_json_report_with_the_error)
+{
+    const fs::path dir = make_case("json_failure", test::make_box_mesh(3, 3, 3), lift_top);
+    const fs::path json = dir / "morph.json";
+    ASSERT_EQ(run({"-case", dir.string(), "-json", json.string()}).code, 0);
+    EXPECT_TRUE(nlohmann::json::parse(read_text(json))["written"].get<bool>());
+    EXPECT_EQ(nlohmann::json::parse(read_text(json))["exitStatus"].get<int>(), 0);
+    write_text(dir / "system/morphDict",
+               std::string(dict_header) + "boundary { wing { type fixed; } }\n");
+    const RunResult r = run({"-case", dir.string(), "-json", json.string()});
+    EXPECT_EQ(r.code, exit_morph_input_error);
+    const nlohmann::json j = nlohmann::json::parse(read_text(json));
+    EXPECT_FALSE(j["written"].get<bool>()) << "no stale success may remain";
+    EXPECT_EQ(j["exitStatus"].get<int>(), exit_morph_input_error);
+    EXPECT_NE(j["error"].get<std::string>().find("wing"), std::string::npos) << j.dump();
+}
+
 TEST(MorphMesh, a_morph_that_inverts_cells_is_refused_unless_forced)
 {
     // The top pushed through the bottom: cells turn inside out.
@@ -225,7 +242,10 @@ TEST(MorphMesh, every_dictionary_error_names_file_and_entry_and_writes_nothing)
             EXPECT_NE(r.err.find(s), std::string::npos)
                 << c.name << ": '" << s << "' not in " << r.err;
         EXPECT_TRUE(times(dir).empty()) << c.name << ": a time directory was written";
-        EXPECT_FALSE(fs::exists(dir / "out.json")) << c.name;
+        // The report says what failed (issue: a stale success must never remain).
+        const nlohmann::json j = nlohmann::json::parse(read_text(dir / "out.json"));
+        EXPECT_FALSE(j["written"].get<bool>()) << c.name;
+        EXPECT_EQ(j["exitStatus"].get<int>(), exit_morph_input_error) << c.name;
         EXPECT_EQ(read_text(dir / "constant/polyMesh/points"), original) << c.name;
     }
 }

@@ -120,3 +120,35 @@ TEST(CaseInstance, reads_time_settings_from_control_dict)
     const std::string msg = test::error_of([&] { read_time_settings(dir); });
     EXPECT_NE(msg.find("controlDict:2"), std::string::npos) << msg;
 }
+
+TEST(CaseInstance, a_stock_control_dict_with_function_objects_and_computed_entries_reads)
+{
+    // What OpenFOAM's tutorials ship (pitzDaily: #includeFunc; others: #calc, #codeStream,
+    // #includeEtc): the time settings read, the rest is skipped.
+    const fs::path dir = test::scratch_dir("ci_control_stock");
+    test::write_bytes(
+        dir / "system/controlDict",
+        "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
+        "application simpleFoam;\nendTime #calc \"2*1000\";\ndeltaT 0.5;\n"
+        "writeInterval #codeStream { code #{ os << 100; #}; };\n"
+        "functions\n{\n    #includeFunc streamlines\n    #includeFunc mag(U)\n"
+        "    #includeFunc singleGraph(start=(0 0 0), end=(1 0 0),\n        fields=(U p))\n"
+        "    #includeEtc \"caseDicts/postProcessing/forces/forces.cfg\"\n}\n"
+        "timePrecision 5;\n");
+    const TimeSettings s = read_time_settings(dir);
+    EXPECT_EQ(s.delta_t, 0.5);
+    EXPECT_EQ(s.precision, 5) << "entries after the directives are still read";
+}
+
+TEST(CaseInstance, a_needed_entry_that_only_openfoam_can_compute_is_an_error_naming_it)
+{
+    const fs::path dir = test::scratch_dir("ci_control_calc");
+    test::write_bytes(
+        dir / "system/controlDict",
+        "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
+        "deltaT #calc \"1.0/200\";\n");
+    const std::string msg = test::error_of([&] { read_time_settings(dir); });
+    EXPECT_NE(msg.find("controlDict:2"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("deltaT"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("#calc"), std::string::npos) << msg;
+}

@@ -82,8 +82,8 @@ MeshQualitySettings read_mesh_quality_dict(const fs::path& path)
     // OpenFOAM aborts on an enabled flatness limit outside [0, 1]; so do we.
     if (q.min_face_flatness > -constants::small &&
         (q.min_face_flatness < 0 || q.min_face_flatness > 1))
-        throw dict.entry("minFaceFlatness").error("should be in [0..1] but is " +
-                                                  format_scalar(q.min_face_flatness, 6));
+        throw dict.entry("minFaceFlatness")
+            .error("should be in [0..1] but is " + format_scalar(q.min_face_flatness, 6));
     q.min_determinant = dict.get<double>("minDeterminant");
     return q;
 }
@@ -94,8 +94,12 @@ int read_write_precision(const fs::path& case_dir)
     if (!io::foam_file_exists(path))
         return 6;
     const io::FileBuffer file = io::read_foam_file(path);
+    // Only writePrecision is read: the tutorials' function objects (#includeFunc) and
+    // computed entries elsewhere in the file do not matter.
+    io::ParseOptions lenient;
+    lenient.skip_unsupported = true;
     const io::FoamDictionary dict =
-        io::parse_dictionary(resolve_include_etc(file.data), file.path.string());
+        io::parse_dictionary(resolve_include_etc(file.data), file.path.string(), lenient);
     const int precision = dict.get_or<int>("writePrecision", 6);
     if (precision < 1 || precision > 30)
         throw dict.entry("writePrecision").error("writePrecision must be in [1, 30]");
@@ -119,7 +123,8 @@ std::string mesh_set_file_text(const MeshSet& set, const std::string& location)
         << "    object      " << set.name << ";\n"
         << "}\n"
         << "// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //\n\n"
-        << "\n" << set.labels.size() << "\n(\n";
+        << "\n"
+        << set.labels.size() << "\n(\n";
     for (Index label : set.labels)
         out << label << "\n";
     out << ")\n\n\n"
@@ -144,8 +149,7 @@ std::vector<fs::path> write_mesh_sets(const std::vector<MeshSet>& sets, const fs
     return written;
 }
 
-int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out,
-                           std::ostream& err)
+int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out, std::ostream& err)
 {
     Options options(
         "checkMeshQuality",
@@ -159,8 +163,9 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
          {"allTopology", "", "Include the extra topology checks (cell zip-up, face-face)"},
          {"noTopology", "", "Skip the topology checks"},
          {"meshQuality", "", "Also check against system/meshQualityDict (snappyHexMesh's)"},
-         {"writeSets", "", "Write the offending faces/cells/points as OpenFOAM sets to "
-                           "<instance>/polyMesh/sets"},
+         {"writeSets", "",
+          "Write the offending faces/cells/points as OpenFOAM sets to "
+          "<instance>/polyMesh/sets"},
          {"vtk", "FILE", "Write the mesh with per-cell quality fields as a VTK .vtu file"},
          {"json", "FILE", "Write the results as JSON"},
          {"quiet", "", "Print only the report (no banner or timings)"}},
@@ -200,8 +205,7 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
         settings.scaled_jacobian = options.found("json") || options.found("vtk");
         settings.write_precision = read_write_precision(case_dir);
         if (options.found("meshQuality"))
-            settings.mesh_quality =
-                read_mesh_quality_dict(case_dir / "system" / "meshQualityDict");
+            settings.mesh_quality = read_mesh_quality_dict(case_dir / "system" / "meshQualityDict");
 
         const io::FoamPolyMesh foam = io::read_poly_mesh(case_dir, read_options);
         const PolyMesh& mesh = foam.mesh;

@@ -301,9 +301,10 @@ MorphResult morph_case(const MorphOptions& options)
     return result;
 }
 
-std::string morph_json(const MorphResult& result)
+std::string morph_json(const MorphResult& result, int exit_status)
 {
     nlohmann::json j;
+    j["exitStatus"] = exit_status;
     j["method"] = result.method;
     j["constraints"] = result.morph.n_constraints;
     j["centres"] = result.morph.report.num_centres;
@@ -378,6 +379,26 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
          {exit_morph_internal_error, "unexpected internal error"}});
     if (const std::optional<int> code = parse_command_line(options, argc, argv, out, err))
         return *code;
+    fs::path json_path; // set as soon as known: a failure replaces any earlier report
+    if (const std::optional<std::string> j = options.get("json"))
+        json_path = fs::absolute(*j);
+    // Prints the error and, with -json, writes {written: false, exitStatus, error}.
+    const auto fail = [&](int status, const std::string& text)
+    {
+        err << text;
+        if (json_path.empty())
+            return status;
+        try
+        {
+            const nlohmann::json j = {{"written", false}, {"exitStatus", status}, {"error", text}};
+            io::write_file_atomic(json_path, j.dump(2) + "\n");
+        }
+        catch (const std::exception& e)
+        {
+            err << "Error: could not write " << json_path.string() << ": " << e.what() << "\n";
+        }
+        return status;
+    };
     try
     {
         if (options.found("time") && options.found("latestTime"))
@@ -398,8 +419,7 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
             deformation_method_from_string(*m); // validate early: a usage error
             morph.method = *m;
         }
-        if (const std::optional<std::string> j = options.get("json"))
-            morph.json = fs::absolute(*j);
+        morph.json = json_path;
         morph.vtk = options.found("vtk");
         morph.force = options.found("force");
 
@@ -407,7 +427,8 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
         const MorphResult result = morph_case(morph);
         if (!morph.json.empty())
         {
-            io::write_file_atomic(morph.json, morph_json(result));
+            io::write_file_atomic(morph.json, morph_json(result, result.refused ? exit_morph_refused
+                                                                                : exit_morph_ok));
             out << "Wrote " << morph.json.string() << "\n";
         }
         out << "\nTimings [s]: read " << format_seconds(result.timings.read) << ", fit "
@@ -430,23 +451,21 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
     }
     catch (const UsageError& e)
     {
-        err << "Error: " << e.what() << "\n";
-        return exit_usage_error;
+        return fail(exit_usage_error, "Error: " + std::string(e.what()) + "\n");
     }
     catch (const SolverError& e)
     {
-        err << "Error: " << e.what() << "\nNothing written.\n";
-        return exit_morph_solver_error;
+        return fail(exit_morph_solver_error,
+                    "Error: " + std::string(e.what()) + "\nNothing written.\n");
     }
     catch (const Error& e)
     {
-        err << "Error: " << e.what() << "\nNothing written.\n";
-        return exit_morph_input_error;
+        return fail(exit_morph_input_error,
+                    "Error: " + std::string(e.what()) + "\nNothing written.\n");
     }
     catch (const std::exception& e)
     {
-        err << "Internal error: " << e.what() << "\n";
-        return exit_morph_internal_error;
+        return fail(exit_morph_internal_error, "Internal error: " + std::string(e.what()) + "\n");
     }
 }
 

@@ -77,7 +77,7 @@ MorphResult morph_case(const MorphOptions& options);
 //! {read, fit, evaluate, check, write}, before, after (the checker's keys), plus
 //! relativeConstraintError, conflicts, handlePoints, slipPoints, outputInstance, written,
 //! refused.
-std::string morph_json(const MorphResult& result);
+std::string morph_json(const MorphResult& result, int exit_status);
 
 //! Exit statuses of morphMesh (listed by -help).
 inline constexpr int exit_morph_ok = 0;

@@ -161,7 +161,11 @@ TimeSettings read_time_settings(const fs::path& case_dir)
     const fs::path path = case_dir / "system" / "controlDict";
     if (!foam_file_exists(path))
         return settings;
-    const FoamDictionary dict = read_dictionary(path);
+    // Only the time settings are read: function objects (#includeFunc) and computed
+    // entries elsewhere in the stock tutorials' controlDicts do not matter.
+    ParseOptions lenient;
+    lenient.skip_unsupported = true;
+    const FoamDictionary dict = read_dictionary(path, lenient);
     settings.delta_t = dict.get_or<double>("deltaT", 1.0);
     if (!(settings.delta_t > 0))
         throw dict.entry("deltaT").error("deltaT must be positive");

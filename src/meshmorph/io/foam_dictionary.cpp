@@ -588,11 +588,59 @@ struct detail_dictionary_access
 
     // ---- directives -------------------------------------------------------------------
 
+    //! Skips the rest of a directive's line (`#includeFunc streamLines`,
+    //! `#includeFunc singleGraph(start=(0 0 0),` continued on the next line `fields=(U p))`):
+    //! raw characters up to the end of the line where the parentheses are balanced (words
+    //! may contain parentheses, so tokens would not show them).
+    static void skip_line(FoamTokenizer& tok, std::size_t /*line*/)
+    {
+        const std::string_view rest = tok.buffer().substr(tok.offset()); // peek leaves offset()
+        std::size_t n = 0;
+        int depth = 0;
+        for (; n < rest.size(); ++n)
+        {
+            const char c = rest[n];
+            if (c == '(')
+                ++depth;
+            else if (c == ')')
+                --depth;
+            else if (c == '\n' && depth <= 0)
+                break;
+        }
+        tok.read_raw(n);
+    }
+
+    //! Skips the argument of a code directive: a string (`#calc "..."`) or a `{ ... }` /
+    //! `#{ ... #}` block (`#codeStream { code #{ ... #}; }`).
+    static void skip_code_argument(FoamTokenizer& tok)
+    {
+        if (!tok.peek().is_punct('{'))
+        {
+            if (tok.peek().is_string() || tok.peek().is_word())
+                tok.next();
+            return;
+        }
+        int depth = 0;
+        do
+        {
+            const FoamToken t = tok.next();
+            if (t.is_end())
+                return;
+            if (t.is_punct('{'))
+                ++depth;
+            else if (t.is_punct('}'))
+                --depth;
+        } while (depth > 0);
+    }
+
     void directive(FoamTokenizer& tok, FoamDictionary& dict, const FoamToken& d)
     {
         const std::string& w = d.text;
         if (w == "#include" || w == "#sinclude" || w == "#includeIfPresent")
             include(tok, dict, d);
+        else if (options.skip_unsupported &&
+                 (w == "#includeEtc" || w == "#includeFunc" || w == "#includeModel"))
+            skip_line(tok, d.line);
         else if (w == "#includeEtc")
             throw tok.error_at(d.line, "'#includeEtc' (files of the OpenFOAM installation) is not "
                                        "supported: copy the entries into the dictionary");
@@ -600,6 +648,8 @@ struct detail_dictionary_access
             throw tok.error_at(d.line, "'" + w +
                                            "' (OpenFOAM function objects/models) is not "
                                            "supported");
+        else if (is_code_directive(w) && options.skip_unsupported)
+            skip_code_argument(tok);
         else if (is_code_directive(w))
             throw_code_directive(tok, d.line, w);
         else if (w == "#inputMode")
@@ -764,7 +814,7 @@ struct detail_dictionary_access
                 e.source_ = std::string(tok.slice(open_offset, tok.offset()));
                 e.dict_ = std::move(sub);
             }
-            else if (ahead.is_word() && is_code_directive(ahead.text))
+            else if (ahead.is_word() && is_code_directive(ahead.text) && !options.skip_unsupported)
                 throw_code_directive(tok, ahead.line, ahead.text);
             else
                 parse_value(tok, e);
@@ -829,6 +879,16 @@ struct detail_dictionary_access
                         e.tokens_.push_back(std::move(vt));
                         continue;
                     }
+                }
+                else if (is_code_directive(t.text) && options.skip_unsupported)
+                {
+                    // Kept as the directive word: reading this entry names it.
+                    FoamValueToken vt;
+                    static_cast<FoamToken&>(vt) = t;
+                    e.tokens_.push_back(std::move(vt));
+                    skip_code_argument(tok);
+                    last = tok.offset();
+                    continue;
                 }
                 else if (is_code_directive(t.text))
                     throw_code_directive(tok, t.line, t.text);

@@ -82,6 +82,11 @@ struct ParseOptions
     std::function<std::optional<std::string>(const std::filesystem::path&)> read_file;
     //! Maximum #include nesting (guards against include cycles).
     int max_include_depth = 32;
+    //! For dictionaries of which a tool reads a few entries (controlDict): `#includeFunc`,
+    //! `#includeModel` and `#includeEtc` are skipped, and a `#calc`, `#codeStream` or
+    //! `#eval` value is kept as its directive word, so that reading that entry is an error
+    //! naming it while every other entry reads normally. Default: all of them are errors.
+    bool skip_unsupported = false;
 };
 
 //! One entry: keyword and either a sub-dictionary or a value (token stream).
