@@ -290,8 +290,12 @@ TEST(MorphSteps, when_even_the_shortest_step_fails_the_whole_motion_is_refused_o
     }
     const Points moved = io::read_points_file(dir / "1/polyMesh/points");
     for (Index p = 0; p < mesh.n_points(); ++p)
+    {
         if (mesh.points(p, 2) == 1.0)
+        {
             EXPECT_NEAR(moved(p, 2), 1.0 - 1.6, 1e-12) << "the top reached its target";
+        }
+    }
 }
 
 } // namespace meshmorph::app
