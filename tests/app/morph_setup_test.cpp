@@ -106,7 +106,8 @@ TEST(MorphSetup, conflict_rules_first_last_average_and_error)
     const Index p = 2 + 3 * (1 + 3 * 2);
     ASSERT_TRUE(mesh.points.row(p).isApprox(Eigen::RowVector3d(1, 0.5, 1)));
 
-    const auto value = [&](ConflictRule rule) {
+    const auto value = [&](ConflictRule rule)
+    {
         setup.conflicts = rule;
         const Constraints c = build_constraints(mesh, setup);
         const Index i = find_constraint(c, p);
@@ -165,8 +166,8 @@ TEST(MorphSetup, name_beats_group_beats_regex_beats_default)
 TEST(MorphSetup, unknown_patch_and_empty_regex_name_file_and_line)
 {
     const PolyMesh mesh = test::make_box_mesh(2, 2, 2);
-    for (const BoundaryEntry& bad :
-         {entry("wing", MotionType::fixed, false, 17), entry("motorBike_.*", MotionType::fixed, true, 17)})
+    for (const BoundaryEntry& bad : {entry("wing", MotionType::fixed, false, 17),
+                                     entry("motorBike_.*", MotionType::fixed, true, 17)})
     {
         MorphSetup setup;
         setup.dict_path = "case/system/morphDict";
@@ -230,9 +231,10 @@ TEST(MorphSetup, slip_patch_gets_projector_of_its_plane_and_curved_patch_is_refu
     for (const Eigen::Matrix3d& P : c.slip_projectors)
         EXPECT_TRUE(P.isApprox(Eigen::Vector3d(1, 1, 0).asDiagonal().toDenseMatrix(), 1e-14));
 
-    const PolyMesh bent = test::make_block_mesh(4, 4, 4, [](double u, double v, double w) {
-        return Vector3(u, v, w + 0.2 * std::sin(std::numbers::pi * u));
-    });
+    const PolyMesh bent =
+        test::make_block_mesh(4, 4, 4,
+                              [](double u, double v, double w)
+                              { return Vector3(u, v, w + 0.2 * std::sin(std::numbers::pi * u)); });
     setup.boundary[0].line = 5;
     try
     {
@@ -312,7 +314,8 @@ TEST(MorphSetup, surface_and_point_displacement_take_their_values_from_inputs)
     field.col(0).setConstant(-0.01);
     ConstraintInputs inputs;
     inputs.point_displacement = &field;
-    inputs.project_to_surface = [](const std::string& file, const Points& q) {
+    inputs.project_to_surface = [](const std::string& file, const Points& q)
+    {
         EXPECT_EQ(file, "target.stl");
         Points out = q;
         out.col(2).setConstant(1.25); // the plane z = 1.25
@@ -329,6 +332,57 @@ TEST(MorphSetup, surface_and_point_displacement_take_their_values_from_inputs)
         else
             EXPECT_EQ(d, Vector3(-0.01, 0, 0));
     }
+}
+
+TEST(MorphSetup, a_motion_within_a_slip_plane_to_its_precision_is_no_conflict)
+{
+    // movingCone-style: the moving wall slides along the wedge (here slip) planes; the
+    // motion as written is in the plane only to a few digits. No conflict, and the shared
+    // points move exactly within the plane.
+    const PolyMesh mesh = test::make_box_mesh(3, 3, 3);
+    MorphSetup setup;
+    setup.boundary.push_back(entry("xMin", MotionType::slip));
+    setup.boundary.push_back(translate("zMax", Vector3(1e-9, 0.0, 0.05)));
+    setup.boundary.push_back(entry("default", MotionType::free));
+    const Constraints c = build_constraints(mesh, setup);
+    EXPECT_EQ(c.n_conflicts, 0) << (c.conflict_summary.empty() ? "" : c.conflict_summary[0]);
+    const std::vector<char> slip = on_patch(mesh, "xMin");
+    Index shared = 0;
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+        if (slip[c.points[i]])
+        {
+            ++shared;
+            EXPECT_EQ(c.displacements(Eigen::Index(i), 0), 0.0) << "exactly in the plane x = 0";
+            EXPECT_EQ(c.displacements(Eigen::Index(i), 2), 0.05);
+        }
+    EXPECT_EQ(shared, 4) << "the edge xMin/zMax";
+
+    // A real normal component is still a conflict.
+    setup.boundary[1] = translate("zMax", Vector3(0.01, 0.0, 0.05));
+    EXPECT_EQ(build_constraints(mesh, setup).n_conflicts, 4);
+}
+
+TEST(MorphSetup, motion_asked_for_but_resolved_to_nothing_is_an_error)
+{
+    // One cell: every point of the lid is also on a fixed side, so rule `fixed` holds all.
+    const PolyMesh mesh = test::make_box_mesh(1, 1, 1);
+    MorphSetup setup;
+    setup.dict_path = "system/morphDict";
+    setup.boundary.push_back(translate("zMax", Vector3(0.0, 0.0, 0.1)));
+    try
+    {
+        build_constraints(mesh, setup);
+        FAIL() << "nothing moves: must not pass quietly";
+    }
+    catch (const InvalidInput& e)
+    {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("system/morphDict"), std::string::npos) << what;
+        EXPECT_NE(what.find("nothing would move"), std::string::npos) << what;
+        EXPECT_NE(what.find("conflicts"), std::string::npos) << what;
+    }
+    setup.conflicts = ConflictRule::last; // the lid wins: it moves
+    EXPECT_NO_THROW(build_constraints(mesh, setup));
 }
 
 } // namespace

@@ -558,6 +558,40 @@ std::vector<PatchAssignment> assign_patches(const PolyMesh& mesh, const MorphSet
     return result;
 }
 
+namespace
+{
+
+//! A dictionary that asks for motion (a non-zero prescription or handle) but resolves to
+//! none (every moving point also held by a conflict rule, say) is an error: a quiet success
+//! that writes unchanged points would mislead.
+void require_some_motion(const std::vector<Claim>& claims, const MorphSetup& setup,
+                         const std::vector<Vector3>& values, const Constraints& out,
+                         double tolerance)
+{
+    const bool asked =
+        std::any_of(claims.begin(), claims.end(),
+                    [&](const Claim& c)
+                    { return c.kind == Claim::Kind::value && c.value.norm() > tolerance; }) ||
+        std::any_of(setup.handles.begin(), setup.handles.end(),
+                    [&](const HandleEntry& h) { return h.displacement.norm() > tolerance; });
+    const bool moves = std::any_of(values.begin(), values.end(),
+                                   [&](const Vector3& v) { return v.norm() > tolerance; });
+    if (!asked || moves)
+        return;
+    std::string list;
+    for (const std::string& line : out.conflict_summary)
+        list += "\n    " + line;
+    throw InvalidInput(setup.dict_path +
+                       ": the dictionary asks for motion but every prescribed displacement "
+                       "resolves to zero, so nothing would move" +
+                       (list.empty()
+                            ? std::string(".")
+                            : " (conflicts resolved by rule '" + to_string(setup.conflicts) +
+                                  "':" + list + "\n  set 'conflicts' to first, last or average)"));
+}
+
+} // namespace
+
 Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
                               const ConstraintInputs& inputs)
 {
@@ -569,6 +603,7 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
     // Two prescriptions agree when they differ by less than this: far below any motion
     // meaningful for a mesh, far above round-off of the closed-form motions.
     const double agree_tol = 1e-12 * diag;
+    const double in_plane_tol = 1e-5; // relative; 10x patch_plane's planarity tolerance
 
     // 2D cases: the empty planes must be parallel.
     for (std::size_t pi = 0; pi < mesh.patches.size(); ++pi)
@@ -764,10 +799,15 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
         for (const Claim* c : values)
             if ((c->value - values.front()->value).norm() > agree_tol)
                 conflict = true;
+        // A motion leaves a slip (or wedge) plane when its normal component exceeds the
+        // tolerance to which the patch was found planar (patch_plane: 1e-6 of its size),
+        // relative to the motion: a translation along a wedge's axis, written to 6 digits,
+        // stays in both wedge planes.
         if (!values.empty())
             for (const Claim* s : slips)
-                if (std::abs(values.front()->value.dot(s->value)) > agree_tol)
-                    conflict = true; // a motion that would leave the slip plane
+                if (std::abs(values.front()->value.dot(s->value)) >
+                    in_plane_tol * values.front()->value.norm() + agree_tol)
+                    conflict = true;
 
         const auto slip_result = [&](const std::vector<const Claim*>& planes)
         {
@@ -785,8 +825,12 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
         {
             if (values.empty())
                 resolved.push_back(slip_result(slips));
-            else
+            else if (slips.empty())
                 resolved.push_back({point, false, values.front()->value,
+                                    Eigen::Matrix3d::Identity(), values.front()->rotation});
+            else // in the planes to round-off: exactly in them
+                resolved.push_back({point, false,
+                                    slip_result(slips).projector * values.front()->value,
                                     Eigen::Matrix3d::Identity(), values.front()->rotation});
             continue;
         }
@@ -1004,6 +1048,7 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
     }
     take_handles_below(std::numeric_limits<Index>::max());
 
+    require_some_motion(claims, setup, values, out, agree_tol);
     out.points = std::move(points);
     out.displacements.resize(static_cast<Eigen::Index>(values.size()), 3);
     for (std::size_t i = 0; i < values.size(); ++i)
