@@ -18,6 +18,7 @@
 #include "meshmorph/core/log.h"
 #include "meshmorph/io/read_poly_mesh.h"
 #include "meshmorph/io/write_poly_mesh.h"
+#include "morph_run.h"
 
 namespace meshmorph::app
 {
@@ -29,11 +30,7 @@ namespace fs = std::filesystem;
 const char* const dict_header =
     "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n";
 
-void write_text(const fs::path& path, const std::string& text)
-{
-    fs::create_directories(path.parent_path());
-    std::ofstream(path) << text;
-}
+using test::write_text;
 
 std::string read_text(const fs::path& path)
 {
@@ -62,27 +59,11 @@ fs::path make_case(const std::string& name, const PolyMesh& mesh, const std::str
     return dir;
 }
 
-struct RunResult
-{
-    int code = -1;
-    std::string out, err, log;
-};
+using RunResult = test::MorphRun;
 
 RunResult run(const std::vector<std::string>& args)
 {
-    std::vector<const char*> argv{"morphMesh"};
-    for (const std::string& a : args)
-        argv.push_back(a.c_str());
-    std::ostringstream out, err;
-    RunResult r;
-    {
-        log::CaptureScope capture;
-        r.code = run_morph_mesh(static_cast<int>(argv.size()), argv.data(), out, err);
-        r.log = capture.text();
-    }
-    r.out = out.str();
-    r.err = err.str();
-    return r;
+    return test::run_morph_mesh(args);
 }
 
 //! Time directories of a case (names).

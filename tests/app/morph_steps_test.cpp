@@ -19,6 +19,7 @@
 #include "meshmorph/io/foam_dictionary.h"
 #include "meshmorph/io/read_poly_mesh.h"
 #include "meshmorph/io/write_poly_mesh.h"
+#include "morph_run.h"
 
 namespace meshmorph::app
 {
@@ -27,11 +28,7 @@ namespace
 
 namespace fs = std::filesystem;
 
-void write_text(const fs::path& path, const std::string& text)
-{
-    fs::create_directories(path.parent_path());
-    std::ofstream(path) << text;
-}
+using test::write_text;
 
 //! An ascii STL of the pipe's wall narrowed in its middle: radius 0.5 (1 - depth sin^2)
 //! for z in [0.5, 1.5] (the venturi of tutorials/pipe/Allrun, any depth).
@@ -90,26 +87,10 @@ fs::path venturi_case(const std::string& name, double depth, const std::string& 
     return dir;
 }
 
-struct RunResult
+//! morphMesh on the case, with a JSON report in <case>/morph.json.
+test::MorphRun run(const fs::path& dir)
 {
-    int code = -1;
-    std::string out, err, log;
-};
-
-RunResult run(const fs::path& dir)
-{
-    const std::string json = (dir / "morph.json").string();
-    std::vector<const char*> argv{"morphMesh", "-case", dir.c_str(), "-json", json.c_str()};
-    std::ostringstream out, err;
-    RunResult r;
-    {
-        log::CaptureScope capture;
-        r.code = run_morph_mesh(static_cast<int>(argv.size()), argv.data(), out, err);
-        r.log = capture.text();
-    }
-    r.out = out.str();
-    r.err = err.str();
-    return r;
+    return test::run_morph_mesh({"-case", dir.string(), "-json", (dir / "morph.json").string()});
 }
 
 nlohmann::json read_json(const fs::path& path)
@@ -192,12 +173,12 @@ TEST(MorphSteps, a_squeeze_that_inverts_cells_in_one_step_is_valid_in_several)
     // The pipe narrowed to 0.2 of its radius: the direct RBF fit to the final wall inverts
     // cells; refitted on the mesh moved so far, the same wall is reached validly.
     const fs::path one = venturi_case("one_step", 0.8, "steps 1;\n");
-    const RunResult refused = run(one);
+    const test::MorphRun refused = run(one);
     EXPECT_EQ(refused.code, exit_morph_refused) << refused.err << refused.log;
     EXPECT_FALSE(fs::exists(one / "1")) << "a refused morph writes nothing";
 
     const fs::path several = venturi_case("auto_steps", 0.8, "");
-    const RunResult r = run(several);
+    const test::MorphRun r = run(several);
     ASSERT_EQ(r.code, 0) << r.err << r.log;
     const nlohmann::json j = read_json(several / "morph.json");
     const nlohmann::json& steps = j["steps"];
@@ -228,7 +209,7 @@ TEST(MorphSteps, idw_method_is_exact_and_never_exceeds_the_largest_prescription)
     // theta 0: the direct sum, whose values are convex combinations of the prescriptions
     // (slip points take the tangential part of such a value: no larger either).
     const fs::path dir = venturi_case("idw", 0.3, "idw { theta 0; }\n", "idw");
-    const RunResult r = run(dir);
+    const test::MorphRun r = run(dir);
     ASSERT_EQ(r.code, 0) << r.err << r.log;
     const nlohmann::json j = read_json(dir / "morph.json");
     EXPECT_EQ(j["method"], "idw");
@@ -243,7 +224,7 @@ TEST(MorphSteps, idw_method_is_exact_and_never_exceeds_the_largest_prescription)
 TEST(MorphSteps, steps_n_makes_n_equal_steps_and_redoes_none)
 {
     const fs::path dir = venturi_case("steps_4", 0.8, "steps 4;\n");
-    const RunResult r = run(dir);
+    const test::MorphRun r = run(dir);
     ASSERT_EQ(r.code, 0) << r.err << r.log;
     const nlohmann::json steps = read_json(dir / "morph.json")["steps"];
     ASSERT_EQ(steps.size(), 4u);
@@ -269,7 +250,7 @@ TEST(MorphSteps, when_even_the_shortest_step_fails_the_whole_motion_is_refused_o
     write_text(dir / "system/morphDict",
                "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n"
                "conflicts last;\nboundary { zMax { type translate; vector (0 0 -1.6); } }\n");
-    const RunResult refused = run(dir);
+    const test::MorphRun refused = run(dir);
     EXPECT_EQ(refused.code, exit_morph_refused) << refused.err;
     EXPECT_FALSE(fs::exists(dir / "1"));
     const nlohmann::json j = read_json(dir / "morph.json");
@@ -282,12 +263,8 @@ TEST(MorphSteps, when_even_the_shortest_step_fails_the_whole_motion_is_refused_o
         shortest = std::min(shortest, s["to"].get<double>() - s["from"].get<double>());
     EXPECT_EQ(shortest, 1.0 / 64.0);
 
-    std::vector<const char*> argv{"morphMesh", "-case", dir.c_str(), "-force"};
-    std::ostringstream out, err;
-    {
-        log::CaptureScope capture;
-        EXPECT_EQ(run_morph_mesh(int(argv.size()), argv.data(), out, err), 0) << err.str();
-    }
+    const test::MorphRun forced = test::run_morph_mesh({"-case", dir.string(), "-force"});
+    EXPECT_EQ(forced.code, 0) << forced.err;
     const Points moved = io::read_points_file(dir / "1/polyMesh/points");
     for (Index p = 0; p < mesh.n_points(); ++p)
     {
