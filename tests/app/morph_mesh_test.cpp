@@ -130,6 +130,28 @@ TEST(MorphMesh, overwrite_replaces_points_in_place_keeping_binary_format)
     EXPECT_GT((moved - mesh.points).cwiseAbs().maxCoeff(), 0.01);
 }
 
+TEST(MorphMesh, overwrite_keeps_the_original_points_and_reruns_say_what_they_replace)
+{
+    const fs::path dir = make_case("overwrite_orig", test::make_box_mesh(3, 3, 3), lift_top);
+    const std::string original = read_text(dir / "constant/polyMesh/points");
+    const RunResult first = run({"-case", dir.string(), "-overwrite"});
+    ASSERT_EQ(first.code, 0) << first.err;
+    EXPECT_EQ(read_text(dir / "constant/polyMesh/points.orig"), original) << "byte for byte";
+    EXPECT_NE(first.log.find("points.orig"), std::string::npos) << first.log;
+    const RunResult second = run({"-case", dir.string(), "-overwrite"});
+    ASSERT_EQ(second.code, 0) << second.err;
+    EXPECT_EQ(read_text(dir / "constant/polyMesh/points.orig"), original) << "kept, not replaced";
+    EXPECT_NE(second.log.find("was morphed before"), std::string::npos) << second.log;
+
+    const fs::path fresh = make_case("rerun", test::make_box_mesh(3, 3, 3), lift_top);
+    // The same morph again at time 0 (mesh in constant/, fields in 0/): both write 1/.
+    fs::create_directories(fresh / "0");
+    ASSERT_EQ(run({"-case", fresh.string(), "-time", "0"}).code, 0);
+    const RunResult again = run({"-case", fresh.string(), "-time", "0"});
+    ASSERT_EQ(again.code, 0) << again.err;
+    EXPECT_NE(again.log.find("replacing"), std::string::npos) << again.log;
+}
+
 TEST(MorphMesh, json_has_the_interface_keys)
 {
     const fs::path dir = make_case("json", test::make_box_mesh(3, 3, 3), lift_top);

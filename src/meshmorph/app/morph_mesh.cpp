@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <map>
 
 #include <ostream>
@@ -74,6 +75,44 @@ private:
     fs::path case_dir_;
     std::map<std::string, std::shared_ptr<SurfaceTree>> trees_;
 };
+
+//! -overwrite replaces the mesh's own points: the first time, they are kept beside them as
+//! points.orig (points.orig.gz), byte for byte, so a user can always go back; later
+//! overwrites say that they compound the motion.
+void keep_original_points(const fs::path& points_file)
+{
+    const bool gz = points_file.extension() == ".gz";
+    const fs::path orig = points_file.parent_path() / (gz ? "points.orig.gz" : "points.orig");
+    if (fs::exists(orig))
+    {
+        log::warning() << "-overwrite: " << points_file.string() << " was morphed before ("
+                       << orig.filename().string()
+                       << " exists): this morph adds to that one. The original points are in "
+                       << orig.string();
+        return;
+    }
+    std::ifstream in(points_file, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    if (!in.good() && !in.eof())
+        throw IoError("cannot read " + points_file.string() + " to keep it as " + orig.string());
+    io::write_file_atomic(orig, bytes.str());
+    log::info() << "-overwrite: the original points are kept in " << orig.string()
+                << " (to undo: mv " << orig.filename().string() << " "
+                << points_file.filename().string() << ")";
+}
+
+//! Without -overwrite a re-run replaces the points an earlier run wrote: say so.
+void warn_if_replacing(const fs::path& case_dir, const std::string& instance,
+                       const std::string& region)
+{
+    const fs::path dir = case_dir / instance / region / "polyMesh";
+    for (const char* name : {"points", "points.gz"})
+        if (fs::exists(dir / name))
+            log::warning() << "replacing " << (dir / name).string()
+                           << " (written by an earlier run; use -overwrite or another -time to "
+                              "keep it)";
+}
 
 } // namespace
 
@@ -216,6 +255,16 @@ MorphResult morph_case(const MorphOptions& options)
         log::info() << "Global RBF residual " << fmt(r.max_residual) << " ("
                     << fmt(r.max_residual / std::max(r.max_displacement, 1e-300))
                     << " relative), taken up by the local IDW correction";
+    result.max_displacement = result.morph.displacement.rowwise().norm().maxCoeff();
+    log::info() << "Largest displacement " << fmt(result.max_displacement)
+                << " (largest prescribed " << fmt(result.morph.max_prescribed) << ")";
+    if (result.max_displacement > 1.01 * result.morph.max_prescribed &&
+        result.morph.max_prescribed > 0.0)
+        log::warning() << "points away from the constraints move up to "
+                       << fmt(result.max_displacement / result.morph.max_prescribed)
+                       << " times the largest prescribed displacement (the global RBF "
+                          "overshoots): method idw never exceeds it; rbf { kernel biharmonic; } "
+                          "overshoots less than the triharmonic kernel";
     log::info() << "Max constraint error " << fmt(result.morph.max_constraint_error) << " ("
                 << fmt(result.morph.relative_constraint_error)
                 << " of the largest prescribed displacement " << fmt(result.morph.max_prescribed)
@@ -269,6 +318,10 @@ MorphResult morph_case(const MorphOptions& options)
 
     // Write.
     stage.restart();
+    if (options.overwrite)
+        keep_original_points(foam.points.path);
+    else
+        warn_if_replacing(case_dir, result.output_instance, foam.region);
     io::FoamFileInfo like = foam.points;
     result.points_file =
         io::write_points(moved.points, like, case_dir, result.output_instance, foam.region);
@@ -321,6 +374,7 @@ std::string morph_json(const MorphResult& result, int exit_status)
     j["solver"] = result.morph.report.solver;
     j["conditionEstimate"] = result.morph.report.condition_estimate;
     j["validFraction"] = result.valid_fraction;
+    j["maxDisplacement"] = result.max_displacement;
     j["steps"] = nlohmann::json::array();
     for (const StepRecord& s : result.steps)
         j["steps"].push_back({{"from", s.from},

@@ -60,6 +60,7 @@ struct MorphResult
     QualityReport before, after;
     std::vector<StepRecord> steps; //!< every step tried (morph_steps.h)
     double valid_fraction = 1.0;   //!< of the motion reached without new invalid cells
+    double max_displacement = 0.0; //!< the largest displacement of any point
     MorphTimings timings;
     bool refused = false; //!< new invalid cells, nothing written (no force)
     std::string refusal;  //!< why
