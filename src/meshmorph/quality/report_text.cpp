@@ -31,9 +31,12 @@ public:
     {
     }
     std::string s(double v) const { return format_scalar(v, settings.write_precision); }
+    //! A vector as OpenFOAM writes it: (x y z).
     std::string v(const Vector3& x) const
     {
-        return "(" + s(x.x()) + " " + s(x.y()) + " " + s(x.z()) + ")";
+        std::string text(1, '(');
+        text.append(s(x.x())).append(1, ' ').append(s(x.y())).append(1, ' ').append(s(x.z()));
+        return text.append(1, ')');
     }
     //! Justified in `width` columns (std::setw). checkMesh's tables are left-justified,
     //! except after a polyhedra breakdown: v1912 sets ios::right there and never resets it,
