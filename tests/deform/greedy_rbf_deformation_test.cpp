@@ -163,7 +163,9 @@ TEST(GreedyRbfDeformation, stops_at_the_best_round_when_more_centres_make_the_fi
     const double best = *std::min_element(rms.begin(), rms.end());
     EXPECT_NEAR(greedy.report().rms_residual, best, 1e-12 * 0.05);
     if (greedy.stopped_growing())
+    {
         EXPECT_GT(rms.back(), best) << "the last round was the worse one that stopped it";
+    }
 }
 
 } // namespace meshmorph
