@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file The two checks that decide whether a mesh can be solved on at all: negative cell
-//! volumes and wrongly oriented face pyramids (checkMesh's checkClosedCells volume test and
-//! checkFacePyramids, OpenFOAM primitiveMeshCheck.C). A morph in steps asks only these.
+//! volumes and wrongly oriented face pyramids (checkMesh's checkCellVolumes and
+//! checkFacePyramids, OpenFOAM primitiveMeshCheck.C). A morph in steps asks only these:
+//! count_invalid_cells runs the two checks of geometry_checks.h, without check_mesh's other
+//! checks or its report.
 #pragma once
 
 #include <vector>
@@ -29,7 +31,8 @@ struct InvalidCells
     }
 };
 
-//! \brief Both counts for a mesh and its geometry (compute_geometry).
+//! \brief Both counts for a mesh and its geometry (compute_geometry): check_cell_volumes
+//! and check_face_pyramids.
 InvalidCells count_invalid_cells(const PolyMesh& mesh, const MeshGeometry& geometry);
 
 } // namespace meshmorph

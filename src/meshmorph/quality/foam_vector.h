@@ -56,9 +56,18 @@ inline FoamVector operator-(const FoamVector& a, const FoamVector& b)
 {
     return {a.x - b.x, a.y - b.y, a.z - b.z};
 }
-inline FoamVector operator-(const FoamVector& a) { return {-a.x, -a.y, -a.z}; }
-inline FoamVector operator*(double s, const FoamVector& a) { return {s * a.x, s * a.y, s * a.z}; }
-inline FoamVector operator/(const FoamVector& a, double s) { return {a.x / s, a.y / s, a.z / s}; }
+inline FoamVector operator-(const FoamVector& a)
+{
+    return {-a.x, -a.y, -a.z};
+}
+inline FoamVector operator*(double s, const FoamVector& a)
+{
+    return {s * a.x, s * a.y, s * a.z};
+}
+inline FoamVector operator/(const FoamVector& a, double s)
+{
+    return {a.x / s, a.y / s, a.z / s};
+}
 //! Dot product (OpenFOAM's `&`).
 inline double dot(const FoamVector& a, const FoamVector& b)
 {
@@ -69,8 +78,19 @@ inline FoamVector cross(const FoamVector& a, const FoamVector& b)
 {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline double mag_sqr(const FoamVector& a) { return a.x * a.x + a.y * a.y + a.z * a.z; }
-inline double mag(const FoamVector& a) { return std::sqrt(mag_sqr(a)); }
+//! Area vector of the triangle (a, b, c) (OpenFOAM's triPointRef::areaNormal).
+inline FoamVector tri_area_normal(const FoamVector& a, const FoamVector& b, const FoamVector& c)
+{
+    return 0.5 * cross(b - a, c - a);
+}
+inline double mag_sqr(const FoamVector& a)
+{
+    return a.x * a.x + a.y * a.y + a.z * a.z;
+}
+inline double mag(const FoamVector& a)
+{
+    return std::sqrt(mag_sqr(a));
+}
 //! Componentwise absolute value (cmptMag).
 inline FoamVector cmpt_mag(const FoamVector& a)
 {
@@ -91,8 +111,14 @@ inline void set_row(Points& p, Index i, const FoamVector& v)
 }
 
 //! OpenFOAM's degToRad / radToDeg, in its operation order.
-inline double deg_to_rad(double deg) { return deg * M_PI / 180.0; }
-inline double rad_to_deg(double rad) { return rad * 180.0 / M_PI; }
+inline double deg_to_rad(double deg)
+{
+    return deg * M_PI / 180.0;
+}
+inline double rad_to_deg(double rad)
+{
+    return rad * 180.0 / M_PI;
+}
 
 //! Tetrahedron (a, b, c, d) quality as OpenFOAM's tetrahedron::quality(): signed volume over
 //! the volume of the regular tetrahedron with the same circumradius (1 regular, < 0 inverted).

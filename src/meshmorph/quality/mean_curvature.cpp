@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/quality/mesh_edges.h"
 
 namespace meshmorph
 {
@@ -31,15 +32,9 @@ std::vector<char> border_vertices(Index n_vertices, const Triangles& triangles)
 {
     std::unordered_map<std::uint64_t, int> edge_count;
     edge_count.reserve(static_cast<std::size_t>(triangles.rows()) * 3);
-    const auto key = [](Index a, Index b)
-    {
-        const auto lo = static_cast<std::uint64_t>(std::min(a, b));
-        const auto hi = static_cast<std::uint64_t>(std::max(a, b));
-        return (hi << 32) | lo;
-    };
     for (Index t = 0; t < triangles.rows(); ++t)
         for (int k = 0; k < 3; ++k)
-            ++edge_count[key(triangles(t, k), triangles(t, (k + 1) % 3))];
+            ++edge_count[packed_edge(triangles(t, k), triangles(t, (k + 1) % 3))];
     std::vector<char> border(static_cast<std::size_t>(n_vertices), 0);
     for (const auto& [k, count] : edge_count)
         if (count == 1)
@@ -130,8 +125,11 @@ Eigen::VectorXd mean_curvature(const TriangleSurface& surface)
     return mean_curvature(surface.vertices, surface.triangles);
 }
 
-TriangleSurface triangulate_patches(const PolyMesh& mesh, const std::vector<Index>& patches,
-                                    PolygonSplit split)
+namespace
+{
+
+//! The patches to triangulate (all when `patches` is empty), checked against the mesh.
+std::vector<Index> selected_patches(const PolyMesh& mesh, const std::vector<Index>& patches)
 {
     std::vector<Index> selected = patches;
     if (selected.empty())
@@ -148,91 +146,137 @@ TriangleSurface triangulate_patches(const PolyMesh& mesh, const std::vector<Inde
             throw InvalidInput("triangulate_patches: patch '" + patch.name +
                                "' has faces outside the mesh");
     }
+    return selected;
+}
 
-    const auto point = [&](Index v) -> Vector3 { return mesh.points.row(v).transpose(); };
-    std::vector<std::array<Index, 3>> triangles;
-    std::vector<Vector3> centres;
+//! Triangles of the faces of a polyMesh boundary, with extra centre vertices after the mesh
+//! points where a face is fanned from its centre.
+class PatchTriangulator
+{
+public:
+    PatchTriangulator(const PolyMesh& mesh, PolygonSplit split) : mesh_(mesh), split_(split) {}
+
+    void add_face(Index f)
+    {
+        const std::span<const Index> face = mesh_.faces[f];
+        check_face(f, face);
+        if (face.size() == 3)
+            triangles_.push_back({face[0], face[1], face[2]});
+        else if (split_ == PolygonSplit::diagonals && face.size() == 4)
+            add_quad(face);
+        else if (!(split_ == PolygonSplit::diagonals && add_vertex_fan(face)))
+            add_centre_fan(face);
+    }
+
+    TriangleSurface surface() const
+    {
+        const Index n_points = mesh_.n_points();
+        TriangleSurface surface;
+        surface.vertices.resize(n_points + static_cast<Index>(centres_.size()), 3);
+        surface.vertices.topRows(n_points) = mesh_.points;
+        for (std::size_t i = 0; i < centres_.size(); ++i)
+            surface.vertices.row(n_points + static_cast<Index>(i)) = centres_[i].transpose();
+        surface.triangles.resize(static_cast<Index>(triangles_.size()), 3);
+        for (std::size_t t = 0; t < triangles_.size(); ++t)
+            surface.triangles.row(static_cast<Index>(t)) << triangles_[t][0], triangles_[t][1],
+                triangles_[t][2];
+        return surface;
+    }
+
+private:
+    Vector3 point(Index v) const { return mesh_.points.row(v).transpose(); }
+
+    void check_face(Index f, std::span<const Index> face) const
+    {
+        if (face.size() < 3)
+            throw InvalidInput("triangulate_patches: face " + std::to_string(f) + " has " +
+                               std::to_string(face.size()) + " vertices");
+        for (Index v : face)
+            if (v < 0 || v >= mesh_.n_points())
+                throw InvalidInput("triangulate_patches: face " + std::to_string(f) +
+                                   " has point label " + std::to_string(v) + " outside [0, " +
+                                   std::to_string(mesh_.n_points()) + ")");
+    }
+
+    //! Split along the shorter diagonal.
+    void add_quad(std::span<const Index> face)
+    {
+        if ((point(face[2]) - point(face[0])).squaredNorm() <=
+            (point(face[3]) - point(face[1])).squaredNorm())
+        {
+            triangles_.push_back({face[0], face[1], face[2]});
+            triangles_.push_back({face[0], face[2], face[3]});
+        }
+        else
+        {
+            triangles_.push_back({face[1], face[2], face[3]});
+            triangles_.push_back({face[1], face[3], face[0]});
+        }
+    }
+
+    Vector3 centre(std::span<const Index> face) const
+    {
+        Vector3 c = Vector3::Zero();
+        for (Index v : face)
+            c += point(v);
+        c /= static_cast<double>(face.size());
+        return c;
+    }
+
+    //! Fan from the first vertex whose fan triangles all agree with the face's orientation
+    //! (strictly: collinear vertices would give zero-area triangles). False if there is none.
+    bool add_vertex_fan(std::span<const Index> face)
+    {
+        const std::size_t n = face.size();
+        const Vector3 c = centre(face);
+        Vector3 normal = Vector3::Zero();
+        for (std::size_t i = 0; i < n; ++i)
+            normal += (point(face[i]) - c).cross(point(face[(i + 1) % n]) - c);
+        for (std::size_t s0 = 0; s0 < n; ++s0)
+        {
+            const Vector3 apex = point(face[s0]);
+            bool ok = true;
+            for (std::size_t i = 1; i + 1 < n && ok; ++i)
+                ok = (point(face[(s0 + i) % n]) - apex)
+                         .cross(point(face[(s0 + i + 1) % n]) - apex)
+                         .dot(normal) > 0.0;
+            if (!ok)
+                continue;
+            for (std::size_t i = 1; i + 1 < n; ++i)
+                triangles_.push_back({face[s0], face[(s0 + i) % n], face[(s0 + i + 1) % n]});
+            return true;
+        }
+        return false;
+    }
+
+    void add_centre_fan(std::span<const Index> face)
+    {
+        const Index c = mesh_.n_points() + static_cast<Index>(centres_.size());
+        centres_.push_back(centre(face));
+        for (std::size_t i = 0; i < face.size(); ++i)
+            triangles_.push_back({face[i], face[(i + 1) % face.size()], c});
+    }
+
+    const PolyMesh& mesh_;
+    PolygonSplit split_;
+    std::vector<std::array<Index, 3>> triangles_;
+    std::vector<Vector3> centres_;
+};
+
+} // namespace
+
+TriangleSurface triangulate_patches(const PolyMesh& mesh, const std::vector<Index>& patches,
+                                    PolygonSplit split)
+{
+    const std::vector<Index> selected = selected_patches(mesh, patches);
+    PatchTriangulator triangulator(mesh, split);
     for (Index p : selected)
     {
         const Patch& patch = mesh.patches[p];
         for (Index f = patch.start_face; f < patch.start_face + patch.n_faces; ++f)
-        {
-            const std::span<const Index> face = mesh.faces[f];
-            const std::size_t n = face.size();
-            if (n < 3)
-                throw InvalidInput("triangulate_patches: face " + std::to_string(f) + " has " +
-                                   std::to_string(n) + " vertices");
-            for (Index v : face)
-                if (v < 0 || v >= mesh.n_points())
-                    throw InvalidInput("triangulate_patches: face " + std::to_string(f) +
-                                       " has point label " + std::to_string(v) + " outside [0, " +
-                                       std::to_string(mesh.n_points()) + ")");
-            if (n == 3)
-            {
-                triangles.push_back({face[0], face[1], face[2]});
-                continue;
-            }
-            if (split == PolygonSplit::diagonals && n == 4)
-            {
-                if ((point(face[2]) - point(face[0])).squaredNorm() <=
-                    (point(face[3]) - point(face[1])).squaredNorm())
-                {
-                    triangles.push_back({face[0], face[1], face[2]});
-                    triangles.push_back({face[0], face[2], face[3]});
-                }
-                else
-                {
-                    triangles.push_back({face[1], face[2], face[3]});
-                    triangles.push_back({face[1], face[3], face[0]});
-                }
-                continue;
-            }
-            Vector3 centre = Vector3::Zero();
-            for (Index v : face)
-                centre += point(v);
-            centre /= static_cast<double>(n);
-            if (split == PolygonSplit::diagonals)
-            {
-                // Fan from the first vertex whose fan triangles all agree with the face's
-                // orientation (strictly: collinear vertices would give zero-area triangles).
-                Vector3 normal = Vector3::Zero();
-                for (std::size_t i = 0; i < n; ++i)
-                    normal += (point(face[i]) - centre).cross(point(face[(i + 1) % n]) - centre);
-                bool fanned = false;
-                for (std::size_t s0 = 0; s0 < n && !fanned; ++s0)
-                {
-                    const Vector3 apex = point(face[s0]);
-                    bool ok = true;
-                    for (std::size_t i = 1; i + 1 < n && ok; ++i)
-                        ok = (point(face[(s0 + i) % n]) - apex)
-                                 .cross(point(face[(s0 + i + 1) % n]) - apex)
-                                 .dot(normal) > 0.0;
-                    if (!ok)
-                        continue;
-                    for (std::size_t i = 1; i + 1 < n; ++i)
-                        triangles.push_back({face[s0], face[(s0 + i) % n], face[(s0 + i + 1) % n]});
-                    fanned = true;
-                }
-                if (fanned)
-                    continue;
-            }
-            const Index c = mesh.n_points() + static_cast<Index>(centres.size());
-            centres.push_back(centre);
-            for (std::size_t i = 0; i < n; ++i)
-                triangles.push_back({face[i], face[(i + 1) % n], c});
-        }
+            triangulator.add_face(f);
     }
-
-    TriangleSurface surface;
-    surface.vertices.resize(mesh.n_points() + static_cast<Index>(centres.size()), 3);
-    surface.vertices.topRows(mesh.n_points()) = mesh.points;
-    for (std::size_t i = 0; i < centres.size(); ++i)
-        surface.vertices.row(mesh.n_points() + static_cast<Index>(i)) = centres[i].transpose();
-    surface.triangles.resize(static_cast<Index>(triangles.size()), 3);
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-        surface.triangles.row(static_cast<Index>(t)) << triangles[t][0], triangles[t][1],
-            triangles[t][2];
-    return surface;
+    return triangulator.surface();
 }
 
 Eigen::VectorXd patch_mean_curvature(const PolyMesh& mesh, const std::vector<Index>& patches,

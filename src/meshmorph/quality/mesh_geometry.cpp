@@ -119,6 +119,16 @@ MeshGeometry compute_geometry(const PolyMesh& mesh)
     return compute_geometry(mesh, cell_faces(mesh));
 }
 
+Eigen::VectorXd face_area_magnitudes(const MeshGeometry& g)
+{
+    const Index n_faces = static_cast<Index>(g.face_areas.rows());
+    Eigen::VectorXd mag_area(n_faces);
+#pragma omp parallel for schedule(static) if (n_faces > detail::parallel_threshold)
+    for (Index f = 0; f < n_faces; ++f)
+        mag_area[f] = detail::mag(row(g.face_areas, f));
+    return mag_area;
+}
+
 MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas)
 {
     MeshDirections d;

@@ -42,6 +42,9 @@ void cell_centres_and_volumes(const PolyMesh& mesh, const CompactList& cell_face
 MeshGeometry compute_geometry(const PolyMesh& mesh, const CompactList& cell_faces);
 MeshGeometry compute_geometry(const PolyMesh& mesh);
 
+//! \brief |Af| per face (nFaces), OpenFOAM's magSf. OpenMP over faces.
+Eigen::VectorXd face_area_magnitudes(const MeshGeometry& geometry);
+
 //! The geometric and solution directions (spec §2.4): +1 valid, -1 empty/wedge direction.
 struct MeshDirections
 {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// JSON form of a QualityReport and the before/after summary table.
+// JSON form of a QualityReport (the mesh statistics, then every check result's statistics)
+// and the before/after summary table.
 #include "meshmorph/quality/quality_json.h"
 
 #include <cmath>
@@ -23,6 +24,20 @@ std::string pad(const std::string& text, std::size_t width)
     return text.size() >= width ? text + " " : text + std::string(width - text.size(), ' ');
 }
 
+nlohmann::json statistic_json(const Statistic::Value& value)
+{
+    if (const Index* count = std::get_if<Index>(&value))
+        return *count;
+    if (const double* real = std::get_if<double>(&value))
+        return number(*real);
+    if (const Vector3* v = std::get_if<Vector3>(&value))
+        return {v->x(), v->y(), v->z()};
+    nlohmann::json counts = nlohmann::json::object();
+    for (const auto& [key, count] : std::get<Statistic::Counts>(value))
+        counts[key] = count;
+    return counts;
+}
+
 } // namespace
 
 nlohmann::json quality_json(const QualityReport& r)
@@ -39,52 +54,10 @@ nlohmann::json quality_json(const QualityReport& r)
                       {"polyhedra", r.cell_types.polyhedron}};
     j["boundingBox"] = {{r.bounding_box_min.x(), r.bounding_box_min.y(), r.bounding_box_min.z()},
                         {r.bounding_box_max.x(), r.bounding_box_max.y(), r.bounding_box_max.z()}};
-    j["boundaryOpenness"] = {r.boundary_openness.x(), r.boundary_openness.y(),
-                             r.boundary_openness.z()};
-    j["maxCellOpenness"] = number(r.max_cell_openness);
-    j["maxAspectRatio"] = number(r.max_aspect_ratio);
-    j["highAspectRatioCells"] = r.high_aspect_ratio_cells;
-    j["minFaceArea"] = number(r.min_face_area);
-    j["maxFaceArea"] = number(r.max_face_area);
-    j["minVolume"] = number(r.min_volume);
-    j["maxVolume"] = number(r.max_volume);
-    j["totalVolume"] = number(r.total_volume);
-    j["negativeVolumeCells"] = r.negative_volume_cells;
-    j["maxNonOrthogonality"] = number(r.max_non_orthogonality);
-    j["avgNonOrthogonality"] = number(r.avg_non_orthogonality);
-    j["severelyNonOrthogonalFaces"] = r.severely_non_orthogonal_faces;
-    j["nonOrthogonalityErrors"] = r.non_orthogonality_errors;
-    j["incorrectlyOrientedFacePyramids"] = r.incorrectly_oriented_face_pyramids;
-    j["maxSkewness"] = number(r.max_skewness);
-    j["highlySkewedFaces"] = r.highly_skewed_faces;
-    if (r.has_all_geometry)
-    {
-        j["faceTetErrors"] = r.face_tet_errors;
-        j["minEdgeLength"] = number(r.min_edge_length);
-        j["maxEdgeLength"] = number(r.max_edge_length);
-        j["concaveFaces"] = r.concave_faces;
-        j["maxConcaveAngle"] = number(r.max_concave_angle);
-        j["minFaceFlatness"] = number(r.min_face_flatness);
-        j["warpedFaces"] = r.warped_faces;
-        j["minDeterminant"] = number(r.min_determinant);
-        j["avgDeterminant"] = number(r.avg_determinant);
-        j["smallDeterminantCells"] = r.small_determinant_cells;
-        j["concaveCells"] = r.concave_cells;
-        j["minFaceWeight"] = number(r.min_face_weight);
-        j["avgFaceWeight"] = number(r.avg_face_weight);
-        j["lowWeightFaces"] = r.low_weight_faces;
-        j["minVolumeRatio"] = number(r.min_volume_ratio);
-        j["avgVolumeRatio"] = number(r.avg_volume_ratio);
-        j["lowVolumeRatioFaces"] = r.low_volume_ratio_faces;
-    }
-    if (r.has_mesh_quality)
-    {
-        nlohmann::json failures = nlohmann::json::object();
-        for (const auto& [key, count] : r.mesh_quality_failures)
-            failures[key] = count;
-        j["meshQualityFailures"] = failures;
-        j["meshQualityFaces"] = r.mesh_quality_faces;
-    }
+    for (const CheckResult& c : r.checks)
+        for (const Statistic& s : c.statistics)
+            if (s.in_json)
+                j[s.key] = statistic_json(s.value);
     j["minScaledJacobian"] = number(r.min_scaled_jacobian);
     j["failedChecks"] = r.failed_checks;
     j["failedCheckNames"] = r.failed_check_names;
@@ -120,7 +93,8 @@ void print_quality_summary(std::ostream& out, const nlohmann::json& before,
         {"min scaled Jacobian", "minScaledJacobian"},
         {"failed checks", "failedChecks"},
     };
-    const auto cell = [&](const nlohmann::json& j, const char* key) -> std::string {
+    const auto cell = [&](const nlohmann::json& j, const char* key) -> std::string
+    {
         if (j.is_null() || !j.contains(key))
             return "";
         const nlohmann::json& v = j[key];
@@ -151,9 +125,8 @@ void print_quality_summary(std::ostream& out, const nlohmann::json& before,
             out << (a.empty() ? "-" : a);
         out << "\n";
     }
-    const auto ok = [](const nlohmann::json& j) {
-        return j.value("meshOK", false) ? "Mesh OK" : "mesh checks failed";
-    };
+    const auto ok = [](const nlohmann::json& j)
+    { return j.value("meshOK", false) ? "Mesh OK" : "mesh checks failed"; };
     out << "    " << pad("verdict", 31);
     if (has_before)
         out << pad(ok(before), 16);

@@ -1,12 +1,39 @@
 # quality: checkMesh-equivalent metrics and report; the paper's metrics (scaled Jacobian,
 # mean curvature). Owners add their files to the list (one per line).
+#
+# checkMesh's three tiers: metric fields (one topic per file: face_*, cell_*, edge_*, ...),
+# checks (*_checks.cpp: field -> CheckResult), report (check_mesh.cpp drives, report_text.cpp
+# and quality_json.cpp walk the results).
 set(MESHMORPH_QUALITY_SOURCES
     meshmorph/quality/scaled_jacobian.cpp
     meshmorph/quality/mean_curvature.cpp
     meshmorph/quality/mesh_geometry.cpp
+    meshmorph/quality/cell_closedness.cpp
+    meshmorph/quality/cell_concavity.cpp
+    meshmorph/quality/cell_determinant.cpp
+    meshmorph/quality/cell_edge_usage.cpp
+    meshmorph/quality/cell_regions.cpp
     meshmorph/quality/cell_validity.cpp
-    meshmorph/quality/check_mesh.cpp
+    meshmorph/quality/edge_alignment.cpp
+    meshmorph/quality/edge_lengths.cpp
+    meshmorph/quality/face_concavity.cpp
+    meshmorph/quality/face_face_connectivity.cpp
+    meshmorph/quality/face_flatness.cpp
+    meshmorph/quality/face_orthogonality.cpp
+    meshmorph/quality/face_pyramids.cpp
+    meshmorph/quality/face_skewness.cpp
+    meshmorph/quality/face_tets.cpp
+    meshmorph/quality/face_twist.cpp
+    meshmorph/quality/face_weights.cpp
+    meshmorph/quality/mesh_edges.cpp
+    meshmorph/quality/point_faces.cpp
+    meshmorph/quality/zone_topology.cpp
+    meshmorph/quality/check_result.cpp
+    meshmorph/quality/topology_checks.cpp
+    meshmorph/quality/geometry_checks.cpp
     meshmorph/quality/mesh_quality_checks.cpp
+    meshmorph/quality/check_mesh.cpp
+    meshmorph/quality/report_text.cpp
     meshmorph/quality/quality_json.cpp
 )
 meshmorph_add_component(quality

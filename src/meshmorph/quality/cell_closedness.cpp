@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Boundary and cell closedness, cell aspect ratio, in OpenFOAM's operation order.
+#include "meshmorph/quality/cell_closedness.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "meshmorph/quality/foam_vector.h"
+
+namespace meshmorph
+{
+
+using detail::FoamVector;
+using detail::row;
+
+namespace
+{
+
+//! A cell's summed outward area vector and summed componentwise |area|.
+struct AreaSums
+{
+    FoamVector sum, sum_mag;
+};
+
+AreaSums area_sums(const PolyMesh& mesh, const CompactList& cell_faces, const MeshGeometry& g,
+                   Index cell)
+{
+    AreaSums s;
+    for (Index f : cell_faces[cell])
+    {
+        const FoamVector a = row(g.face_areas, f);
+        if (mesh.owner[f] == cell)
+            s.sum += a;
+        else
+            s.sum -= a;
+        s.sum_mag += detail::cmpt_mag(a);
+    }
+    return s;
+}
+
+} // namespace
+
+Vector3 boundary_openness(const PolyMesh& mesh, const MeshGeometry& g)
+{
+    FoamVector sum;
+    double sum_mag = 0;
+    for (Index f = mesh.n_internal_faces(); f < mesh.n_faces(); ++f)
+    {
+        const FoamVector a = row(g.face_areas, f);
+        sum += a;
+        sum_mag += detail::mag(a);
+    }
+    const FoamVector o = sum / (sum_mag + constants::vsmall);
+    return {o.x, o.y, o.z};
+}
+
+Eigen::VectorXd cell_openness(const PolyMesh& mesh, const CompactList& cell_faces,
+                              const MeshGeometry& g)
+{
+    const Index n_cells = mesh.n_cells;
+    Eigen::VectorXd openness(n_cells);
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
+    for (Index cell = 0; cell < n_cells; ++cell)
+    {
+        const AreaSums s = area_sums(mesh, cell_faces, g, cell);
+        double max_open = 0;
+        for (int k = 0; k < 3; ++k)
+            max_open =
+                std::max(max_open, std::abs(s.sum[k]) / (s.sum_mag[k] + constants::rootvsmall));
+        openness[cell] = max_open;
+    }
+    return openness;
+}
+
+Eigen::VectorXd cell_aspect_ratio(const PolyMesh& mesh, const CompactList& cell_faces,
+                                  const MeshGeometry& g, const MeshDirections& dirs)
+{
+    constexpr double rootvsmall = constants::rootvsmall;
+    const Index n_cells = mesh.n_cells;
+    Eigen::VectorXd aspect_ratio(n_cells);
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
+    for (Index cell = 0; cell < n_cells; ++cell)
+    {
+        const FoamVector sum_mag = area_sums(mesh, cell_faces, g, cell).sum_mag;
+        double min_c = constants::vgreat, max_c = -constants::vgreat;
+        for (int k = 0; k < 3; ++k)
+            if (dirs.geometric[k] == 1)
+            {
+                min_c = std::min(min_c, sum_mag[k]);
+                max_c = std::max(max_c, sum_mag[k]);
+            }
+        double ar = max_c / (min_c + rootvsmall);
+        if (dirs.n_geometric() == 3)
+        {
+            const double v = std::max(rootvsmall, g.cell_volumes[cell]);
+            ar = std::max(ar,
+                          1.0 / 6.0 * (sum_mag.x + sum_mag.y + sum_mag.z) / std::pow(v, 2.0 / 3.0));
+        }
+        aspect_ratio[cell] = ar;
+    }
+    return aspect_ratio;
+}
+
+} // namespace meshmorph

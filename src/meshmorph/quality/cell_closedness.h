@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Closedness of the boundary and of each cell, and the cell aspect ratio (OpenFOAM
+//! primitiveMeshTools::cellClosedness and primitiveMesh::checkClosedBoundary).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/quality/mesh_geometry.h"
+
+namespace meshmorph
+{
+
+//! \brief The boundary's openness: the sum of the boundary area vectors over the sum of
+//! their magnitudes (0 for a closed boundary).
+Vector3 boundary_openness(const PolyMesh& mesh, const MeshGeometry& geometry);
+
+//! \brief Per cell, max over x, y, z of |sum of outward face areas| / sum of |areas|
+//! (0 for a closed cell). OpenMP over cells. \return nCells values.
+Eigen::VectorXd cell_openness(const PolyMesh& mesh, const CompactList& cell_faces,
+                              const MeshGeometry& geometry);
+
+//! \brief Per cell, the largest ratio of the summed |area| components over the valid
+//! (non-empty, non-wedge) directions; in 3D at least the sum over all directions / 6 over
+//! volume^(2/3). OpenMP over cells. \return nCells values.
+Eigen::VectorXd cell_aspect_ratio(const PolyMesh& mesh, const CompactList& cell_faces,
+                                  const MeshGeometry& geometry, const MeshDirections& directions);
+
+} // namespace meshmorph

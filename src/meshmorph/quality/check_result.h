@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file The result record of one checkMesh check: its numbers, verdict and offending sets.
+//!
+//! The quality module has three tiers, as OpenFOAM's primitiveMeshTools (per-face and
+//! per-cell metric fields) -> primitiveMesh::check* (threshold, offender set, verdict) ->
+//! checkGeometry.C (driver and report): metric functions return fields, check functions
+//! turn fields into a CheckResult, and the text and JSON reports walk the list of results.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "meshmorph/core/types.h"
+
+namespace meshmorph
+{
+
+//! One offending-element set, named as checkMesh names it (nonOrthoFaces, ...).
+struct MeshSet
+{
+    enum class Kind
+    {
+        face,
+        cell,
+        point
+    };
+    std::string name;
+    Kind kind = Kind::face;
+    std::vector<Index> labels; //!< sorted, distinct
+};
+
+//! An offending set as a check reports it.
+struct OffenderSet
+{
+    MeshSet set;
+    //! checkMesh's "  <<Writing N <description> to set <name>" (printed with -writeSets);
+    //! empty when the check's own text announces the set (regions).
+    std::string description;
+};
+
+//! A number a check reports.
+struct Statistic
+{
+    //! Named counts (meshQualityFailures: criterion -> faces), in report order.
+    using Counts = std::vector<std::pair<std::string, Index>>;
+    using Value = std::variant<Index, double, Vector3, Counts>;
+
+    std::string key; //!< the JSON key (camelCase)
+    Value value;
+    bool in_json = true; //!< false: only the text report prints it
+};
+
+//! What one check found: its numbers, whether it failed, and the offending elements.
+struct CheckResult
+{
+    //! Which check this is (e.g. "faceOrthogonality"): the text report's key for its lines.
+    std::string id;
+    //! checkMesh's name of the failed check (e.g. "nonOrthogonality"); empty when it passed.
+    //! Checks that only warn ("   *" lines) never fail.
+    std::string failure;
+    std::vector<Statistic> statistics; //!< in report order
+    std::vector<OffenderSet> sets;     //!< non-empty sets only, in report order
+
+    explicit CheckResult(std::string check_id) : id(std::move(check_id)) {}
+
+    bool failed() const { return !failure.empty(); }
+    //! Append a statistic (integers are counts: Index, never int or size_t).
+    void add(std::string key, Statistic::Value value, bool in_json = true);
+    //! Append the set of `labels` (sorted and made distinct here) unless it is empty.
+    void add_set(std::string name, MeshSet::Kind kind, std::vector<Index> labels,
+                 std::string description);
+
+    //! The statistic `key`, or nullptr.
+    const Statistic* find(std::string_view key) const;
+    //! Typed access to a statistic. \throw std::logic_error if missing or of another type.
+    Index count(std::string_view key) const;
+    double real(std::string_view key) const;
+    const Vector3& vector(std::string_view key) const;
+    const Statistic::Counts& counts(std::string_view key) const;
+};
+
+//! \brief A container's size as a count statistic.
+template <typename Container> Index size_of(const Container& c)
+{
+    return static_cast<Index>(c.size());
+}
+
+//! \brief Sorted, distinct labels.
+std::vector<Index> as_set(std::vector<Index> labels);
+
+//! \brief The indices i where flags[i] != 0, ascending.
+std::vector<Index> flagged(const std::vector<char>& flags);
+
+} // namespace meshmorph

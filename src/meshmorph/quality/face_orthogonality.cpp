@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Face orthogonality in OpenFOAM's operation order.
+#include "meshmorph/quality/face_orthogonality.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "meshmorph/quality/foam_vector.h"
+
+namespace meshmorph
+{
+
+using detail::FoamVector;
+using detail::row;
+
+Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& g, double eps)
+{
+    const Index n_int = mesh.n_internal_faces();
+    Eigen::VectorXd ortho = Eigen::VectorXd::Ones(mesh.n_faces());
+#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
+    for (Index f = 0; f < n_int; ++f)
+    {
+        const FoamVector d =
+            row(g.cell_centres, mesh.neighbour[f]) - row(g.cell_centres, mesh.owner[f]);
+        const FoamVector s = row(g.face_areas, f);
+        ortho[f] = detail::dot(d, s) / (detail::mag(d) * detail::mag(s) + eps);
+    }
+    return ortho;
+}
+
+double non_orthogonality_degrees(double cosine)
+{
+    return detail::rad_to_deg(std::acos(std::min(1.0, std::max(-1.0, cosine))));
+}
+
+Eigen::VectorXd cell_non_orthogonality(const CompactList& cell_faces,
+                                       const Eigen::VectorXd& orthogonality)
+{
+    const Index n_cells = cell_faces.size();
+    Eigen::VectorXd angle(n_cells);
+#pragma omp parallel for schedule(static) if (orthogonality.size() > detail::parallel_threshold)
+    for (Index cell = 0; cell < n_cells; ++cell)
+    {
+        double min_cos = 1;
+        for (Index f : cell_faces[cell])
+            min_cos = std::min(min_cos, orthogonality[f]);
+        angle[cell] = non_orthogonality_degrees(min_cos);
+    }
+    return angle;
+}
+
+} // namespace meshmorph

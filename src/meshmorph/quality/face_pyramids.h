@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Face pyramid volumes (OpenFOAM primitiveMeshTools::facePyramidVolume): the pyramid
+//! of a face with its apex at the owner (neighbour) cell centre, positive when the face
+//! points away from the apex as it should.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/quality/mesh_geometry.h"
+
+namespace meshmorph
+{
+
+struct FacePyramidVolumes
+{
+    Eigen::VectorXd owner;     //!< nFaces: -(1/3) Af . (Cc(owner) - Cf)
+    Eigen::VectorXd neighbour; //!< nInternalFaces: (1/3) Af . (Cc(neighbour) - Cf)
+};
+
+//! \brief Both pyramid volumes of every face. OpenMP over faces.
+FacePyramidVolumes face_pyramid_volumes(const PolyMesh& mesh, const MeshGeometry& geometry);
+
+} // namespace meshmorph

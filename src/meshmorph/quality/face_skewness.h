@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Face skewness: how far the face centre lies from where the line between the cell
+//! centres crosses the face, relative to the cell-centre distance (OpenFOAM
+//! primitiveMeshTools::faceSkewness and boundaryFaceSkewness).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/quality/mesh_geometry.h"
+
+namespace meshmorph
+{
+
+//! \brief Skewness per face (nFaces). A boundary face measures against the owner centre's
+//! projection onto the face normal, with twice the normalisation factor. OpenMP over faces.
+Eigen::VectorXd face_skewness(const PolyMesh& mesh, const MeshGeometry& geometry);
+
+//! \brief Per cell, the largest skewness of its faces (0 for a cell without faces).
+//! \param skewness face_skewness(mesh, geometry). \return nCells values.
+Eigen::VectorXd cell_skewness(const CompactList& cell_faces, const Eigen::VectorXd& skewness);
+
+} // namespace meshmorph

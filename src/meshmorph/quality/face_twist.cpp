@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Face twist in OpenFOAM's operation order.
+#include "meshmorph/quality/face_twist.h"
+
+#include "meshmorph/quality/foam_vector.h"
+
+namespace meshmorph
+{
+
+using detail::FoamVector;
+using detail::row;
+
+namespace
+{
+
+constexpr double vsmall = constants::vsmall;
+
+//! Area vector of the i-th fan triangle (p[i], p[i+1], face centre) of face f.
+FoamVector fan_triangle(const PolyMesh& mesh, const MeshGeometry& g, Index f, std::size_t i)
+{
+    const std::span<const Index> face = mesh.faces[f];
+    return detail::tri_area_normal(row(mesh.points, face[i % face.size()]),
+                                   row(mesh.points, face[(i + 1) % face.size()]),
+                                   row(g.face_centres, f));
+}
+
+bool twist_below(const PolyMesh& mesh, const MeshGeometry& g, Index f, double min_twist)
+{
+    const std::size_t n = mesh.faces[f].size();
+    if (n <= 3)
+        return false;
+    const FoamVector own = row(g.cell_centres, mesh.owner[f]);
+    FoamVector nf = f < mesh.n_internal_faces() ? row(g.cell_centres, mesh.neighbour[f]) - own
+                                                : row(g.face_centres, f) - own;
+    nf /= detail::mag(nf) + vsmall;
+    if (nf.x == 0 && nf.y == 0 && nf.z == 0)
+        return false;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        const FoamVector tri = fan_triangle(mesh, g, f, i);
+        const double m = detail::mag(tri);
+        if (m > vsmall && detail::dot(nf, tri / m) < min_twist)
+            return true;
+    }
+    return false;
+}
+
+bool triangle_twist_below(const PolyMesh& mesh, const MeshGeometry& g, Index f, double min_twist)
+{
+    const std::size_t n = mesh.faces[f].size();
+    if (n <= 3)
+        return false;
+    std::size_t start = n;
+    FoamVector prev;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        prev = fan_triangle(mesh, g, f, i);
+        const double m = detail::mag(prev);
+        if (m > vsmall)
+        {
+            start = i;
+            prev /= m;
+            break;
+        }
+    }
+    if (start == n)
+        return false;
+    std::size_t i = start;
+    do
+    {
+        i = (i + 1) % n;
+        FoamVector t = fan_triangle(mesh, g, f, i);
+        const double m = detail::mag(t);
+        if (m > vsmall)
+        {
+            t /= m;
+            if (detail::dot(prev, t) < min_twist)
+                return true;
+            prev = t;
+        }
+        else if (min_twist > 0)
+            return true;
+    } while (i != start);
+    return false;
+}
+
+} // namespace
+
+std::vector<char> faces_with_twist_below(const PolyMesh& mesh, const MeshGeometry& g,
+                                         double min_twist)
+{
+    const Index n_faces = mesh.n_faces();
+    std::vector<char> flags(static_cast<std::size_t>(n_faces), 0);
+#pragma omp parallel for schedule(static) if (n_faces > detail::parallel_threshold)
+    for (Index f = 0; f < n_faces; ++f)
+        flags[f] = twist_below(mesh, g, f, min_twist);
+    return flags;
+}
+
+std::vector<char> faces_with_triangle_twist_below(const PolyMesh& mesh, const MeshGeometry& g,
+                                                  double min_twist)
+{
+    const Index n_faces = mesh.n_faces();
+    std::vector<char> flags(static_cast<std::size_t>(n_faces), 0);
+#pragma omp parallel for schedule(static) if (n_faces > detail::parallel_threshold)
+    for (Index f = 0; f < n_faces; ++f)
+        flags[f] = triangle_twist_below(mesh, g, f, min_twist);
+    return flags;
+}
+
+} // namespace meshmorph

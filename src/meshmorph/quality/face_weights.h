@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Face interpolation weights (OpenFOAM primitiveMeshTools::faceWeights and
+//! polyMeshGeometry::checkFaceWeights): how evenly an internal face sits between its cell
+//! centres.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/quality/mesh_geometry.h"
+
+namespace meshmorph
+{
+
+//! \brief min(d_own, d_nei) / (d_own + d_nei + VSMALL) per internal face, d the distances
+//! (times |Af|) of the cell centres from the face plane: 0.5 for a face halfway.
+//! OpenMP over faces. \return nInternalFaces values.
+Eigen::VectorXd face_weights(const PolyMesh& mesh, const MeshGeometry& geometry);
+
+//! \brief min(V_own, V_nei) / (max(V_own, V_nei) + VSMALL) per internal face.
+//! \param cell_volumes the signed volumes (checkMesh) or their magnitudes (snappyHexMesh).
+//! \return nInternalFaces values.
+Eigen::VectorXd face_volume_ratio(const PolyMesh& mesh, const Eigen::VectorXd& cell_volumes);
+
+} // namespace meshmorph

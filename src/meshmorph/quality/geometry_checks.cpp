@@ -1,0 +1,351 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// checkMesh's geometry checks: reductions run serially in storage order, so the numbers do
+// not depend on the number of threads that computed the fields.
+#include "meshmorph/quality/geometry_checks.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "meshmorph/quality/face_orthogonality.h"
+#include "meshmorph/quality/foam_vector.h"
+
+namespace meshmorph
+{
+
+namespace
+{
+
+constexpr double small = constants::small;
+constexpr double vsmall = constants::vsmall;
+constexpr double great = constants::great;
+
+//! The elements with errors[i] > 0 and the sum of the errors.
+std::pair<Index, std::vector<Index>> error_faces(const std::vector<char>& errors)
+{
+    Index total = 0;
+    std::vector<Index> faces;
+    for (std::size_t f = 0; f < errors.size(); ++f)
+        if (errors[f])
+        {
+            total += errors[f];
+            faces.push_back(static_cast<Index>(f));
+        }
+    return {total, std::move(faces)};
+}
+
+//! Minimum, maximum and sum of a field (in storage order) and the elements below a threshold.
+struct FieldRange
+{
+    double min = great, max = -great, sum = 0;
+    std::vector<Index> below;
+};
+
+FieldRange field_range(const Eigen::VectorXd& values, double threshold)
+{
+    FieldRange r;
+    for (Eigen::Index i = 0; i < values.size(); ++i)
+    {
+        if (values[i] < threshold)
+            r.below.push_back(static_cast<Index>(i));
+        r.min = std::min(r.min, values[i]);
+        r.max = std::max(r.max, values[i]);
+        r.sum += values[i];
+    }
+    return r;
+}
+
+//! A check of an internal-face field whose minimum and average are reported and whose
+//! values below a threshold fail (face weights, volume ratios).
+struct LowValueCheck
+{
+    const char* id;
+    const char* min_key;
+    const char* avg_key;
+    const char* count_key;
+    double threshold;
+    const char* failure;
+    const char* set;
+    const char* description;
+};
+
+CheckResult check_low_values(const LowValueCheck& spec, const Eigen::VectorXd& values)
+{
+    FieldRange range = field_range(values, spec.threshold);
+    const Index n = static_cast<Index>(values.size());
+    CheckResult r(spec.id);
+    r.add(spec.min_key, n > 0 ? range.min : 0.0);
+    r.add(spec.avg_key, n > 0 ? range.sum / n : 0.0);
+    r.add(spec.count_key, size_of(range.below));
+    if (!range.below.empty())
+        r.failure = spec.failure;
+    r.add_set(spec.set, MeshSet::Kind::face, std::move(range.below), spec.description);
+    return r;
+}
+
+} // namespace
+
+CheckResult check_edge_alignment(const std::vector<Edge>& non_aligned)
+{
+    CheckResult r("edgeAlignment");
+    r.add("nonAlignedEdges", size_of(non_aligned), false);
+    if (non_aligned.empty())
+        return r;
+    r.failure = "edgeAlignment";
+    std::vector<Index> points;
+    for (const Edge& e : non_aligned)
+    {
+        points.push_back(e.first);
+        points.push_back(e.second);
+    }
+    r.add_set("nonAlignedEdges", MeshSet::Kind::point, std::move(points),
+              "points on non-aligned edges");
+    return r;
+}
+
+CheckResult check_closed_boundary(const Vector3& openness)
+{
+    CheckResult r("closedBoundary");
+    r.add("boundaryOpenness", openness);
+    if (std::max({std::abs(openness.x()), std::abs(openness.y()), std::abs(openness.z())}) > 1e-6)
+        r.failure = "boundaryOpenness";
+    return r;
+}
+
+CheckResult check_closed_cells(const Eigen::VectorXd& openness, const Eigen::VectorXd& aspect)
+{
+    const Index n_cells = static_cast<Index>(openness.size());
+    double max_open = n_cells > 0 ? openness[0] : 0;
+    double max_ar = n_cells > 0 ? aspect[0] : 0;
+    std::vector<Index> open_cells, aspect_cells;
+    for (Index cell = 0; cell < n_cells; ++cell)
+    {
+        max_open = std::max(max_open, openness[cell]);
+        max_ar = std::max(max_ar, aspect[cell]);
+        if (openness[cell] > 1e-6)
+            open_cells.push_back(cell);
+        if (aspect[cell] > 1000)
+            aspect_cells.push_back(cell);
+    }
+    CheckResult r("closedCells");
+    r.add("maxCellOpenness", max_open);
+    r.add("maxAspectRatio", max_ar);
+    r.add("highAspectRatioCells", size_of(aspect_cells));
+    r.add("openCells", size_of(open_cells), false);
+    if (!open_cells.empty())
+        r.failure = "cellOpenness";
+    else if (!aspect_cells.empty())
+        r.failure = "aspectRatio";
+    r.add_set("nonClosedCells", MeshSet::Kind::cell, std::move(open_cells), "non closed cells");
+    r.add_set("highAspectRatioCells", MeshSet::Kind::cell, std::move(aspect_cells),
+              "cells with high aspect ratio");
+    return r;
+}
+
+CheckResult check_face_areas(const Eigen::VectorXd& mag_area)
+{
+    FieldRange range = field_range(mag_area, vsmall);
+    CheckResult r("faceAreas");
+    r.add("minFaceArea", range.min);
+    r.add("maxFaceArea", range.max);
+    if (range.min < vsmall)
+        r.failure = "faceAreas";
+    r.add_set("zeroAreaFaces", MeshSet::Kind::face, std::move(range.below), "zero area faces");
+    return r;
+}
+
+CheckResult check_cell_volumes(const Eigen::VectorXd& volumes)
+{
+    FieldRange range = field_range(volumes, vsmall);
+    CheckResult r("cellVolumes");
+    r.add("minVolume", range.min);
+    r.add("maxVolume", range.max);
+    r.add("totalVolume", range.sum);
+    r.add("negativeVolumeCells", size_of(range.below));
+    if (range.min < vsmall)
+        r.failure = "cellVolumes";
+    r.add_set("zeroVolumeCells", MeshSet::Kind::cell, std::move(range.below), "zero volume cells");
+    return r;
+}
+
+CheckResult check_face_orthogonality(Index n_int, const Eigen::VectorXd& ortho)
+{
+    const double threshold = std::cos(detail::deg_to_rad(70.0));
+    double min_cos = great, sum_cos = 0;
+    Index severe = 0, errors = 0;
+    std::vector<Index> faces;
+    for (Index f = 0; f < static_cast<Index>(ortho.size()); ++f)
+    {
+        const double o = ortho[f];
+        if (o < threshold)
+        {
+            faces.push_back(f);
+            (o > small ? severe : errors)++;
+        }
+        if (f < n_int)
+        {
+            min_cos = std::min(min_cos, o);
+            sum_cos += o;
+        }
+    }
+    CheckResult r("faceOrthogonality");
+    r.add("maxNonOrthogonality", n_int > 0 ? non_orthogonality_degrees(min_cos) : 0.0);
+    r.add("avgNonOrthogonality", n_int > 0 ? non_orthogonality_degrees(sum_cos / n_int) : 0.0);
+    r.add("severelyNonOrthogonalFaces", severe);
+    r.add("nonOrthogonalityErrors", errors);
+    if (errors > 0)
+        r.failure = "nonOrthogonality";
+    r.add_set("nonOrthoFaces", MeshSet::Kind::face, std::move(faces), "non-orthogonal faces");
+    return r;
+}
+
+CheckResult check_face_pyramids(const std::vector<char>& errors)
+{
+    auto [total, faces] = error_faces(errors);
+    CheckResult r("facePyramids");
+    r.add("incorrectlyOrientedFacePyramids", total);
+    if (total > 0)
+        r.failure = "facePyramids";
+    r.add_set("wrongOrientedFaces", MeshSet::Kind::face, std::move(faces),
+              "faces with incorrect orientation");
+    return r;
+}
+
+CheckResult check_face_skewness(const Eigen::VectorXd& skewness)
+{
+    double max_skew = skewness.size() > 0 ? skewness[0] : 0;
+    std::vector<Index> faces;
+    for (Eigen::Index f = 0; f < skewness.size(); ++f)
+    {
+        max_skew = std::max(max_skew, skewness[f]);
+        if (skewness[f] > 4)
+            faces.push_back(static_cast<Index>(f));
+    }
+    CheckResult r("faceSkewness");
+    r.add("maxSkewness", max_skew);
+    r.add("highlySkewedFaces", size_of(faces));
+    if (!faces.empty())
+        r.failure = "skewness";
+    r.add_set("skewFaces", MeshSet::Kind::face, std::move(faces), "skew faces");
+    return r;
+}
+
+CheckResult check_coupled_points()
+{
+    return CheckResult("coupledPoints");
+}
+
+CheckResult check_face_tets(const std::vector<char>& errors)
+{
+    auto [total, faces] = error_faces(errors);
+    CheckResult r("faceTets");
+    r.add("faceTetErrors", total);
+    if (total > 0)
+        r.failure = "faceTets";
+    r.add_set("lowQualityTetFaces", MeshSet::Kind::face, std::move(faces),
+              "faces with low quality or negative volume decomposition tets");
+    return r;
+}
+
+CheckResult check_edge_length(const EdgeLengths& lengths)
+{
+    CheckResult r("edgeLength");
+    r.add("minEdgeLength", lengths.min_length);
+    r.add("maxEdgeLength", lengths.max_length);
+    r.add("shortEdges", lengths.n_short, false);
+    r.add_set("shortEdges", MeshSet::Kind::point, flagged(lengths.short_edge_points),
+              "points on short edges");
+    return r;
+}
+
+CheckResult check_face_angles(const Eigen::VectorXd& concavity)
+{
+    double max_sin = 0;
+    std::vector<Index> faces;
+    for (Eigen::Index f = 0; f < concavity.size(); ++f)
+    {
+        max_sin = std::max(max_sin, concavity[f]);
+        if (concavity[f] > small)
+            faces.push_back(static_cast<Index>(f));
+    }
+    CheckResult r("faceAngles");
+    r.add("concaveFaces", size_of(faces));
+    r.add("maxConcaveAngle", detail::rad_to_deg(std::asin(std::min(1.0, max_sin))));
+    r.add_set("concaveFaces", MeshSet::Kind::face, std::move(faces), "faces with concave angles");
+    return r;
+}
+
+CheckResult check_face_flatness(const PolyMesh& mesh, const Eigen::VectorXd& mag_area,
+                                const Eigen::VectorXd& flatness)
+{
+    double min_flat = great, sum_flat = 0;
+    Index n_summed = 0;
+    std::vector<Index> faces;
+    for (Index f = 0; f < mesh.n_faces(); ++f)
+        if (mesh.faces.item_size(f) > 3 && mag_area[f] > vsmall)
+        {
+            sum_flat += flatness[f];
+            ++n_summed;
+            min_flat = std::min(min_flat, flatness[f]);
+            if (flatness[f] < 0.8)
+                faces.push_back(f);
+        }
+    CheckResult r("faceFlatness");
+    r.add("minFaceFlatness", n_summed > 0 ? min_flat : 1.0);
+    r.add("warpedFaces", size_of(faces));
+    r.add("avgFaceFlatness", n_summed > 0 ? sum_flat / n_summed : 1.0, false);
+    r.add("flatnessFaces", n_summed, false);
+    r.add_set("warpedFaces", MeshSet::Kind::face, std::move(faces), "warped faces");
+    return r;
+}
+
+CheckResult check_cell_determinant(const Eigen::VectorXd& det)
+{
+    const Index n_cells = static_cast<Index>(det.size());
+    double min_det = n_cells > 0 ? det[0] : 0, sum_det = 0;
+    std::vector<Index> cells;
+    for (Index cell = 0; cell < n_cells; ++cell)
+    {
+        min_det = std::min(min_det, det[cell]);
+        sum_det += det[cell];
+        if (det[cell] < 1e-3)
+            cells.push_back(cell);
+    }
+    CheckResult r("cellDeterminant");
+    r.add("minDeterminant", min_det);
+    r.add("avgDeterminant", n_cells > 0 ? sum_det / n_cells : 0.0);
+    r.add("smallDeterminantCells", size_of(cells));
+    if (!cells.empty())
+        r.failure = "cellDeterminant";
+    r.add_set("underdeterminedCells", MeshSet::Kind::cell, std::move(cells),
+              "under-determined cells");
+    return r;
+}
+
+CheckResult check_concave_cells(const std::vector<char>& concave)
+{
+    std::vector<Index> cells = flagged(concave);
+    CheckResult r("concaveCells");
+    r.add("concaveCells", size_of(cells));
+    if (!cells.empty())
+        r.failure = "concaveCells";
+    r.add_set("concaveCells", MeshSet::Kind::cell, std::move(cells), "concave cells");
+    return r;
+}
+
+CheckResult check_face_weight(const Eigen::VectorXd& weights)
+{
+    return check_low_values({"faceWeight", "minFaceWeight", "avgFaceWeight", "lowWeightFaces", 0.05,
+                             "faceWeight", "lowWeightFaces",
+                             "faces with low interpolation weights"},
+                            weights);
+}
+
+CheckResult check_volume_ratio(const Eigen::VectorXd& ratios)
+{
+    return check_low_values({"volumeRatio", "minVolumeRatio", "avgVolumeRatio",
+                             "lowVolumeRatioFaces", 0.01, "volumeRatio", "lowVolRatioFaces",
+                             "faces with low volume ratio cells"},
+                            ratios);
+}
+
+} // namespace meshmorph

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file checkMesh's geometry checks (checkGeometry.C; OpenFOAM primitiveMesh::check* and
+//! polyMesh::check*), one function each: a metric field in, threshold, offender set and
+//! verdict out. The statistics' keys are the JSON keys of checkMeshQuality -json.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/quality/check_result.h"
+#include "meshmorph/quality/edge_alignment.h"
+#include "meshmorph/quality/edge_lengths.h"
+
+namespace meshmorph
+{
+
+//! \brief 2D/1D meshes: edges neither along nor across the valid directions. Fails
+//! "edgeAlignment"; statistic "nonAlignedEdges"; set nonAlignedEdges (their points).
+//! \param non_aligned non_aligned_edges(mesh, directions).
+CheckResult check_edge_alignment(const std::vector<Edge>& non_aligned);
+
+//! \brief Boundary openness above 1e-6 in some direction. Fails "boundaryOpenness";
+//! statistic boundaryOpenness. \param openness boundary_openness(mesh, geometry).
+CheckResult check_closed_boundary(const Vector3& openness);
+
+//! \brief Cell openness above 1e-6 (fails "cellOpenness"), else aspect ratio above 1000
+//! (fails "aspectRatio"). Statistics maxCellOpenness, maxAspectRatio, highAspectRatioCells,
+//! "openCells"; sets nonClosedCells, highAspectRatioCells.
+CheckResult check_closed_cells(const Eigen::VectorXd& cell_openness,
+                               const Eigen::VectorXd& cell_aspect_ratio);
+
+//! \brief Face areas below VSMALL. Fails "faceAreas"; statistics minFaceArea, maxFaceArea;
+//! set zeroAreaFaces. \param face_area_magnitudes face_area_magnitudes(geometry).
+CheckResult check_face_areas(const Eigen::VectorXd& face_area_magnitudes);
+
+//! \brief Cell volumes below VSMALL. Fails "cellVolumes"; statistics minVolume, maxVolume,
+//! totalVolume, negativeVolumeCells; set zeroVolumeCells.
+CheckResult check_cell_volumes(const Eigen::VectorXd& cell_volumes);
+
+//! \brief Non-orthogonality: faces above 70 degrees are severe, at 90 or more (cos <= SMALL)
+//! errors. Fails "nonOrthogonality" on errors; statistics maxNonOrthogonality,
+//! avgNonOrthogonality (over internal faces), severelyNonOrthogonalFaces,
+//! nonOrthogonalityErrors; set nonOrthoFaces. \param orthogonality face_orthogonality().
+CheckResult check_face_orthogonality(Index n_internal_faces, const Eigen::VectorXd& orthogonality);
+
+//! \brief Wrongly oriented face pyramids. Fails "facePyramids"; statistic
+//! incorrectlyOrientedFacePyramids; set wrongOrientedFaces.
+//! \param errors face_pyramid_errors(mesh, geometry).
+CheckResult check_face_pyramids(const std::vector<char>& errors);
+
+//! \brief Skewness above 4. Fails "skewness"; statistics maxSkewness, highlySkewedFaces;
+//! set skewFaces. \param skewness face_skewness(mesh, geometry).
+CheckResult check_face_skewness(const Eigen::VectorXd& skewness);
+
+//! \brief Coupled point locations: always passes (no patches are treated as coupled).
+CheckResult check_coupled_points();
+
+//! \brief -allGeometry: face tet errors. Fails "faceTets"; statistic faceTetErrors; set
+//! lowQualityTetFaces. \param errors face_tet_errors(mesh, geometry).
+CheckResult check_face_tets(const std::vector<char>& errors);
+
+//! \brief -allGeometry: edge lengths. Never fails. Statistics minEdgeLength, maxEdgeLength,
+//! "shortEdges"; set shortEdges (points).
+CheckResult check_edge_length(const EdgeLengths& lengths);
+
+//! \brief -allGeometry: concave face corners. Never fails. Statistics concaveFaces,
+//! maxConcaveAngle [deg]; set concaveFaces. \param concavity face_concavity(mesh, geometry).
+CheckResult check_face_angles(const Eigen::VectorXd& concavity);
+
+//! \brief -allGeometry: flatness below 0.8 over the faces of more than 3 points with area
+//! above VSMALL. Never fails. Statistics minFaceFlatness, warpedFaces, "avgFaceFlatness",
+//! "flatnessFaces" (faces measured); set warpedFaces.
+CheckResult check_face_flatness(const PolyMesh& mesh, const Eigen::VectorXd& face_area_magnitudes,
+                                const Eigen::VectorXd& flatness);
+
+//! \brief -allGeometry: cell determinant below 1e-3. Fails "cellDeterminant"; statistics
+//! minDeterminant, avgDeterminant, smallDeterminantCells; set underdeterminedCells.
+CheckResult check_cell_determinant(const Eigen::VectorXd& cell_determinant);
+
+//! \brief -allGeometry: concave cells. Fails "concaveCells"; statistic concaveCells; set
+//! concaveCells. \param concave concave_cells(mesh, cell_faces, geometry).
+CheckResult check_concave_cells(const std::vector<char>& concave);
+
+//! \brief -allGeometry: interpolation weights below 0.05. Fails "faceWeight"; statistics
+//! minFaceWeight, avgFaceWeight, lowWeightFaces; set lowWeightFaces.
+//! \param weights face_weights(mesh, geometry).
+CheckResult check_face_weight(const Eigen::VectorXd& weights);
+
+//! \brief -allGeometry: neighbour volume ratios below 0.01. Fails "volumeRatio"; statistics
+//! minVolumeRatio, avgVolumeRatio, lowVolumeRatioFaces; set lowVolRatioFaces.
+//! \param ratios face_volume_ratio(mesh, geometry.cell_volumes).
+CheckResult check_volume_ratio(const Eigen::VectorXd& ratios);
+
+} // namespace meshmorph

@@ -1,0 +1,598 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// checkMesh's report text (OpenFOAM v1912 checkMesh.C, checkTopology.C, checkGeometry.C and
+// the primitiveMesh::check* report lines; docs/checkmesh-spec.md).
+#include "meshmorph/quality/report_text.h"
+
+#include <cstdio>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+
+namespace meshmorph
+{
+
+std::string format_scalar(double value, int precision)
+{
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*g", precision, value);
+    return buffer;
+}
+
+namespace
+{
+
+//! The report being written, with OpenFOAM's number formatting.
+class Writer
+{
+public:
+    Writer(const QualityReport& report, const CheckMeshSettings& settings)
+        : report(report), settings(settings), right_justify_(report.cell_types.polyhedron > 0)
+    {
+    }
+    std::string s(double v) const { return format_scalar(v, settings.write_precision); }
+    //! A vector as OpenFOAM writes it: (x y z).
+    std::string v(const Vector3& x) const
+    {
+        std::string text(1, '(');
+        text.append(s(x.x())).append(1, ' ').append(s(x.y())).append(1, ' ').append(s(x.z()));
+        return text.append(1, ')');
+    }
+    //! Justified in `width` columns (std::setw). checkMesh's tables are left-justified,
+    //! except after a polyhedra breakdown: v1912 sets ios::right there and never resets it,
+    //! so every later table is right-justified.
+    std::string w(const std::string& text, std::size_t width) const
+    {
+        if (text.size() >= width)
+            return text;
+        const std::string fill(width - text.size(), ' ');
+        return right_justify_ ? fill + text : text + fill;
+    }
+
+    std::ostringstream out;
+    const QualityReport& report;
+    const CheckMeshSettings& settings;
+
+private:
+    bool right_justify_;
+};
+
+//! The lines of one check; its sets' "<<Writing" lines follow.
+using Formatter = void (*)(const CheckResult&, Writer&);
+
+// ---------------------------------------------------------------------------------------
+// Topology
+
+void boundary_definition(const CheckResult& c, Writer& t)
+{
+    t.out << (c.count("boundaryDefinitionOK") ? "    Boundary definition OK.\n"
+                                              : " ***Boundary definition is in error.\n");
+}
+
+void empty_patches(const CheckResult& c, Writer& t)
+{
+    if (!c.count("emptyFacesDivisible"))
+        t.out << " ***Total number of faces on empty patches is not divisible by the number of "
+                 "cells in the mesh. Hence this mesh is not 1D or 2D.\n";
+}
+
+void cell_addressing(const CheckResult& c, Writer& t)
+{
+    if (c.failed())
+        t.out << "    Illegal cells (less than 4 faces or out of range faces) found,  number of "
+                 "cells: "
+              << c.count("illegalCells") << "\n";
+    else
+        t.out << "    Cell to face addressing OK.\n";
+}
+
+void point_usage(const CheckResult& c, Writer& t)
+{
+    const Index n = c.count("unusedPoints");
+    if (c.failed())
+        t.out << " ***Unused points found in the mesh, number unused by faces: " << n
+              << " number unused by cells: " << n << "\n";
+    else
+        t.out << "    Point usage OK.\n";
+}
+
+void upper_triangular(const CheckResult& c, Writer& t)
+{
+    if (const Index n = c.count("cellsWithMultipleFaces"); n > 0)
+        t.out << "  <<Found " << n << " neighbouring cells with multiple inbetween faces.\n";
+    t.out << (c.failed() ? " ***Faces not in upper triangular order.\n"
+                         : "    Upper triangular ordering OK.\n");
+}
+
+void face_vertices(const CheckResult& c, Writer& t)
+{
+    if (c.failed())
+        t.out << "    Faces with invalid vertex labels found,  number of faces: "
+              << c.count("faceVertexErrors") << "\n";
+    else
+        t.out << "    Face vertices OK.\n";
+}
+
+void cells_zip_up(const CheckResult& c, Writer& t)
+{
+    if (c.failed())
+        t.out << " ***Open cells found, number of cells: " << c.count("openCells")
+              << ". This problem may be fixable using the zipUpMesh utility.\n";
+    else
+        t.out << "    Topological cell zip-up check OK.\n";
+}
+
+void face_faces(const CheckResult& c, Writer& t)
+{
+    const Index baffles = c.count("baffleFaces"), duplicates = c.count("duplicateFaces");
+    const Index order_errors = c.count("nonConsecutiveFaces");
+    if (baffles > 0)
+        t.out << "    Number of identical duplicate faces (baffle faces): " << baffles << "\n";
+    if (duplicates > 0)
+        t.out << "  <<Number of duplicate (not baffle) faces found: " << duplicates
+              << ". This might indicate a problem.\n";
+    if (order_errors > 0)
+        t.out << "  <<Number of faces with non-consecutive shared points: " << order_errors
+              << ". This might indicate a problem.\n";
+    if (duplicates == 0 && order_errors == 0)
+        t.out << "    Face-face connectivity OK.\n";
+}
+
+void no_lines(const CheckResult&, Writer&) {}
+
+void regions(const CheckResult& c, Writer& t)
+{
+    const Index n = c.count("regions");
+    if (n <= 1)
+    {
+        t.out << "    Number of regions: " << n << " (OK).\n";
+        return;
+    }
+    t.out << "   *Number of regions: " << n << "\n"
+          << "    The mesh has multiple regions which are not connected by any face.\n";
+    if (t.settings.report_sets)
+        for (std::size_t i = 0; i < c.sets.size(); ++i)
+            t.out << "  <<Writing region " << i << " with " << c.sets[i].set.labels.size()
+                  << " cells to cellSet region" << i << "\n";
+}
+
+// ---------------------------------------------------------------------------------------
+// Geometry
+
+void edge_alignment(const CheckResult& c, Writer& t)
+{
+    if (c.failed())
+        t.out << " ***Number of edges not aligned with or perpendicular to non-empty "
+                 "directions: "
+              << c.count("nonAlignedEdges") << "\n";
+    else
+        t.out << "    All edges aligned with or perpendicular to non-empty directions.\n";
+}
+
+void closed_boundary(const CheckResult& c, Writer& t)
+{
+    const std::string o = t.v(c.vector("boundaryOpenness"));
+    if (c.failed())
+        t.out << " ***Boundary openness " << o << " possible hole in boundary description.\n";
+    else
+        t.out << "    Boundary openness " << o << " OK.\n";
+}
+
+void closed_cells(const CheckResult& c, Writer& t)
+{
+    const double max_open = c.real("maxCellOpenness"), max_ar = c.real("maxAspectRatio");
+    if (const Index n = c.count("openCells"); n > 0)
+        t.out << " ***Open cells found, max cell openness: " << t.s(max_open)
+              << ", number of open cells " << n << "\n";
+    else if (const Index n_ar = c.count("highAspectRatioCells"); n_ar > 0)
+        t.out << " ***High aspect ratio cells found, Max aspect ratio: " << t.s(max_ar)
+              << ", number of cells " << n_ar << "\n";
+    else
+        t.out << "    Max cell openness = " << t.s(max_open) << " OK.\n"
+              << "    Max aspect ratio = " << t.s(max_ar) << " OK.\n";
+}
+
+void face_areas(const CheckResult& c, Writer& t)
+{
+    if (c.failed())
+        t.out << " ***Zero or negative face area detected.  Minimum area: "
+              << t.s(c.real("minFaceArea")) << "\n";
+    else
+        t.out << "    Minimum face area = " << t.s(c.real("minFaceArea"))
+              << ". Maximum face area = " << t.s(c.real("maxFaceArea"))
+              << ".  Face area magnitudes OK.\n";
+}
+
+void cell_volumes(const CheckResult& c, Writer& t)
+{
+    if (c.failed())
+        t.out << " ***Zero or negative cell volume detected.  Minimum negative volume: "
+              << t.s(c.real("minVolume"))
+              << ", Number of negative volume cells: " << c.count("negativeVolumeCells") << "\n";
+    else
+        t.out << "    Min volume = " << t.s(c.real("minVolume"))
+              << ". Max volume = " << t.s(c.real("maxVolume"))
+              << ".  Total volume = " << t.s(c.real("totalVolume")) << ".  Cell volumes OK.\n";
+}
+
+void face_orthogonality(const CheckResult& c, Writer& t)
+{
+    if (t.report.n_internal_faces > 0)
+        t.out << "    Mesh non-orthogonality Max: " << t.s(c.real("maxNonOrthogonality"))
+              << " average: " << t.s(c.real("avgNonOrthogonality")) << "\n";
+    if (const Index severe = c.count("severelyNonOrthogonalFaces"); severe > 0)
+        t.out << "   *Number of severely non-orthogonal (> 70 degrees) faces: " << severe << ".\n";
+    if (c.failed())
+        t.out << " ***Number of non-orthogonality errors: " << c.count("nonOrthogonalityErrors")
+              << ".\n";
+    else
+        t.out << "    Non-orthogonality check OK.\n";
+}
+
+void face_pyramids(const CheckResult& c, Writer& t)
+{
+    if (c.failed())
+        t.out << " ***Error in face pyramids: " << c.count("incorrectlyOrientedFacePyramids")
+              << " faces are incorrectly oriented.\n";
+    else
+        t.out << "    Face pyramids OK.\n";
+}
+
+void face_skewness(const CheckResult& c, Writer& t)
+{
+    if (c.failed())
+        t.out << " ***Max skewness = " << t.s(c.real("maxSkewness")) << ", "
+              << c.count("highlySkewedFaces")
+              << " highly skew faces detected which may impair the quality of the results\n";
+    else
+        t.out << "    Max skewness = " << t.s(c.real("maxSkewness")) << " OK.\n";
+}
+
+void coupled_points(const CheckResult&, Writer& t)
+{
+    t.out << "    Coupled point location match (average 0) OK.\n";
+}
+
+void face_tets(const CheckResult& c, Writer& t)
+{
+    if (c.failed())
+        t.out << " ***Error in face tets: " << c.count("faceTetErrors")
+              << " faces with low quality or negative volume decomposition tets.\n";
+    else
+        t.out << "    Face tets OK.\n";
+}
+
+void edge_length(const CheckResult& c, Writer& t)
+{
+    const std::string lengths = t.s(c.real("minEdgeLength")) + " " + t.s(c.real("maxEdgeLength"));
+    if (const Index n = c.count("shortEdges"); n > 0)
+        t.out << "   *Edges too small, min/max edge length = " << lengths
+              << ", number too small: " << n << "\n";
+    else
+        t.out << "    Min/max edge length = " << lengths << " OK.\n";
+}
+
+void face_angles(const CheckResult& c, Writer& t)
+{
+    if (const Index n = c.count("concaveFaces"); n > 0)
+        t.out << "   *There are " << n
+              << " faces with concave angles between consecutive edges. Max concave angle = "
+              << t.s(c.real("maxConcaveAngle")) << " degrees.\n";
+    else
+        t.out << "    All angles in faces OK.\n";
+}
+
+void face_flatness(const CheckResult& c, Writer& t)
+{
+    const double min = c.real("minFaceFlatness");
+    if (c.count("flatnessFaces") > 0)
+        t.out << "    Face flatness (1 = flat, 0 = butterfly) : min = " << t.s(min)
+              << "  average = " << t.s(c.real("avgFaceFlatness")) << "\n";
+    if (const Index n = c.count("warpedFaces"); n > 0)
+        t.out << "   *There are " << n
+              << " faces with ratio between projected and actual area < 0.8\n"
+              << "    Minimum ratio (minimum flatness, maximum warpage) = " << t.s(min) << "\n";
+    else
+        t.out << "    All face flatness OK.\n";
+}
+
+void cell_determinant(const CheckResult& c, Writer& t)
+{
+    if (t.report.n_cells > 0)
+        t.out << "    Cell determinant (wellposedness) : minimum: " << t.s(c.real("minDeterminant"))
+              << " average: " << t.s(c.real("avgDeterminant")) << "\n";
+    if (c.failed())
+        t.out << " ***Cells with small determinant (< 0.001) found, number of cells: "
+              << c.count("smallDeterminantCells") << "\n";
+    else
+        t.out << "    Cell determinant check OK.\n";
+}
+
+void concave_cells(const CheckResult& c, Writer& t)
+{
+    if (c.failed())
+        t.out << " ***Concave cells (using face planes) found, number of cells: "
+              << c.count("concaveCells") << "\n";
+    else
+        t.out << "    Concave cell check OK.\n";
+}
+
+//! Face weights and volume ratios: "<what> : minimum: .. average: ..", then the verdict.
+void low_values(const CheckResult& c, Writer& t, std::string_view what, std::string_view limit,
+                std::string_view min_key, std::string_view avg_key, std::string_view count_key)
+{
+    if (t.report.n_internal_faces > 0)
+        t.out << "    Face " << what << " : minimum: " << t.s(c.real(min_key))
+              << " average: " << t.s(c.real(avg_key)) << "\n";
+    if (c.failed())
+        t.out << " ***Faces with small " << what << " (< " << limit
+              << ") found, number of faces: " << c.count(count_key) << "\n";
+    else
+        t.out << "    Face " << what << " check OK.\n";
+}
+
+void face_weight(const CheckResult& c, Writer& t)
+{
+    low_values(c, t, "interpolation weight", "0.05", "minFaceWeight", "avgFaceWeight",
+               "lowWeightFaces");
+}
+
+void volume_ratio(const CheckResult& c, Writer& t)
+{
+    low_values(c, t, "volume ratio", "0.01", "minVolumeRatio", "avgVolumeRatio",
+               "lowVolumeRatioFaces");
+}
+
+// ---------------------------------------------------------------------------------------
+// -meshQuality
+
+//! The line of a meshQualityDict criterion, up to its count.
+std::string criterion_line(const std::string& key, const Writer& t)
+{
+    const MeshQualitySettings& q = *t.settings.mesh_quality;
+    const auto limit = [&](double v, std::size_t width) { return t.w(t.s(v), width); };
+    if (key == "maxNonOrtho")
+        return "    non-orthogonality > " + limit(q.max_non_ortho, 3) +
+               " degrees                        : ";
+    if (key == "minVol")
+        return "    faces with face pyramid volume < " + limit(q.min_vol, 5) +
+               "                 : ";
+    if (key == "minTetQuality")
+        return "    faces with face-decomposition tet quality < " + limit(q.min_tet_quality, 5) +
+               "      : ";
+    if (key == "maxConcave")
+        return "    faces with concavity > " + limit(q.max_concave, 3) +
+               " degrees                     : ";
+    if (key == "minArea")
+        return "    faces with area < " + limit(q.min_area, 5) +
+               " m^2                            : ";
+    if (key == "maxInternalSkewness")
+        return "    faces with skewness > " + limit(q.max_internal_skewness, 3) +
+               " (internal) or " + limit(q.max_boundary_skewness, 3) + " (boundary) : ";
+    if (key == "minFaceWeight")
+        return "    faces with interpolation weights (0..1)  < " + limit(q.min_face_weight, 5) +
+               "       : ";
+    if (key == "minVolRatio")
+        return "    faces with volume ratio of neighbour cells < " + limit(q.min_vol_ratio, 5) +
+               "     : ";
+    if (key == "minTwist")
+        return "    faces with face twist < " + limit(q.min_twist, 5) +
+               "                          : ";
+    if (key == "minTriangleTwist")
+        return "    faces with triangle twist < " + limit(q.min_triangle_twist, 5) +
+               "                      : ";
+    if (key == "minFaceFlatness")
+        return "    faces with flatness < " + limit(q.min_face_flatness, 5) +
+               "                      : ";
+    if (key == "minDeterminant")
+        return "    faces on cells with determinant < " + limit(q.min_determinant, 5) +
+               "                : ";
+    throw std::logic_error("no report line for meshQualityDict criterion " + key);
+}
+
+void mesh_quality(const CheckResult& c, Writer& t)
+{
+    t.out << "Checking faces in error :\n";
+    for (const auto& [key, count] : c.counts("meshQualityFailures"))
+        t.out << criterion_line(key, t) << count << "\n";
+}
+
+// ---------------------------------------------------------------------------------------
+// The table and the sections
+
+enum class Section
+{
+    topology,
+    geometry
+};
+
+struct Format
+{
+    std::string_view id;
+    Section section;
+    Formatter print;
+};
+
+const Format formats[] = {
+    {"boundaryDefinition", Section::topology, boundary_definition},
+    {"emptyPatches", Section::topology, empty_patches},
+    {"cellAddressing", Section::topology, cell_addressing},
+    {"pointUsage", Section::topology, point_usage},
+    {"upperTriangular", Section::topology, upper_triangular},
+    {"faceVertices", Section::topology, face_vertices},
+    {"cellsZipUp", Section::topology, cells_zip_up},
+    {"faceFaces", Section::topology, face_faces},
+    {"internalFaceCells", Section::topology, no_lines},
+    {"regions", Section::topology, regions},
+    {"edgeAlignment", Section::geometry, edge_alignment},
+    {"closedBoundary", Section::geometry, closed_boundary},
+    {"closedCells", Section::geometry, closed_cells},
+    {"faceAreas", Section::geometry, face_areas},
+    {"cellVolumes", Section::geometry, cell_volumes},
+    {"faceOrthogonality", Section::geometry, face_orthogonality},
+    {"facePyramids", Section::geometry, face_pyramids},
+    {"faceSkewness", Section::geometry, face_skewness},
+    {"coupledPoints", Section::geometry, coupled_points},
+    {"faceTets", Section::geometry, face_tets},
+    {"edgeLength", Section::geometry, edge_length},
+    {"faceAngles", Section::geometry, face_angles},
+    {"faceFlatness", Section::geometry, face_flatness},
+    {"cellDeterminant", Section::geometry, cell_determinant},
+    {"concaveCells", Section::geometry, concave_cells},
+    {"faceWeight", Section::geometry, face_weight},
+    {"volumeRatio", Section::geometry, volume_ratio},
+    {"meshQuality", Section::geometry, mesh_quality},
+};
+
+const Format& format_of(const CheckResult& c)
+{
+    for (const Format& f : formats)
+        if (f.id == c.id)
+            return f;
+    throw std::logic_error("the report has no formatter for check " + c.id);
+}
+
+//! Every check of `section`, in order, each followed by its sets' "<<Writing" lines.
+void print_checks(Section section, Writer& t)
+{
+    for (const CheckResult& c : t.report.checks)
+    {
+        const Format& format = format_of(c);
+        if (format.section != section)
+            continue;
+        format.print(c, t);
+        if (!t.settings.report_sets)
+            continue;
+        for (const OffenderSet& s : c.sets)
+            if (!s.description.empty())
+                t.out << "  <<Writing " << s.set.labels.size() << " " << s.description << " to set "
+                      << s.set.name << "\n";
+    }
+}
+
+void mesh_stats(Writer& t)
+{
+    const QualityReport& r = t.report;
+    std::ostringstream& out = t.out;
+    out << "Mesh stats\n"
+        << "    points:           " << r.n_points << "\n";
+    if (r.n_internal_points >= 0)
+        out << "    internal points:  " << r.n_internal_points << "\n";
+    if (r.edges)
+        out << "    edges:            " << r.edges->edges << "\n"
+            << "    internal edges:   " << r.edges->internal_edges << "\n"
+            << "    internal edges using one boundary point:   "
+            << r.edges->internal_edges_one_boundary_point << "\n"
+            << "    internal edges using two boundary points:  "
+            << r.edges->internal_edges_two_boundary_points << "\n";
+    out << "    faces:            " << r.n_faces << "\n"
+        << "    internal faces:   " << r.n_internal_faces << "\n"
+        << "    cells:            " << r.n_cells << "\n"
+        << "    faces per cell:   "
+        << t.s(double(r.n_faces + r.n_internal_faces) / std::max<Index>(1, r.n_cells)) << "\n"
+        << "    boundary patches: " << r.n_patches << "\n"
+        << "    point zones:      " << r.n_point_zones << "\n"
+        << "    face zones:       " << r.n_face_zones << "\n"
+        << "    cell zones:       " << r.n_cell_zones << "\n\n";
+}
+
+void cell_types(Writer& t)
+{
+    const CellShapeCounts& counts = t.report.cell_types;
+    std::ostringstream& out = t.out;
+    out << "Overall number of cells of each type:\n"
+        << "    hexahedra:     " << counts.hex << "\n"
+        << "    prisms:        " << counts.prism << "\n"
+        << "    wedges:        " << counts.wedge << "\n"
+        << "    pyramids:      " << counts.pyramid << "\n"
+        << "    tet wedges:    " << counts.tet_wedge << "\n"
+        << "    tetrahedra:    " << counts.tet << "\n"
+        << "    polyhedra:     " << counts.polyhedron << "\n";
+    if (counts.polyhedron > 0)
+    {
+        out << "    Breakdown of polyhedra by number of faces:\n"
+            << "        faces   number of cells\n";
+        for (const auto& [n_faces, n] : counts.polyhedra_by_faces)
+            out << std::setw(13) << std::right << n_faces << "   " << n << "\n";
+    }
+    out << "\n";
+}
+
+void surface_table(const std::string& what, const std::vector<SurfaceTopology>& rows, Writer& t)
+{
+    const bool all_geometry = t.settings.all_geometry;
+    t.out << "    " << t.w(what, 20) << t.w("Faces", 9) << t.w("Points", 9)
+          << t.w("Surface topology", 34) << (all_geometry ? " Bounding box" : "") << "\n";
+    for (const SurfaceTopology& s : rows)
+    {
+        t.out << "    " << t.w(s.name, 20) << t.w(std::to_string(s.n_faces), 9)
+              << t.w(std::to_string(s.n_points), 9) << t.w(s.type, 34);
+        if (all_geometry && s.n_points > 0)
+            t.out << ' ' << t.v(s.bb_min) << " " << t.v(s.bb_max);
+        t.out << "\n";
+    }
+}
+
+void topology_tables(Writer& t)
+{
+    const QualityReport& r = t.report;
+    t.out << "\nChecking patch topology for multiply connected surfaces...\n";
+    surface_table("Patch", r.patch_topology, t);
+    t.out << "\nChecking faceZone topology for multiply connected surfaces...\n";
+    if (r.face_zone_topology.empty())
+        t.out << "    No faceZones found.\n";
+    else
+        surface_table("FaceZone", r.face_zone_topology, t);
+    t.out << "\nChecking basic cellZone addressing...\n";
+    if (r.cell_zones.empty())
+        t.out << "    No cellZones found.\n";
+    else
+    {
+        t.out << "    " << t.w("CellZone", 20) << t.w("Cells", 13) << t.w("Points", 13)
+              << t.w("Volume", 13) << "BoundingBox\n";
+        for (const CellZoneSummary& z : r.cell_zones)
+            t.out << "    " << t.w(z.name, 19) << ' ' << t.w(std::to_string(z.n_cells), 12) << ' '
+                  << t.w(std::to_string(z.n_points), 12) << ' ' << t.w(t.s(z.volume), 12) << ' '
+                  << t.v(z.bb_min) << " " << t.v(z.bb_max) << "\n";
+    }
+    t.out << "\n";
+}
+
+void domain(Writer& t)
+{
+    const QualityReport& r = t.report;
+    const MeshDirections& dirs = r.directions;
+    const Eigen::Vector3i valid = (dirs.geometric + Eigen::Vector3i::Ones()) / 2;
+    const Eigen::Vector3i sol = (dirs.solution + Eigen::Vector3i::Ones()) / 2;
+    t.out << "    Overall domain bounding box " << t.v(r.bounding_box_min) << " "
+          << t.v(r.bounding_box_max) << "\n"
+          << "    Mesh has " << dirs.n_geometric() << " geometric (non-empty/wedge) directions ("
+          << valid[0] << " " << valid[1] << " " << valid[2] << ")\n"
+          << "    Mesh has " << dirs.n_solution() << " solution (non-empty) directions (" << sol[0]
+          << " " << sol[1] << " " << sol[2] << ")\n";
+}
+
+} // namespace
+
+std::string report_text(const QualityReport& report, const CheckMeshSettings& settings)
+{
+    Writer t(report, settings);
+    mesh_stats(t);
+    cell_types(t);
+    if (!settings.no_topology)
+    {
+        t.out << "Checking topology...\n";
+        print_checks(Section::topology, t);
+        topology_tables(t);
+    }
+    t.out << "Checking geometry...\n";
+    domain(t);
+    print_checks(Section::geometry, t);
+    if (report.failed_checks == 0)
+        t.out << "\nMesh OK.\n";
+    else
+        t.out << "\nFailed " << report.failed_checks << " mesh checks.\n";
+    return t.out.str();
+}
+
+} // namespace meshmorph

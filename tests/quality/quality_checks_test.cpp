@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Tests of the check tier (check_result.h, geometry_checks.h, topology_checks.h,
+// mesh_quality_checks.h) and of the report walkers (report_text.h, quality_json.h).
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "helpers.h"
+#include "meshmorph/quality/cell_validity.h"
+#include "meshmorph/quality/check_mesh.h"
+#include "meshmorph/quality/face_orthogonality.h"
+#include "meshmorph/quality/face_skewness.h"
+#include "meshmorph/quality/geometry_checks.h"
+#include "meshmorph/quality/mesh_quality_checks.h"
+#include "meshmorph/quality/quality_json.h"
+#include "meshmorph/quality/report_text.h"
+#include "meshmorph/quality/topology_checks.h"
+
+using namespace meshmorph;
+
+TEST(CheckResult, sets_are_sorted_distinct_and_empty_ones_dropped)
+{
+    CheckResult r("test");
+    r.add_set("empty", MeshSet::Kind::face, {}, "nothing");
+    r.add_set("some", MeshSet::Kind::cell, {5, 1, 5, 3}, "cells");
+    ASSERT_EQ(r.sets.size(), 1u);
+    EXPECT_EQ(r.sets[0].set.labels, (std::vector<Index>{1, 3, 5}));
+    EXPECT_FALSE(r.failed());
+    r.add("n", Index{3});
+    r.add("x", 0.5);
+    EXPECT_EQ(r.count("n"), 3);
+    EXPECT_EQ(r.real("x"), 0.5);
+    EXPECT_EQ(r.find("y"), nullptr);
+    EXPECT_THROW(r.real("n"), std::logic_error); // a count is not a real
+}
+
+TEST(GeometryChecks, cell_volumes_threshold_statistics_and_set)
+{
+    const CheckResult r = check_cell_volumes(Eigen::Vector3d(1.0, -1.0, 0.5));
+    EXPECT_EQ(r.failure, "cellVolumes");
+    EXPECT_EQ(r.count("negativeVolumeCells"), 1);
+    EXPECT_EQ(r.real("minVolume"), -1.0);
+    EXPECT_EQ(r.real("maxVolume"), 1.0);
+    EXPECT_EQ(r.real("totalVolume"), 0.5);
+    ASSERT_EQ(r.sets.size(), 1u);
+    EXPECT_EQ(r.sets[0].set.name, "zeroVolumeCells");
+    EXPECT_EQ(r.sets[0].set.labels, std::vector<Index>{1});
+    EXPECT_FALSE(check_cell_volumes(Eigen::Vector3d(1.0, 2.0, 0.5)).failed());
+}
+
+TEST(GeometryChecks, face_weight_minimum_average_and_failure)
+{
+    const CheckResult r = check_face_weight(Eigen::Vector2d(0.5, 0.01));
+    EXPECT_EQ(r.failure, "faceWeight");
+    EXPECT_EQ(r.real("minFaceWeight"), 0.01);
+    EXPECT_EQ(r.real("avgFaceWeight"), 0.255);
+    EXPECT_EQ(r.count("lowWeightFaces"), 1);
+    // No internal faces: checkMesh's zeros.
+    const CheckResult none = check_face_weight(Eigen::VectorXd());
+    EXPECT_EQ(none.real("minFaceWeight"), 0.0);
+    EXPECT_FALSE(none.failed());
+}
+
+TEST(GeometryChecks, severe_non_orthogonality_warns_and_errors_fail)
+{
+    const PolyMesh mesh = test::make_block_mesh(
+        3, 3, 2, [](double u, double v, double w) { return Vector3(u + 3.2 * v, v, w); });
+    const CheckResult r = check_face_orthogonality(
+        mesh.n_internal_faces(), face_orthogonality(mesh, compute_geometry(mesh)));
+    EXPECT_NEAR(r.real("maxNonOrthogonality"), std::atan(3.2) * 180 / M_PI, 1e-9);
+    EXPECT_EQ(r.count("severelyNonOrthogonalFaces"), 24); // internal x- and y-faces, 12 each
+    EXPECT_FALSE(r.failed());
+    const CheckResult errors = check_face_orthogonality(1, Eigen::Vector2d(-0.5, 1.0));
+    EXPECT_EQ(errors.failure, "nonOrthogonality");
+    EXPECT_EQ(errors.count("nonOrthogonalityErrors"), 1);
+}
+
+TEST(TopologyChecks, unused_points_fail)
+{
+    PolyMesh mesh = test::make_box_mesh(1, 1, 1);
+    EXPECT_FALSE(check_point_usage(mesh).failed());
+    mesh.points.conservativeResize(9, 3);
+    mesh.points.row(8) = Eigen::RowVector3d(2, 2, 2);
+    const CheckResult r = check_point_usage(mesh);
+    EXPECT_EQ(r.failure, "unusedPoints");
+    ASSERT_EQ(r.sets.size(), 1u);
+    EXPECT_EQ(r.sets[0].set.labels, std::vector<Index>{8});
+}
+
+TEST(MeshQualityChecks, each_criterion_counts_the_faces_it_adds)
+{
+    const PolyMesh mesh = test::make_block_mesh(
+        3, 3, 2, [](double u, double v, double w) { return Vector3(u + v, v, w); });
+    const MeshGeometry g = compute_geometry(mesh);
+    MeshQualitySettings q;
+    q.max_non_ortho = 30; // flags the 24 internal x- and y-faces (45 degrees)
+    q.min_area = 1e9;     // flags every face, but only the others are new
+    const CheckResult r = check_mesh_quality(mesh, cell_faces(mesh), g, q, face_skewness(mesh, g));
+    const Statistic::Counts& counts = r.counts("meshQualityFailures");
+    ASSERT_EQ(counts.size(), 2u);
+    EXPECT_EQ(counts[0], (std::pair<std::string, Index>{"maxNonOrtho", 24}));
+    EXPECT_EQ(counts[1].first, "minArea");
+    EXPECT_EQ(counts[1].second, mesh.n_faces() - 24);
+    EXPECT_EQ(r.count("meshQualityFaces"), mesh.n_faces());
+    EXPECT_EQ(r.failure, "meshQuality");
+}
+
+TEST(QualityReport, failures_sets_and_headline_numbers_come_from_the_checks)
+{
+    PolyMesh mesh = test::make_box_mesh(3, 3, 3);
+    mesh.points.row(21) += Eigen::RowVector3d(0.45, 0.4, 0.5); // inverts cells
+    CheckMeshSettings settings;
+    settings.all_geometry = true;
+    const QualityReport r = check_mesh(mesh, settings);
+    Index failed = 0;
+    for (const CheckResult& c : r.checks)
+        failed += c.failed();
+    EXPECT_EQ(r.failed_checks, failed);
+    EXPECT_EQ(r.failed_check_names.size(), static_cast<std::size_t>(failed));
+    EXPECT_EQ(r.negative_volume_cells, std::get<Index>(r.statistic("negativeVolumeCells")->value));
+    EXPECT_EQ(r.max_skewness, std::get<double>(r.statistic("maxSkewness")->value));
+    EXPECT_GT(r.negative_volume_cells, 0);
+    const InvalidCells invalid = count_invalid_cells(mesh, compute_geometry(mesh));
+    EXPECT_EQ(invalid.negative_volume_cells, r.negative_volume_cells);
+    EXPECT_EQ(invalid.wrong_pyramids, r.incorrectly_oriented_face_pyramids);
+    EXPECT_EQ(report_text(r, settings), r.text);
+}
+
+TEST(QualityReport, a_new_check_reaches_the_json_without_touching_the_json_writer)
+{
+    QualityReport r = check_mesh(test::make_box_mesh(1, 1, 1), CheckMeshSettings{});
+    CheckResult extra("extraCheck");
+    extra.add("extraMetric", 0.25);
+    extra.add("extraTextOnly", Index{2}, false);
+    r.checks.push_back(extra);
+    const nlohmann::json j = quality_json(r);
+    EXPECT_EQ(j.at("extraMetric"), 0.25);
+    EXPECT_FALSE(j.contains("extraTextOnly"));
+    // The text report needs a formatter for it.
+    EXPECT_THROW(report_text(r, CheckMeshSettings{}), std::logic_error);
+}

@@ -1,0 +1,184 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Tests of the quality metrics alone (face_orthogonality.h, face_skewness.h,
+// cell_closedness.h, cell_determinant.h, face_weights.h, face_flatness.h, face_tets.h,
+// cell_concavity.h, edge_lengths.h, cell_regions.h): fields of undistorted, sheared and
+// damaged meshes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "helpers.h"
+#include "meshmorph/quality/cell_closedness.h"
+#include "meshmorph/quality/cell_concavity.h"
+#include "meshmorph/quality/cell_determinant.h"
+#include "meshmorph/quality/cell_regions.h"
+#include "meshmorph/quality/cell_validity.h"
+#include "meshmorph/quality/edge_lengths.h"
+#include "meshmorph/quality/face_flatness.h"
+#include "meshmorph/quality/face_orthogonality.h"
+#include "meshmorph/quality/face_pyramids.h"
+#include "meshmorph/quality/face_skewness.h"
+#include "meshmorph/quality/face_tets.h"
+#include "meshmorph/quality/face_weights.h"
+
+using namespace meshmorph;
+
+namespace
+{
+
+//! A block sheared in x by `shear` times y: the y-faces are non-orthogonal by atan(shear).
+PolyMesh sheared_block(double shear)
+{
+    return test::make_block_mesh(
+        3, 3, 2, [shear](double u, double v, double w) { return Vector3(u + shear * v, v, w); });
+}
+
+} // namespace
+
+TEST(FaceOrthogonality, box_is_orthogonal_and_boundary_faces_are_one)
+{
+    const PolyMesh mesh = test::make_box_mesh(3, 2, 2);
+    const Eigen::VectorXd ortho = face_orthogonality(mesh, compute_geometry(mesh));
+    ASSERT_EQ(ortho.size(), mesh.n_faces());
+    for (Index f = 0; f < mesh.n_faces(); ++f)
+        EXPECT_NEAR(ortho[f], 1.0, 1e-15) << "face " << f;
+    for (Index f = mesh.n_internal_faces(); f < mesh.n_faces(); ++f)
+        EXPECT_EQ(ortho[f], 1.0);
+}
+
+TEST(FaceOrthogonality, shear_angle_is_the_cell_non_orthogonality)
+{
+    const PolyMesh mesh = sheared_block(1.0);
+    const Eigen::VectorXd ortho = face_orthogonality(mesh, compute_geometry(mesh));
+    const Eigen::VectorXd cell = cell_non_orthogonality(cell_faces(mesh), ortho);
+    ASSERT_EQ(cell.size(), mesh.n_cells);
+    for (Index c = 0; c < mesh.n_cells; ++c)
+        EXPECT_NEAR(cell[c], 45.0, 1e-9) << "cell " << c;
+    EXPECT_NEAR(non_orthogonality_degrees(std::cos(M_PI / 3)), 60.0, 1e-12);
+    EXPECT_EQ(non_orthogonality_degrees(1.5), 0.0); // clamped
+}
+
+TEST(FaceSkewness, box_has_no_skewness_and_is_scale_invariant)
+{
+    for (const double scale : {1e-6, 1.0, 1e6})
+    {
+        const PolyMesh mesh =
+            test::make_box_mesh(2, 3, 2, Vector3::Zero(), Vector3(scale, 2 * scale, scale));
+        const Eigen::VectorXd skew = face_skewness(mesh, compute_geometry(mesh));
+        EXPECT_LT(skew.maxCoeff(), 1e-9) << "scale " << scale;
+        EXPECT_LT(cell_skewness(cell_faces(mesh), skew).maxCoeff(), 1e-9);
+    }
+}
+
+TEST(CellClosedness, closed_cells_and_aspect_ratio_of_flat_cells)
+{
+    const PolyMesh mesh = test::make_box_mesh(2, 2, 2, Vector3::Zero(), Vector3(1, 1, 0.1));
+    const MeshGeometry g = compute_geometry(mesh);
+    const CompactList cf = cell_faces(mesh);
+    EXPECT_LT(boundary_openness(mesh, g).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_LT(cell_openness(mesh, cf, g).maxCoeff(), 1e-15);
+    const Eigen::VectorXd ar = cell_aspect_ratio(mesh, cf, g, mesh_directions(mesh, g.face_areas));
+    for (Index c = 0; c < mesh.n_cells; ++c)
+        EXPECT_NEAR(ar[c], 10.0, 1e-9); // 0.5 x 0.5 x 0.05 cells
+}
+
+TEST(CellDeterminant, cube_cells)
+{
+    const PolyMesh mesh = test::make_box_mesh(3, 3, 3);
+    const MeshGeometry g = compute_geometry(mesh);
+    const CompactList cf = cell_faces(mesh);
+    const Eigen::VectorXd det =
+        cell_determinant(mesh, cf, g, mesh_directions(mesh, g.face_areas), face_area_magnitudes(g));
+    EXPECT_NEAR(det[13], 1.0, 1e-12); // the middle cell: 6 internal faces, 2 per axis
+    // snappyHexMesh's determinant is 1 for every cube (all faces count).
+    const Eigen::VectorXd scaled = cell_area_determinant(cf, g);
+    for (Index c = 0; c < mesh.n_cells; ++c)
+        EXPECT_NEAR(scaled[c], 1.0, 1e-12);
+}
+
+TEST(FaceWeights, halfway_faces_and_volume_ratios)
+{
+    const PolyMesh mesh = test::make_box_mesh(3, 1, 1);
+    const MeshGeometry g = compute_geometry(mesh);
+    const Eigen::VectorXd w = face_weights(mesh, g);
+    const Eigen::VectorXd ratio = face_volume_ratio(mesh, g.cell_volumes);
+    ASSERT_EQ(w.size(), mesh.n_internal_faces());
+    for (Index f = 0; f < mesh.n_internal_faces(); ++f)
+    {
+        EXPECT_NEAR(w[f], 0.5, 1e-15);
+        EXPECT_NEAR(ratio[f], 1.0, 1e-15);
+    }
+}
+
+TEST(FaceFlatness, planar_faces_are_flat_and_a_warped_face_is_not)
+{
+    PolyMesh mesh = test::make_box_mesh(1, 1, 1);
+    Eigen::VectorXd mag = face_area_magnitudes(compute_geometry(mesh));
+    Eigen::VectorXd flat = face_flatness(mesh, mag, face_fan_areas(mesh, compute_geometry(mesh)));
+    for (Index f = 0; f < mesh.n_faces(); ++f)
+        EXPECT_NEAR(flat[f], 1.0, 1e-15);
+    mesh.points(7, 2) += 0.5; // lift one corner of the top face
+    const MeshGeometry g = compute_geometry(mesh);
+    mag = face_area_magnitudes(g);
+    flat = face_flatness(mesh, mag, face_fan_areas(mesh, g));
+    EXPECT_LT(flat.minCoeff(), 0.99);
+}
+
+TEST(FaceTets, valid_box_has_no_errors_and_an_inverted_cell_has)
+{
+    PolyMesh mesh = test::make_box_mesh(3, 3, 3);
+    std::vector<char> errors = face_tet_errors(mesh, compute_geometry(mesh));
+    EXPECT_EQ(std::count(errors.begin(), errors.end(), 0), mesh.n_faces());
+    mesh.points.row(21) += Eigen::RowVector3d(0.45, 0.4, 0.5);
+    errors = face_tet_errors(mesh, compute_geometry(mesh));
+    EXPECT_GT(std::count_if(errors.begin(), errors.end(), [](char e) { return e > 0; }), 0);
+}
+
+TEST(CellConcavity, box_cells_are_convex)
+{
+    const PolyMesh mesh = test::make_box_mesh(2, 2, 2);
+    const std::vector<char> concave = concave_cells(mesh, cell_faces(mesh), compute_geometry(mesh));
+    EXPECT_EQ(std::count(concave.begin(), concave.end(), 0), mesh.n_cells);
+}
+
+TEST(FacePyramids, volumes_are_a_sixth_of_the_cell_each_and_wrong_ones_are_counted)
+{
+    PolyMesh mesh = test::make_box_mesh(2, 2, 2);
+    const FacePyramidVolumes v = face_pyramid_volumes(mesh, compute_geometry(mesh));
+    for (Index f = 0; f < mesh.n_faces(); ++f)
+        EXPECT_NEAR(v.owner[f], 0.125 / 6, 1e-15);
+    for (Index f = 0; f < mesh.n_internal_faces(); ++f)
+        EXPECT_NEAR(v.neighbour[f], 0.125 / 6, 1e-15);
+    EXPECT_EQ(count_invalid_cells(mesh, compute_geometry(mesh)).wrong_pyramids, 0);
+    mesh.points.row(13) += Eigen::RowVector3d(0.6, 0.6, 0.6); // the middle point, far out
+    EXPECT_GT(count_invalid_cells(mesh, compute_geometry(mesh)).wrong_pyramids, 0);
+}
+
+TEST(EdgeLengths, extremes_and_the_points_of_short_edges)
+{
+    PolyMesh mesh = test::make_box_mesh(2, 1, 1, Vector3::Zero(), Vector3(2, 1, 1));
+    EdgeLengths e = edge_lengths(mesh, 1e-12);
+    EXPECT_DOUBLE_EQ(e.min_length, 1.0);
+    EXPECT_DOUBLE_EQ(e.max_length, 1.0);
+    EXPECT_EQ(e.n_short, 0);
+    mesh.points.row(1) = mesh.points.row(0) + Eigen::RowVector3d(1e-9, 0, 0);
+    e = edge_lengths(mesh, 1e-12);
+    EXPECT_NEAR(e.min_length, 1e-9, 1e-20);
+    // Edge 0-1 is in two faces: the first marks point 0, the second point 1 (OpenFOAM's
+    // `set.insert(a) || set.insert(b)`).
+    EXPECT_EQ(e.n_short, 2);
+    EXPECT_EQ(std::count(e.short_edge_points.begin(), e.short_edge_points.end(), 1), 2);
+    EXPECT_TRUE(e.short_edge_points[0] && e.short_edge_points[1]);
+}
+
+TEST(CellRegions, numbered_from_the_lowest_cell)
+{
+    PolyMesh mesh = test::make_box_mesh(3, 1, 1);
+    EXPECT_EQ(cell_regions(mesh).size(), 1u);
+    // Cut the mesh between cells 0 and 1: face 0 joins them.
+    mesh.neighbour[0] = mesh.owner[0];
+    const std::vector<std::vector<Index>> regions = cell_regions(mesh);
+    ASSERT_EQ(regions.size(), 2u);
+    EXPECT_EQ(regions[0], std::vector<Index>{0});
+    EXPECT_EQ(regions[1], (std::vector<Index>{1, 2}));
+}
