@@ -76,10 +76,10 @@ TEST(CellClosedness, closed_cells_and_aspect_ratio_of_flat_cells)
     const MeshGeometry g = compute_geometry(mesh);
     const CompactList cf = cell_faces(mesh);
     EXPECT_LT(boundary_openness(mesh, g).cwiseAbs().maxCoeff(), 1e-15);
-    EXPECT_LT(cell_openness(mesh, cf, g).maxCoeff(), 1e-15);
-    const Eigen::VectorXd ar = cell_aspect_ratio(mesh, cf, g, mesh_directions(mesh, g.face_areas));
-    for (Index c = 0; c < mesh.n_cells; ++c)
-        EXPECT_NEAR(ar[c], 10.0, 1e-9); // 0.5 x 0.5 x 0.05 cells
+    const CellClosedness c = cell_closedness(mesh, cf, g, mesh_directions(mesh, g.face_areas));
+    EXPECT_LT(c.openness.maxCoeff(), 1e-15);
+    for (Index cell = 0; cell < mesh.n_cells; ++cell)
+        EXPECT_NEAR(c.aspect_ratio[cell], 10.0, 1e-9); // 0.5 x 0.5 x 0.05 cells
 }
 
 TEST(CellDeterminant, cube_cells)
@@ -114,13 +114,16 @@ TEST(FaceFlatness, planar_faces_are_flat_and_a_warped_face_is_not)
 {
     PolyMesh mesh = test::make_box_mesh(1, 1, 1);
     Eigen::VectorXd mag = face_area_magnitudes(compute_geometry(mesh));
-    Eigen::VectorXd flat = face_flatness(mesh, mag, face_fan_areas(mesh, compute_geometry(mesh)));
+    Eigen::VectorXd flat = face_flatness(mesh, compute_geometry(mesh), mag);
+    const Eigen::VectorXd fan = face_fan_areas(mesh, compute_geometry(mesh));
+    for (Index f = 0; f < mesh.n_faces(); ++f)
+        EXPECT_NEAR(fan[f], mag[f], 1e-15); // a flat face's fan covers it once
     for (Index f = 0; f < mesh.n_faces(); ++f)
         EXPECT_NEAR(flat[f], 1.0, 1e-15);
     mesh.points(7, 2) += 0.5; // lift one corner of the top face
     const MeshGeometry g = compute_geometry(mesh);
     mag = face_area_magnitudes(g);
-    flat = face_flatness(mesh, mag, face_fan_areas(mesh, g));
+    flat = face_flatness(mesh, g, mag);
     EXPECT_LT(flat.minCoeff(), 0.99);
 }
 

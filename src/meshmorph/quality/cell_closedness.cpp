@@ -16,26 +16,31 @@ using detail::row;
 namespace
 {
 
-//! A cell's summed outward area vector and summed componentwise |area|.
-struct AreaSums
+double openness_of(const FoamVector& sum, const FoamVector& sum_mag)
 {
-    FoamVector sum, sum_mag;
-};
+    double max_open = 0;
+    for (int k = 0; k < 3; ++k)
+        max_open = std::max(max_open, std::abs(sum[k]) / (sum_mag[k] + constants::rootvsmall));
+    return max_open;
+}
 
-AreaSums area_sums(const PolyMesh& mesh, const CompactList& cell_faces, const MeshGeometry& g,
-                   Index cell)
+double aspect_ratio_of(const FoamVector& sum_mag, double volume, const MeshDirections& dirs)
 {
-    AreaSums s;
-    for (Index f : cell_faces[cell])
+    constexpr double rootvsmall = constants::rootvsmall;
+    double min_c = constants::vgreat, max_c = -constants::vgreat;
+    for (int k = 0; k < 3; ++k)
+        if (dirs.geometric[k] == 1)
+        {
+            min_c = std::min(min_c, sum_mag[k]);
+            max_c = std::max(max_c, sum_mag[k]);
+        }
+    double ar = max_c / (min_c + rootvsmall);
+    if (dirs.n_geometric() == 3)
     {
-        const FoamVector a = row(g.face_areas, f);
-        if (mesh.owner[f] == cell)
-            s.sum += a;
-        else
-            s.sum -= a;
-        s.sum_mag += detail::cmpt_mag(a);
+        const double v = std::max(rootvsmall, volume);
+        ar = std::max(ar, 1.0 / 6.0 * (sum_mag.x + sum_mag.y + sum_mag.z) / std::pow(v, 2.0 / 3.0));
     }
-    return s;
+    return ar;
 }
 
 } // namespace
@@ -54,51 +59,28 @@ Vector3 boundary_openness(const PolyMesh& mesh, const MeshGeometry& g)
     return {o.x, o.y, o.z};
 }
 
-Eigen::VectorXd cell_openness(const PolyMesh& mesh, const CompactList& cell_faces,
-                              const MeshGeometry& g)
+CellClosedness cell_closedness(const PolyMesh& mesh, const CompactList& cell_faces,
+                               const MeshGeometry& g, const MeshDirections& dirs)
 {
     const Index n_cells = mesh.n_cells;
-    Eigen::VectorXd openness(n_cells);
+    CellClosedness r{Eigen::VectorXd(n_cells), Eigen::VectorXd(n_cells)};
 #pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
     for (Index cell = 0; cell < n_cells; ++cell)
     {
-        const AreaSums s = area_sums(mesh, cell_faces, g, cell);
-        double max_open = 0;
-        for (int k = 0; k < 3; ++k)
-            max_open =
-                std::max(max_open, std::abs(s.sum[k]) / (s.sum_mag[k] + constants::rootvsmall));
-        openness[cell] = max_open;
-    }
-    return openness;
-}
-
-Eigen::VectorXd cell_aspect_ratio(const PolyMesh& mesh, const CompactList& cell_faces,
-                                  const MeshGeometry& g, const MeshDirections& dirs)
-{
-    constexpr double rootvsmall = constants::rootvsmall;
-    const Index n_cells = mesh.n_cells;
-    Eigen::VectorXd aspect_ratio(n_cells);
-#pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
-    for (Index cell = 0; cell < n_cells; ++cell)
-    {
-        const FoamVector sum_mag = area_sums(mesh, cell_faces, g, cell).sum_mag;
-        double min_c = constants::vgreat, max_c = -constants::vgreat;
-        for (int k = 0; k < 3; ++k)
-            if (dirs.geometric[k] == 1)
-            {
-                min_c = std::min(min_c, sum_mag[k]);
-                max_c = std::max(max_c, sum_mag[k]);
-            }
-        double ar = max_c / (min_c + rootvsmall);
-        if (dirs.n_geometric() == 3)
+        FoamVector sum, sum_mag;
+        for (Index f : cell_faces[cell])
         {
-            const double v = std::max(rootvsmall, g.cell_volumes[cell]);
-            ar = std::max(ar,
-                          1.0 / 6.0 * (sum_mag.x + sum_mag.y + sum_mag.z) / std::pow(v, 2.0 / 3.0));
+            const FoamVector a = row(g.face_areas, f);
+            if (mesh.owner[f] == cell)
+                sum += a;
+            else
+                sum -= a;
+            sum_mag += detail::cmpt_mag(a);
         }
-        aspect_ratio[cell] = ar;
+        r.openness[cell] = openness_of(sum, sum_mag);
+        r.aspect_ratio[cell] = aspect_ratio_of(sum_mag, g.cell_volumes[cell], dirs);
     }
-    return aspect_ratio;
+    return r;
 }
 
 } // namespace meshmorph

@@ -15,15 +15,19 @@ namespace meshmorph
 //! their magnitudes (0 for a closed boundary).
 Vector3 boundary_openness(const PolyMesh& mesh, const MeshGeometry& geometry);
 
-//! \brief Per cell, max over x, y, z of |sum of outward face areas| / sum of |areas|
-//! (0 for a closed cell). OpenMP over cells. \return nCells values.
-Eigen::VectorXd cell_openness(const PolyMesh& mesh, const CompactList& cell_faces,
-                              const MeshGeometry& geometry);
+//! Per-cell closedness fields (nCells each).
+struct CellClosedness
+{
+    //! max over x, y, z of |sum of outward face areas| / sum of |areas| (0 when closed).
+    Eigen::VectorXd openness;
+    //! The largest ratio of the summed |area| components over the valid (non-empty,
+    //! non-wedge) directions; in 3D at least the sum over all directions / 6 over
+    //! volume^(2/3).
+    Eigen::VectorXd aspect_ratio;
+};
 
-//! \brief Per cell, the largest ratio of the summed |area| components over the valid
-//! (non-empty, non-wedge) directions; in 3D at least the sum over all directions / 6 over
-//! volume^(2/3). OpenMP over cells. \return nCells values.
-Eigen::VectorXd cell_aspect_ratio(const PolyMesh& mesh, const CompactList& cell_faces,
-                                  const MeshGeometry& geometry, const MeshDirections& directions);
+//! \brief Both fields in one pass over the cells' faces. OpenMP over cells.
+CellClosedness cell_closedness(const PolyMesh& mesh, const CompactList& cell_faces,
+                               const MeshGeometry& geometry, const MeshDirections& directions);
 
 } // namespace meshmorph

@@ -151,8 +151,7 @@ void run_all_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces
     checks.push_back(check_face_tets(face_tet_errors(mesh, g)));
     checks.push_back(check_edge_length(edge_lengths(mesh, min_length_sqr)));
     checks.push_back(check_face_angles(face_concavity(mesh, g)));
-    checks.push_back(check_face_flatness(mesh, mag_area,
-                                         face_flatness(mesh, mag_area, face_fan_areas(mesh, g))));
+    checks.push_back(check_face_flatness(mesh, mag_area, face_flatness(mesh, g, mag_area)));
     checks.push_back(check_cell_determinant(r.cell_determinant));
     checks.push_back(check_concave_cells(concave_cells(mesh, cell_faces, g)));
     checks.push_back(check_face_weight(face_weights(mesh, g)));
@@ -169,8 +168,9 @@ void run_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
     if (dirs.n_geometric() < 3 && !dirs.has_wedges)
         checks.push_back(check_edge_alignment(non_aligned_edges(mesh, dirs)));
     checks.push_back(check_closed_boundary(boundary_openness(mesh, g)));
-    r.cell_aspect_ratio = cell_aspect_ratio(mesh, cell_faces, g, dirs);
-    checks.push_back(check_closed_cells(cell_openness(mesh, cell_faces, g), r.cell_aspect_ratio));
+    CellClosedness closedness = cell_closedness(mesh, cell_faces, g, dirs);
+    checks.push_back(check_closed_cells(closedness.openness, closedness.aspect_ratio));
+    r.cell_aspect_ratio = std::move(closedness.aspect_ratio);
     const Eigen::VectorXd mag_area = face_area_magnitudes(g);
     checks.push_back(check_face_areas(mag_area));
     checks.push_back(check_cell_volumes(g.cell_volumes));

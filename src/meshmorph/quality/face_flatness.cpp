@@ -7,8 +7,23 @@
 namespace meshmorph
 {
 
-using detail::FoamVector;
 using detail::row;
+
+namespace
+{
+
+double fan_area(const PolyMesh& mesh, const MeshGeometry& g, Index f)
+{
+    const std::span<const Index> face = mesh.faces[f];
+    const detail::FoamVector fc = row(g.face_centres, f);
+    double sum = 0;
+    for (std::size_t i = 0; i < face.size(); ++i)
+        sum += detail::mag(detail::tri_area_normal(
+            row(mesh.points, face[i]), row(mesh.points, face[(i + 1) % face.size()]), fc));
+    return sum;
+}
+
+} // namespace
 
 Eigen::VectorXd face_fan_areas(const PolyMesh& mesh, const MeshGeometry& g)
 {
@@ -16,29 +31,20 @@ Eigen::VectorXd face_fan_areas(const PolyMesh& mesh, const MeshGeometry& g)
     Eigen::VectorXd fan(n_faces);
 #pragma omp parallel for schedule(dynamic, 4096) if (n_faces > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
-    {
-        const std::span<const Index> face = mesh.faces[f];
-        const FoamVector fc = row(g.face_centres, f);
-        double sum = 0;
-        for (std::size_t i = 0; i < face.size(); ++i)
-        {
-            sum += detail::mag(detail::tri_area_normal(
-                row(mesh.points, face[i]), row(mesh.points, face[(i + 1) % face.size()]), fc));
-        }
-        fan[f] = sum;
-    }
+        fan[f] = fan_area(mesh, g, f);
     return fan;
 }
 
-Eigen::VectorXd face_flatness(const PolyMesh& mesh, const Eigen::VectorXd& mag_area,
-                              const Eigen::VectorXd& fan_areas)
+Eigen::VectorXd face_flatness(const PolyMesh& mesh, const MeshGeometry& g,
+                              const Eigen::VectorXd& mag_area)
 {
     const Index n_faces = mesh.n_faces();
     Eigen::VectorXd flatness(n_faces);
+#pragma omp parallel for schedule(dynamic, 4096) if (n_faces > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
         flatness[f] = mesh.faces.item_size(f) <= 3 || mag_area[f] <= constants::rootvsmall
                           ? 1.0
-                          : mag_area[f] / (fan_areas[f] + constants::rootvsmall);
+                          : mag_area[f] / (fan_area(mesh, g, f) + constants::rootvsmall);
     return flatness;
 }
 

@@ -17,9 +17,9 @@ namespace meshmorph
 Eigen::VectorXd face_fan_areas(const PolyMesh& mesh, const MeshGeometry& geometry);
 
 //! \brief checkMesh's flatness |Af| / (fan area + ROOTVSMALL) per face; 1 for triangles and
-//! for faces with |Af| <= ROOTVSMALL. \param face_area_magnitudes face_area_magnitudes().
-//! \param fan_areas face_fan_areas(). \return nFaces values.
-Eigen::VectorXd face_flatness(const PolyMesh& mesh, const Eigen::VectorXd& face_area_magnitudes,
-                              const Eigen::VectorXd& fan_areas);
+//! for faces with |Af| <= ROOTVSMALL. OpenMP over faces.
+//! \param face_area_magnitudes face_area_magnitudes(geometry). \return nFaces values.
+Eigen::VectorXd face_flatness(const PolyMesh& mesh, const MeshGeometry& geometry,
+                              const Eigen::VectorXd& face_area_magnitudes);
 
 } // namespace meshmorph

@@ -31,7 +31,9 @@ struct FaceTets
         if (internal)
             cn = row(g.cell_centres, mesh.neighbour[f]);
     }
-    FoamVector p(std::size_t i) const { return row(points, face[i % face.size()]); }
+    FoamVector p(std::size_t i) const { return row(points, face[i]); }
+    //! The point after the i-th (cyclic).
+    FoamVector next(std::size_t i) const { return row(points, face[(i + 1) % face.size()]); }
 
     //! Whether some face point is a decomposition base whose tets all have quality > min
     //! (polyMeshTetDecomposition::findBasePoint).
@@ -45,9 +47,10 @@ struct FaceTets
             for (std::size_t t = 1; t + 1 < n; ++t)
             {
                 const std::size_t i = (b + t) % n;
-                double q = tet_quality(co, pb, p(i), p(i + 1));
+                const FoamVector pi = p(i), pj = next(i);
+                double q = tet_quality(co, pb, pi, pj);
                 if (internal)
-                    q = std::min(q, tet_quality(cn, pb, p(i + 1), p(i)));
+                    q = std::min(q, tet_quality(cn, pb, pj, pi));
                 min_q = std::min(min_q, q);
             }
             if (min_q > min)
@@ -63,14 +66,14 @@ char tet_errors(const FaceTets& t)
     const std::size_t n = t.face.size();
     char errors = 0;
     for (std::size_t i = 0; i < n; ++i)
-        if (tet_quality(t.p(i), t.p(i + 1), t.cf, t.co) > -tol)
+        if (tet_quality(t.p(i), t.next(i), t.cf, t.co) > -tol)
         {
             ++errors;
             break;
         }
     if (t.internal)
         for (std::size_t i = 0; i < n; ++i)
-            if (tet_quality(t.p(i), t.p(i + 1), t.cf, t.cn) < tol)
+            if (tet_quality(t.p(i), t.next(i), t.cf, t.cn) < tol)
             {
                 ++errors;
                 break;
@@ -84,9 +87,10 @@ bool tet_quality_below(const FaceTets& t, double min_quality)
 {
     for (std::size_t i = 0; i < t.face.size(); ++i)
     {
-        if (tet_quality(t.p(i), t.p(i + 1), t.co, t.cf) < min_quality)
+        const FoamVector pi = t.p(i), pj = t.next(i);
+        if (tet_quality(pi, pj, t.co, t.cf) < min_quality)
             return true;
-        if (t.internal && tet_quality(t.p(i), t.p(i + 1), t.cf, t.cn) < min_quality)
+        if (t.internal && tet_quality(pi, pj, t.cf, t.cn) < min_quality)
             return true;
     }
     return !t.has_base_point(min_quality);

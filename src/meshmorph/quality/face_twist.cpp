@@ -15,29 +15,40 @@ namespace
 
 constexpr double vsmall = constants::vsmall;
 
-//! Area vector of the i-th fan triangle (p[i], p[i+1], face centre) of face f.
-FoamVector fan_triangle(const PolyMesh& mesh, const MeshGeometry& g, Index f, std::size_t i)
+//! The triangles (p[i], p[i+1], face centre) fanned from a face centre.
+struct FaceFan
 {
-    const std::span<const Index> face = mesh.faces[f];
-    return detail::tri_area_normal(row(mesh.points, face[i % face.size()]),
-                                   row(mesh.points, face[(i + 1) % face.size()]),
-                                   row(g.face_centres, f));
-}
+    const Points& points;
+    std::span<const Index> face;
+    FoamVector centre;
+
+    FaceFan(const PolyMesh& mesh, const MeshGeometry& g, Index f)
+        : points(mesh.points), face(mesh.faces[f]), centre(row(g.face_centres, f))
+    {
+    }
+    //! Area vector of the i-th triangle, i in [0, size()).
+    FoamVector triangle(std::size_t i) const
+    {
+        return detail::tri_area_normal(row(points, face[i]),
+                                       row(points, face[(i + 1) % face.size()]), centre);
+    }
+    std::size_t size() const { return face.size(); }
+};
 
 bool twist_below(const PolyMesh& mesh, const MeshGeometry& g, Index f, double min_twist)
 {
-    const std::size_t n = mesh.faces[f].size();
-    if (n <= 3)
+    const FaceFan fan(mesh, g, f);
+    if (fan.size() <= 3)
         return false;
     const FoamVector own = row(g.cell_centres, mesh.owner[f]);
     FoamVector nf = f < mesh.n_internal_faces() ? row(g.cell_centres, mesh.neighbour[f]) - own
-                                                : row(g.face_centres, f) - own;
+                                                : fan.centre - own;
     nf /= detail::mag(nf) + vsmall;
     if (nf.x == 0 && nf.y == 0 && nf.z == 0)
         return false;
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < fan.size(); ++i)
     {
-        const FoamVector tri = fan_triangle(mesh, g, f, i);
+        const FoamVector tri = fan.triangle(i);
         const double m = detail::mag(tri);
         if (m > vsmall && detail::dot(nf, tri / m) < min_twist)
             return true;
@@ -47,14 +58,15 @@ bool twist_below(const PolyMesh& mesh, const MeshGeometry& g, Index f, double mi
 
 bool triangle_twist_below(const PolyMesh& mesh, const MeshGeometry& g, Index f, double min_twist)
 {
-    const std::size_t n = mesh.faces[f].size();
+    const FaceFan fan(mesh, g, f);
+    const std::size_t n = fan.size();
     if (n <= 3)
         return false;
     std::size_t start = n;
     FoamVector prev;
     for (std::size_t i = 0; i < n; ++i)
     {
-        prev = fan_triangle(mesh, g, f, i);
+        prev = fan.triangle(i);
         const double m = detail::mag(prev);
         if (m > vsmall)
         {
@@ -69,7 +81,7 @@ bool triangle_twist_below(const PolyMesh& mesh, const MeshGeometry& g, Index f, 
     do
     {
         i = (i + 1) % n;
-        FoamVector t = fan_triangle(mesh, g, f, i);
+        FoamVector t = fan.triangle(i);
         const double m = detail::mag(t);
         if (m > vsmall)
         {
