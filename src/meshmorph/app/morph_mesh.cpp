@@ -278,7 +278,7 @@ MorphResult morph_case(const MorphOptions& options)
     stage.restart();
     result.valid_fraction = stepped.valid_fraction;
     if (stepped.valid_fraction < 1.0)
-        log::warning() << "the motion is valid up to " << format_fraction(stepped.valid_fraction)
+        log::warning() << "the motion is valid up to " << fmt(stepped.valid_fraction, 4)
                        << " of itself; beyond, "
                        << (step_settings.steps == 0
                                ? "even a step of 1/" + std::to_string(step_settings.max_steps) +

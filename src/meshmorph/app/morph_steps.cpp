@@ -30,6 +30,15 @@ Constraints step_constraints(const Constraints& c, const Points& x0, const Point
     return step;
 }
 
+//! A fraction of the motion for the log (4 significant digits).
+std::string format_fraction(double t)
+{
+    std::ostringstream o;
+    o.precision(4);
+    o << t;
+    return o.str();
+}
+
 //! One line per step as it happens: the motion fractions, the fit, the checks and the verdict.
 void log_step(std::size_t number, const StepRecord& r, bool failed, bool redo, bool can_halve)
 {
@@ -66,14 +75,6 @@ StepSettings read_step_settings(const io::FoamDictionary& dict)
         return s;
     }
     throw e->error("expected 'auto' or a number of steps from 1 to 10000");
-}
-
-std::string format_fraction(double t)
-{
-    std::ostringstream o;
-    o.precision(4);
-    o << t;
-    return o.str();
 }
 
 std::string describe(const StepSettings& s)

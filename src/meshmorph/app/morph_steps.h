@@ -75,9 +75,6 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
                             const Constraints& c, const StepSettings& settings,
                             const DeformationMaker& make, bool fit, const InvalidCells& before);
 
-//! A fraction of the motion for the log (4 significant digits).
-std::string format_fraction(double t);
-
 //! "auto" or the number.
 std::string describe(const StepSettings& settings);
 

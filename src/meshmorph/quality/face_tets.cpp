@@ -111,12 +111,8 @@ std::vector<char> face_tet_errors(const PolyMesh& mesh, const MeshGeometry& g)
 std::vector<char> faces_with_tet_quality_below(const PolyMesh& mesh, const MeshGeometry& g,
                                                double min_quality)
 {
-    const Index n_faces = mesh.n_faces();
-    std::vector<char> flags(static_cast<std::size_t>(n_faces), 0);
-#pragma omp parallel for schedule(static) if (n_faces > detail::parallel_threshold)
-    for (Index f = 0; f < n_faces; ++f)
-        flags[f] = tet_quality_below(FaceTets(mesh, g, f), min_quality);
-    return flags;
+    return detail::per_face_flags(mesh.n_faces(), [&](Index f)
+                                  { return tet_quality_below(FaceTets(mesh, g, f), min_quality); });
 }
 
 } // namespace meshmorph

@@ -101,23 +101,15 @@ bool triangle_twist_below(const PolyMesh& mesh, const MeshGeometry& g, Index f, 
 std::vector<char> faces_with_twist_below(const PolyMesh& mesh, const MeshGeometry& g,
                                          double min_twist)
 {
-    const Index n_faces = mesh.n_faces();
-    std::vector<char> flags(static_cast<std::size_t>(n_faces), 0);
-#pragma omp parallel for schedule(static) if (n_faces > detail::parallel_threshold)
-    for (Index f = 0; f < n_faces; ++f)
-        flags[f] = twist_below(mesh, g, f, min_twist);
-    return flags;
+    return detail::per_face_flags(mesh.n_faces(),
+                                  [&](Index f) { return twist_below(mesh, g, f, min_twist); });
 }
 
 std::vector<char> faces_with_triangle_twist_below(const PolyMesh& mesh, const MeshGeometry& g,
                                                   double min_twist)
 {
-    const Index n_faces = mesh.n_faces();
-    std::vector<char> flags(static_cast<std::size_t>(n_faces), 0);
-#pragma omp parallel for schedule(static) if (n_faces > detail::parallel_threshold)
-    for (Index f = 0; f < n_faces; ++f)
-        flags[f] = triangle_twist_below(mesh, g, f, min_twist);
-    return flags;
+    return detail::per_face_flags(mesh.n_faces(), [&](Index f)
+                                  { return triangle_twist_below(mesh, g, f, min_twist); });
 }
 
 } // namespace meshmorph

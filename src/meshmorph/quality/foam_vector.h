@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "meshmorph/core/types.h"
 
@@ -19,6 +20,17 @@ namespace meshmorph::detail
 //! Below this many faces the checker runs serially: thread start-up and barriers cost more
 //! than the work (and far more on a loaded machine, where OpenMP threads spin-wait).
 inline constexpr std::int64_t parallel_threshold = 20000;
+
+//! flag(f) for every face, OpenMP above parallel_threshold faces: the per-face metrics that
+//! flag offenders (twist, tet quality, ...) share this loop.
+template <class Flag> std::vector<char> per_face_flags(Index n_faces, const Flag& flag)
+{
+    std::vector<char> flags(static_cast<std::size_t>(n_faces), 0);
+#pragma omp parallel for schedule(static) if (n_faces > parallel_threshold)
+    for (Index f = 0; f < n_faces; ++f)
+        flags[static_cast<std::size_t>(f)] = flag(f);
+    return flags;
+}
 
 struct FoamVector
 {
