@@ -171,13 +171,14 @@ TEST(MorphSteps, steps_key_reads_auto_and_numbers_and_rejects_anything_else)
 TEST(MorphSteps, a_squeeze_that_inverts_cells_in_one_step_is_valid_in_several)
 {
     // The pipe narrowed to 0.2 of its radius: the direct RBF fit to the final wall inverts
-    // cells; refitted on the mesh moved so far, the same wall is reached validly.
-    const fs::path one = venturi_case("one_step", 0.8, "steps 1;\n");
+    // cells; refitted on the mesh moved so far, the same wall is reached validly. (Without
+    // the local repair, which would save the single step: see the next test.)
+    const fs::path one = venturi_case("one_step", 0.8, "steps 1;\nuntangle no;\n");
     const test::MorphRun refused = run(one);
     EXPECT_EQ(refused.code, exit_morph_refused) << refused.err << refused.log;
     EXPECT_FALSE(fs::exists(one / "1")) << "a refused morph writes nothing";
 
-    const fs::path several = venturi_case("auto_steps", 0.8, "");
+    const fs::path several = venturi_case("auto_steps", 0.8, "untangle no;\n");
     const test::MorphRun r = run(several);
     ASSERT_EQ(r.code, 0) << r.err << r.log;
     const nlohmann::json j = read_json(several / "morph.json");
@@ -202,6 +203,47 @@ TEST(MorphSteps, a_squeeze_that_inverts_cells_in_one_step_is_valid_in_several)
     // Every wall point on the target: exact, however many steps.
     EXPECT_LE(j["relativeConstraintError"].get<double>(), 1e-9);
     EXPECT_NE(r.log.find("redone in half the length"), std::string::npos) << r.log;
+}
+
+TEST(MorphSteps, untangling_repairs_in_place_the_cells_a_step_inverts)
+{
+    // The squeeze above in one step: refused without the repair, valid with it (the
+    // default), boundary points exact, the repair in the log and the JSON.
+    const test::MorphRun refused = run(venturi_case("no_repair", 0.8, "steps 1;\nuntangle no;\n"));
+    EXPECT_EQ(refused.code, exit_morph_refused) << refused.err << refused.log;
+
+    const fs::path dir = venturi_case("repair", 0.8, "steps 1;\n");
+    const test::MorphRun r = run(dir);
+    ASSERT_EQ(r.code, 0) << r.err << r.log;
+    const nlohmann::json j = read_json(dir / "morph.json");
+    ASSERT_EQ(j["steps"].size(), 1u);
+    const nlohmann::json& u = j["steps"][0]["untangle"];
+    EXPECT_GT(u["invalidCells"].get<int>(), 0);
+    EXPECT_EQ(u["stillInvalid"].get<int>(), 0);
+    EXPECT_GT(u["pointsMoved"].get<int>(), 0);
+    EXPECT_GT(u["maxMove"].get<double>(), 0.0);
+    EXPECT_EQ(j["after"]["negativeVolumeCells"].get<int>(), 0);
+    EXPECT_EQ(j["after"]["incorrectlyOrientedFacePyramids"].get<int>(), 0);
+    EXPECT_LE(j["relativeConstraintError"].get<double>(), 1e-9);
+    EXPECT_NE(r.log.find("untangled "), std::string::npos) << r.log;
+}
+
+TEST(MorphSteps, untangle_key_takes_a_switch)
+{
+    const auto parse = [](const std::string& text)
+    { return read_step_settings(io::parse_dictionary(text, "system/morphDict")); };
+    EXPECT_TRUE(parse("").untangle);
+    EXPECT_FALSE(parse("untangle no;").untangle);
+    EXPECT_TRUE(parse("untangle on;").untangle);
+    try
+    {
+        parse("untangle maybe;");
+        ADD_FAILURE() << "expected an error";
+    }
+    catch (const ParseError& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("untangle"), std::string::npos) << e.what();
+    }
 }
 
 TEST(MorphSteps, idw_method_is_exact_and_never_exceeds_the_largest_prescription)

@@ -186,9 +186,9 @@ MorphSetup read_morph_setup(const io::FoamDictionary& dict)
 {
     MorphSetup setup;
     setup.dict_path = dict.path();
-    dict.check_keywords(
-        {"method", "rbf", "dmffd", "ffd", "idw", "steps", "boundary", "handles", "conflicts"},
-        "morphDict");
+    dict.check_keywords({"method", "rbf", "dmffd", "ffd", "idw", "steps", "untangle", "boundary",
+                         "handles", "conflicts"},
+                        "morphDict");
     if (const io::FoamEntry* e = dict.find("conflicts"))
     {
         try

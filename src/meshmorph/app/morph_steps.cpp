@@ -49,6 +49,12 @@ void log_step(std::size_t number, const StepRecord& r, bool failed, bool redo, b
         verdict = " (the shortest step: the rest of the motion in one step, to be refused)";
     else if (failed)
         verdict = " (kept: the result will be refused)";
+    if (r.untangle.invalid_before > 0)
+        log::info() << "    untangled " << r.untangle.invalid_before << " invalid cells by moving "
+                    << r.untangle.points_moved << " interior points by up to "
+                    << r.untangle.max_move << " (" << r.untangle.layers
+                    << " layers of cells around them), " << r.untangle.invalid_after
+                    << " still invalid [" << format_seconds(r.untangle_seconds) << " s]";
     log::info() << "Step " << number << ": motion " << format_fraction(r.from) << " -> "
                 << format_fraction(r.to) << ", " << r.centres << " centres, "
                 << r.invalid.negative_volume_cells << " negative-volume cells, "
@@ -58,9 +64,8 @@ void log_step(std::size_t number, const StepRecord& r, bool failed, bool redo, b
                 << format_seconds(r.check_seconds) << " s]";
 }
 
-} // namespace
-
-StepSettings read_step_settings(const io::FoamDictionary& dict)
+//! `steps auto | N`.
+StepSettings read_steps(const io::FoamDictionary& dict)
 {
     StepSettings s;
     const io::FoamEntry* e = dict.find("steps");
@@ -75,6 +80,58 @@ StepSettings read_step_settings(const io::FoamDictionary& dict)
         return s;
     }
     throw e->error("expected 'auto' or a number of steps from 1 to 10000");
+}
+
+//! What the repair of a step needs from the unmorphed mesh, computed on first use.
+class OriginalState
+{
+public:
+    OriginalState(const PolyMesh& mesh, const CompactList& cell_faces)
+        : mesh_(mesh), cell_faces_(cell_faces)
+    {
+    }
+    const Points& points() const { return mesh_.points; }
+    const std::vector<char>& invalid_cells()
+    {
+        if (invalid_.empty())
+            invalid_ = invalid_cell_flags(mesh_, cell_faces_, compute_geometry(mesh_, cell_faces_));
+        return invalid_;
+    }
+    const std::vector<char>& movable_points()
+    {
+        if (movable_.empty())
+        {
+            movable_ = boundary_point_mask(mesh_);
+            for (char& m : movable_)
+                m = m ? 0 : 1;
+        }
+        return movable_;
+    }
+
+private:
+    const PolyMesh& mesh_;
+    const CompactList& cell_faces_;
+    std::vector<char> invalid_, movable_;
+};
+
+//! Untangle the step's new invalid cells in place and recount them.
+void repair(PolyMesh& current, const CompactList& cell_faces, MeshGeometry& geometry,
+            OriginalState& original, StepRecord& record)
+{
+    const Stopwatch clock;
+    record.untangle = untangle_cells(current, cell_faces, geometry, original.points(),
+                                     original.invalid_cells(), original.movable_points(), {});
+    record.invalid = count_invalid_cells(current, geometry);
+    record.untangle_seconds = clock.seconds();
+}
+
+} // namespace
+
+StepSettings read_step_settings(const io::FoamDictionary& dict)
+{
+    StepSettings s = read_steps(dict);
+    s.untangle = dict.get_or<bool>("untangle", true);
+    return s;
 }
 
 std::string describe(const StepSettings& s)
@@ -130,6 +187,7 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
                             const DeformationMaker& make, bool fit, const InvalidCells& before)
 {
     SteppedMorph out;
+    OriginalState original(mesh, cell_faces);
     // One working mesh: its points are the accepted state, or a trial swapped in and out.
     PolyMesh current = mesh;
     Points other;
@@ -162,6 +220,8 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         MeshGeometry geometry = compute_geometry(current, cell_faces);
         record.invalid = count_invalid_cells(current, geometry);
         record.check_seconds = check_clock.seconds();
+        if (settings.untangle && record.invalid.worse_than(before))
+            repair(current, cell_faces, geometry, original, record);
         const bool failed = record.invalid.worse_than(before);
         const bool redo = failed && is_auto && !stuck && length > shortest * 1.5;
         record.accepted = !redo;

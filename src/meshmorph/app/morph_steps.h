@@ -7,12 +7,15 @@
 //! (rotations turn by t_k times their angle, every other prescription moves t_k of its
 //! displacement along a straight line). Slip points are re-derived at every step.
 //!
-//! `steps auto` (the default) starts with one step. A step whose result has more
-//! negative-volume cells or wrongly oriented face pyramids than the original mesh is
-//! redone at half its length, down to 1/max_steps of the motion; the shorter length is
-//! kept for the rest. If even the shortest step fails, the rest of the motion is applied in
-//! one step and the result is refused (written with -force: the whole motion, never a part
-//! of it). `steps N` makes N equal steps and never redoes one.
+//! A step whose result has more negative-volume cells or wrongly oriented face pyramids
+//! than the original mesh is first repaired in place by local untangling (morph/
+//! local_untangle.h: interior points near the new invalid cells move, boundary points
+//! never do; morphDict `untangle no` turns it off). `steps auto` (the default) starts with
+//! one step. A step still invalid after the repair is redone at half its length, down to
+//! 1/max_steps of the motion; the shorter length is kept for the rest. If even the shortest step
+//! fails, the rest of the motion is applied in one step and the result is refused (written with
+//! -force: the whole motion, never a part of it). `steps N` makes N equal steps and never redoes
+//! one.
 #pragma once
 
 #include <functional>
@@ -21,6 +24,7 @@
 #include <vector>
 
 #include "meshmorph/app/point_morph.h"
+#include "meshmorph/morph/local_untangle.h"
 #include "meshmorph/quality/cell_validity.h"
 
 namespace meshmorph::app
@@ -28,11 +32,13 @@ namespace meshmorph::app
 
 struct StepSettings
 {
-    int steps = 0;      //!< 0: auto; N >= 1: N equal steps
-    int max_steps = 64; //!< auto: the shortest step is 1/max_steps of the motion
+    int steps = 0;        //!< 0: auto; N >= 1: N equal steps
+    int max_steps = 64;   //!< auto: the shortest step is 1/max_steps of the motion
+    bool untangle = true; //!< repair a step's new invalid cells before judging it
 };
 
-//! \brief Read `steps auto;` or `steps N;` (absent: auto). \throw ParseError.
+//! \brief Read `steps auto;` or `steps N;` (absent: auto) and `untangle yes|no;` (absent:
+//! yes). \throw ParseError.
 StepSettings read_step_settings(const io::FoamDictionary& dict);
 
 //! What one step (tried or kept) did.
@@ -42,7 +48,9 @@ struct StepRecord
     Index centres = 0;
     double max_global_residual = 0.0; //!< relative residual the local correction took up
     double fit_seconds = 0.0, evaluate_seconds = 0.0, check_seconds = 0.0;
-    InvalidCells invalid;
+    InvalidCells invalid;    //!< after the repair, if there was one
+    UntangleReport untangle; //!< the repair (invalid_before 0: none was needed)
+    double untangle_seconds = 0.0;
     bool accepted = false;
 };
 

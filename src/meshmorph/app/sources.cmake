@@ -12,5 +12,5 @@ set(MESHMORPH_APP_SOURCES
 )
 meshmorph_add_component(app
     SOURCES ${MESHMORPH_APP_SOURCES}
-    DEPENDS meshmorph::core meshmorph::io meshmorph::quality meshmorph::deform
+    DEPENDS meshmorph::core meshmorph::io meshmorph::quality meshmorph::deform meshmorph::morph
             nlohmann_json::nlohmann_json)

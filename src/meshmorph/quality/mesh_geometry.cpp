@@ -12,105 +12,109 @@ using detail::FoamVector;
 using detail::row;
 using detail::set_row;
 
+void face_centre_and_area(const PolyMesh& mesh, Index f, Points& centres, Points& areas)
+{
+    const Points& p = mesh.points;
+    const std::span<const Index> face = mesh.faces[f];
+    const std::size_t n = face.size();
+    if (n == 3)
+    {
+        const FoamVector p0 = row(p, face[0]), p1 = row(p, face[1]), p2 = row(p, face[2]);
+        set_row(centres, f, (1.0 / 3.0) * (p0 + p1 + p2));
+        set_row(areas, f, 0.5 * detail::cross(p1 - p0, p2 - p0));
+        return;
+    }
+    if (n == 0)
+    {
+        set_row(centres, f, {});
+        set_row(areas, f, {});
+        return;
+    }
+    FoamVector mean = row(p, face[0]);
+    for (std::size_t i = 1; i < n; ++i)
+        mean += row(p, face[i]);
+    mean /= static_cast<double>(n);
+    FoamVector sum_n, sum_ac;
+    double sum_a = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        const FoamVector pi = row(p, face[i]);
+        const FoamVector pj = row(p, face[(i + 1) % n]);
+        const FoamVector c = pi + pj + mean;
+        const FoamVector t = detail::cross(pj - pi, mean - pi);
+        const double a = detail::mag(t);
+        sum_n += t;
+        sum_a += a;
+        sum_ac += a * c;
+    }
+    if (sum_a < constants::rootvsmall)
+    {
+        set_row(centres, f, mean);
+        set_row(areas, f, {});
+    }
+    else
+    {
+        set_row(centres, f, ((1.0 / 3.0) * sum_ac) / sum_a);
+        set_row(areas, f, 0.5 * sum_n);
+    }
+}
+
 void face_centres_and_areas(const PolyMesh& mesh, Points& centres, Points& areas)
 {
     const Index n_faces = mesh.n_faces();
     centres.resize(n_faces, 3);
     areas.resize(n_faces, 3);
-    const Points& p = mesh.points;
 #pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
-    {
-        const std::span<const Index> face = mesh.faces[f];
-        const std::size_t n = face.size();
-        if (n == 3)
-        {
-            const FoamVector p0 = row(p, face[0]), p1 = row(p, face[1]), p2 = row(p, face[2]);
-            set_row(centres, f, (1.0 / 3.0) * (p0 + p1 + p2));
-            set_row(areas, f, 0.5 * detail::cross(p1 - p0, p2 - p0));
-            continue;
-        }
-        if (n == 0)
-        {
-            set_row(centres, f, {});
-            set_row(areas, f, {});
-            continue;
-        }
-        FoamVector mean = row(p, face[0]);
-        for (std::size_t i = 1; i < n; ++i)
-            mean += row(p, face[i]);
-        mean /= static_cast<double>(n);
-        FoamVector sum_n, sum_ac;
-        double sum_a = 0.0;
-        for (std::size_t i = 0; i < n; ++i)
-        {
-            const FoamVector pi = row(p, face[i]);
-            const FoamVector pj = row(p, face[(i + 1) % n]);
-            const FoamVector c = pi + pj + mean;
-            const FoamVector t = detail::cross(pj - pi, mean - pi);
-            const double a = detail::mag(t);
-            sum_n += t;
-            sum_a += a;
-            sum_ac += a * c;
-        }
-        if (sum_a < constants::rootvsmall)
-        {
-            set_row(centres, f, mean);
-            set_row(areas, f, {});
-        }
-        else
-        {
-            set_row(centres, f, ((1.0 / 3.0) * sum_ac) / sum_a);
-            set_row(areas, f, 0.5 * sum_n);
-        }
-    }
+        face_centre_and_area(mesh, f, centres, areas);
 }
 
-void cell_centres_and_volumes(const PolyMesh& mesh, const CompactList& cell_faces,
-                              const Points& face_centres, const Points& face_areas,
-                              Points& cell_centres, Eigen::VectorXd& cell_volumes)
+void cell_centre_and_volume(const PolyMesh& mesh, const CompactList& cell_faces, Index c,
+                            MeshGeometry& g)
+{
+    const std::span<const Index> faces = cell_faces[c];
+    FoamVector estimate;
+    for (Index f : faces)
+        estimate += row(g.face_centres, f);
+    if (!faces.empty())
+        estimate /= static_cast<double>(faces.size());
+    FoamVector sum_vc;
+    double sum_v = 0.0;
+    for (Index f : faces)
+    {
+        const FoamVector cf = row(g.face_centres, f);
+        const FoamVector af = row(g.face_areas, f);
+        const double pyr3 =
+            mesh.owner[f] == c ? detail::dot(af, cf - estimate) : detail::dot(af, estimate - cf);
+        const FoamVector pc = (3.0 / 4.0) * cf + (1.0 / 4.0) * estimate;
+        sum_vc += pyr3 * pc;
+        sum_v += pyr3;
+    }
+    if (std::abs(sum_v) > constants::vsmall)
+        set_row(g.cell_centres, c, sum_vc / sum_v);
+    else
+        set_row(g.cell_centres, c, estimate);
+    g.cell_volumes[c] = sum_v * (1.0 / 3.0);
+}
+
+void cell_centres_and_volumes(const PolyMesh& mesh, const CompactList& cell_faces, MeshGeometry& g)
 {
     const Index n_cells = cell_faces.size();
-    cell_centres.resize(n_cells, 3);
-    cell_volumes.resize(n_cells);
+    g.cell_centres.resize(n_cells, 3);
+    g.cell_volumes.resize(n_cells);
     // One cell at a time, faces in cell_faces order: owned faces ascending, then neighboured
     // faces ascending -- the same per-cell accumulation order as OpenFOAM's owner pass
     // followed by its neighbour pass, so results are bit-identical and thread-independent.
 #pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
     for (Index c = 0; c < n_cells; ++c)
-    {
-        const std::span<const Index> faces = cell_faces[c];
-        FoamVector estimate;
-        for (Index f : faces)
-            estimate += row(face_centres, f);
-        if (!faces.empty())
-            estimate /= static_cast<double>(faces.size());
-        FoamVector sum_vc;
-        double sum_v = 0.0;
-        for (Index f : faces)
-        {
-            const FoamVector cf = row(face_centres, f);
-            const FoamVector af = row(face_areas, f);
-            const double pyr3 = mesh.owner[f] == c ? detail::dot(af, cf - estimate)
-                                                   : detail::dot(af, estimate - cf);
-            const FoamVector pc = (3.0 / 4.0) * cf + (1.0 / 4.0) * estimate;
-            sum_vc += pyr3 * pc;
-            sum_v += pyr3;
-        }
-        if (std::abs(sum_v) > constants::vsmall)
-            set_row(cell_centres, c, sum_vc / sum_v);
-        else
-            set_row(cell_centres, c, estimate);
-        cell_volumes[c] = sum_v * (1.0 / 3.0);
-    }
+        cell_centre_and_volume(mesh, cell_faces, c, g);
 }
 
 MeshGeometry compute_geometry(const PolyMesh& mesh, const CompactList& cell_faces)
 {
     MeshGeometry g;
     face_centres_and_areas(mesh, g.face_centres, g.face_areas);
-    cell_centres_and_volumes(mesh, cell_faces, g.face_centres, g.face_areas, g.cell_centres,
-                             g.cell_volumes);
+    cell_centres_and_volumes(mesh, cell_faces, g);
     return g;
 }
 

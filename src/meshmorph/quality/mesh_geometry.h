@@ -28,14 +28,20 @@ struct MeshGeometry
 //! \param centres, areas outputs, resized to nFaces x 3.
 void face_centres_and_areas(const PolyMesh& mesh, Points& centres, Points& areas);
 
-//! \brief Cell centres and signed volumes (spec §2.2) from face geometry.
+//! \brief Row f of centres and areas, as face_centres_and_areas computes it (a mesh
+//! repair that moves a few points updates the geometry of their faces with it).
+void face_centre_and_area(const PolyMesh& mesh, Index f, Points& centres, Points& areas);
+
+//! \brief Cell centres and signed volumes (spec §2.2) from g's face geometry, into g.
 //! \param cell_faces from meshmorph::cell_faces(mesh) (owned faces first, each part in face
 //!        order: the accumulation order of OpenFOAM's owner and neighbour passes).
 //! A cell without faces gets centre (0,0,0) and volume 0... as OpenFOAM would divide by
 //! zero there, such meshes fail the topology checks first.
-void cell_centres_and_volumes(const PolyMesh& mesh, const CompactList& cell_faces,
-                              const Points& face_centres, const Points& face_areas,
-                              Points& cell_centres, Eigen::VectorXd& cell_volumes);
+void cell_centres_and_volumes(const PolyMesh& mesh, const CompactList& cell_faces, MeshGeometry& g);
+
+//! \brief Cell c's centre and volume in g, as cell_centres_and_volumes computes them.
+void cell_centre_and_volume(const PolyMesh& mesh, const CompactList& cell_faces, Index c,
+                            MeshGeometry& g);
 
 //! \brief All of the above. \pre valid face and cell addressing (see check_mesh for the
 //! checks that make sure of it).

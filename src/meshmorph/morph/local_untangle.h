@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Local untangling: repair the few cells a morph inverts by moving interior points
+//! near them, leaving every boundary point where the morph put it.
+//!
+//! A smooth field (RBF, IDW) can still fold a thin cell where a moving wall meets a fixed
+//! one: at the motorBike's rear tyre, lifted off a fixed floor, one snappyHexMesh cell a
+//! few millimetres thick lies almost in the tyre surface, and its one interior point lags
+//! the tyre by more than its own distance from it. No step length avoids that, because the
+//! fold is in the final field, not in the path. The repair is Freitag's "smart" Laplacian
+//! smoothing, restricted to a neighbourhood of the invalid cells: each interior point there
+//! tries a few positions (towards the mean of its edge neighbours, towards the mean of its
+//! cells' centres, and the original position moved by the mean displacement of its
+//! neighbours) and takes the one that most raises the worst quality of the cells around
+//! it. The quality is scale-free: the smallest cosine over those cells of (a) the angle
+//! between a face's normal and the direction from the cell centre to the face centre (a
+//! face pyramid is wrongly oriented when it is negative) and (b) the angle between an
+//! internal face's normal and the owner-to-neighbour direction (non-orthogonality above 90
+//! degrees when negative). A point only moves when that minimum rises, so the repair never
+//! makes the worst of its cells worse. The neighbourhood starts one layer of cells around
+//! the invalid ones and doubles while cells remain invalid, up to max_layers.
+#pragma once
+
+#include <vector>
+
+#include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/quality/mesh_geometry.h"
+
+namespace meshmorph
+{
+
+struct UntangleSettings
+{
+    int max_layers = 8; //!< the widest neighbourhood, in layers of cells around the invalid ones
+    int sweeps = 40;    //!< passes over the neighbourhood's points, per neighbourhood
+};
+
+struct UntangleReport
+{
+    Index invalid_before = 0; //!< cells invalid (and not in the original mesh) on entry
+    Index invalid_after = 0;  //!< of those and their neighbourhood, still invalid on return
+    Index points_moved = 0;   //!< distinct interior points moved
+    int layers = 0;           //!< the neighbourhood's width when the repair stopped
+    double max_move = 0.0;    //!< the largest distance a point was moved
+};
+
+//! \brief Per cell: 1 when it has a volume below OpenFOAM's VSMALL, a wrongly oriented face
+//! pyramid or an internal face whose non-orthogonality reaches 90 degrees.
+std::vector<char> invalid_cell_flags(const PolyMesh& mesh, const CompactList& cell_faces,
+                                     const MeshGeometry& geometry);
+
+//! \brief Repair the cells that are invalid in `mesh` but were not in the original mesh.
+//! \param mesh the morphed mesh; its interior points near invalid cells are moved.
+//! \param geometry compute_geometry(mesh, cell_faces) on entry; kept up to date.
+//! \param original_points the mesh before the morph (for the displacement candidate).
+//! \param was_invalid invalid_cell_flags of the original mesh: these cells are left alone.
+//! \param movable per point, 1 when the repair may move it (interior points).
+UntangleReport untangle_cells(PolyMesh& mesh, const CompactList& cell_faces, MeshGeometry& geometry,
+                              const Points& original_points, const std::vector<char>& was_invalid,
+                              const std::vector<char>& movable, const UntangleSettings& settings);
+
+} // namespace meshmorph
