@@ -8,16 +8,18 @@
 //! the tyre by more than its own distance from it. No step length avoids that, because the
 //! fold is in the final field, not in the path. The repair is Freitag's "smart" Laplacian
 //! smoothing, restricted to a neighbourhood of the invalid cells: each interior point there
-//! tries a few positions (towards the mean of its edge neighbours, towards the mean of its
-//! cells' centres, and the original position moved by the mean displacement of its
-//! neighbours) and takes the one that most raises the worst quality of the cells around
-//! it. The quality is scale-free: the smallest cosine over those cells of (a) the angle
-//! between a face's normal and the direction from the cell centre to the face centre (a
-//! face pyramid is wrongly oriented when it is negative) and (b) the angle between an
-//! internal face's normal and the owner-to-neighbour direction (non-orthogonality above 90
-//! degrees when negative). A point only moves when that minimum rises, so the repair never
-//! makes the worst of its cells worse. The neighbourhood starts one layer of cells around
-//! the invalid ones and doubles while cells remain invalid, up to max_layers.
+//! whose cells are poor tries a few positions (towards the mean of its edge neighbours,
+//! towards the mean of its cells' centres, its original position moved by the mean
+//! displacement of its neighbours, and short steps up the quality's numerical gradient)
+//! and takes the one that most raises the worst quality of the cells around it. The
+//! quality is scale-free: the smallest cosine over those cells of (a) the angle between a
+//! face's normal and the direction from the cell centre to the face centre (a face pyramid
+//! is wrongly oriented when it is negative) and (b) the angle between an internal face's
+//! normal and the owner-to-neighbour direction (non-orthogonality above 90 degrees when
+//! negative). A point only moves when that minimum rises, so the repair never makes the
+//! worst of its cells worse, and points whose cells are already good (cosine >= 0.2) stay
+//! where the morph put them. The neighbourhood starts one layer of cells around the
+//! invalid ones and doubles while cells remain invalid, up to max_layers.
 #pragma once
 
 #include <vector>
