@@ -21,12 +21,12 @@ using BlockMap = std::function<Vector3(double u, double v, double w)>;
 //! upper-triangular order; patches xMin, xMax, yMin, yMax, zMin, zMax (type `patch`, or
 //! `wall` where listed in `walls`). Face normals point from owner to neighbour / outwards.
 inline PolyMesh make_block_mesh(int nx, int ny, int nz, const BlockMap& map,
-                                const std::array<std::string, 6>& types = {"patch", "patch",
-                                                                          "patch", "patch",
-                                                                          "patch", "patch"})
+                                const std::array<std::string, 6>& types = {
+                                    "patch", "patch", "patch", "patch", "patch", "patch"})
 {
     PolyMesh mesh;
-    const auto pid = [&](int i, int j, int k) -> Index { return i + (nx + 1) * (j + (ny + 1) * k); };
+    const auto pid = [&](int i, int j, int k) -> Index
+    { return i + (nx + 1) * (j + (ny + 1) * k); };
     const auto cid = [&](int i, int j, int k) -> Index { return i + nx * (j + ny * k); };
     mesh.points.resize(static_cast<Eigen::Index>(nx + 1) * (ny + 1) * (nz + 1), 3);
     for (int k = 0; k <= nz; ++k)
@@ -36,19 +36,23 @@ inline PolyMesh make_block_mesh(int nx, int ny, int nz, const BlockMap& map,
                     map(double(i) / nx, double(j) / ny, double(k) / nz).transpose();
 
     // Faces at the +x/+y/+z side of point (i, j, k), oriented along +axis.
-    const auto face_x = [&](int i, int j, int k) {
+    const auto face_x = [&](int i, int j, int k)
+    {
         return std::array<Index, 4>{pid(i, j, k), pid(i, j + 1, k), pid(i, j + 1, k + 1),
                                     pid(i, j, k + 1)};
     };
-    const auto face_y = [&](int i, int j, int k) {
+    const auto face_y = [&](int i, int j, int k)
+    {
         return std::array<Index, 4>{pid(i, j, k), pid(i, j, k + 1), pid(i + 1, j, k + 1),
                                     pid(i + 1, j, k)};
     };
-    const auto face_z = [&](int i, int j, int k) {
+    const auto face_z = [&](int i, int j, int k)
+    {
         return std::array<Index, 4>{pid(i, j, k), pid(i + 1, j, k), pid(i + 1, j + 1, k),
                                     pid(i, j + 1, k)};
     };
-    const auto add = [&](std::array<Index, 4> f, bool reverse, Index own) {
+    const auto add = [&](std::array<Index, 4> f, bool reverse, Index own)
+    {
         if (reverse)
             f = {f[0], f[3], f[2], f[1]};
         mesh.faces.push_back(std::span<const Index>(f));
@@ -114,10 +118,13 @@ inline PolyMesh make_block_mesh(int nx, int ny, int nz, const BlockMap& map,
 inline PolyMesh make_box_mesh(int nx, int ny, int nz, const Vector3& lo = Vector3(0, 0, 0),
                               const Vector3& hi = Vector3(1, 1, 1))
 {
-    return make_block_mesh(nx, ny, nz, [&](double u, double v, double w) {
-        return Vector3(lo.x() + u * (hi.x() - lo.x()), lo.y() + v * (hi.y() - lo.y()),
-                       lo.z() + w * (hi.z() - lo.z()));
-    });
+    return make_block_mesh(nx, ny, nz,
+                           [&](double u, double v, double w)
+                           {
+                               return Vector3(lo.x() + u * (hi.x() - lo.x()),
+                                              lo.y() + v * (hi.y() - lo.y()),
+                                              lo.z() + w * (hi.z() - lo.z()));
+                           });
 }
 
 //! Path inside tests/data.
@@ -140,8 +147,7 @@ inline std::filesystem::path scratch_dir(const std::string& name)
 //! `if (!openfoam_available()) GTEST_SKIP() << "OpenFOAM not installed ..."`.
 inline bool openfoam_available()
 {
-    if (std::getenv("WM_PROJECT_DIR") == nullptr &&
-        std::filesystem::exists("/usr/share/openfoam"))
+    if (std::getenv("WM_PROJECT_DIR") == nullptr && std::filesystem::exists("/usr/share/openfoam"))
         setenv("WM_PROJECT_DIR", "/usr/share/openfoam", 0);
     return std::system("command -v checkMesh >/dev/null 2>&1 && command -v blockMesh "
                        ">/dev/null 2>&1") == 0;

@@ -128,12 +128,12 @@ inline const std::vector<std::pair<std::string, std::string>>& format_suffixes()
 inline const std::map<std::string, std::string>& openfoam_case_scripts()
 {
     static const std::map<std::string, std::string> scripts{
-        {"curved-block", "curved-block.sh {dir}"},  // 336 hex cells, arc/spline edges
-        {"tet-gmsh", "tet-gmsh.sh {dir}"},          // ~900 tetrahedra (gmsh + gmshToFoam)
-        {"flange", "flange.sh {dir}"},              // snappyHexMesh flange, ~19k cells
-        {"damaged", "damaged.sh {curved-block} {dir}"}, // curved-block, inverted + twisted
+        {"curved-block", "curved-block.sh {dir}"},         // 336 hex cells, arc/spline edges
+        {"tet-gmsh", "tet-gmsh.sh {dir}"},                 // ~900 tetrahedra (gmsh + gmshToFoam)
+        {"flange", "flange.sh {dir}"},                     // snappyHexMesh flange, ~19k cells
+        {"damaged", "damaged.sh {curved-block} {dir}"},    // curved-block, inverted + twisted
         {"motorbike-coarse", "motorbike.sh {dir} coarse"}, // ~14k cells, < 10 s
-        {"motorbike", "motorbike.sh {dir}"},        // full tutorial, ~353k cells, minutes
+        {"motorbike", "motorbike.sh {dir}"},               // full tutorial, ~353k cells, minutes
     };
     return scripts;
 }
@@ -194,9 +194,8 @@ inline std::filesystem::path openfoam_case(const std::string& name)
                               detail::shell_quote((detail::openfoam_scripts_dir() / "").string()) +
                               command + " > " + detail::shell_quote(log.string()) + " 2>&1";
     if (std::system(shell.c_str()) != 0 || !fs::exists(dir / "constant" / "polyMesh"))
-        throw std::runtime_error("openfoam_case('" + name + "') failed: " + shell +
-                                 "\n  end of " + log.string() + ":\n" +
-                                 detail::tail_of(log, 15));
+        throw std::runtime_error("openfoam_case('" + name + "') failed: " + shell + "\n  end of " +
+                                 log.string() + ":\n" + detail::tail_of(log, 15));
     std::ofstream(done) << command << '\n';
     return dir;
 }

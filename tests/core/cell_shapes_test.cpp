@@ -294,10 +294,10 @@ TEST(CellShapes, counts_match_openfoam_checkmesh)
     if (!test::openfoam_available())
         GTEST_SKIP() << "OpenFOAM not installed: checkMesh cell-type comparison skipped";
     const std::vector<std::pair<std::string, PolyMesh>> cases{
-        {"hex", test::make_box_mesh(2, 2, 1)},  {"tet", test::make_tet_cube()},
-        {"pyramid", test::make_pyramid_cube()}, {"prism", test::make_prism_cube()},
-        {"wedge", test::make_wedge_on_hex()},   {"tetwedge", test::make_tet_wedge()},
-        {"split", test::make_split_top_cube()}, {"pentagon", test::make_pentagon_cells()},
+        {"hex", test::make_box_mesh(2, 2, 1)},        {"tet", test::make_tet_cube()},
+        {"pyramid", test::make_pyramid_cube()},       {"prism", test::make_prism_cube()},
+        {"wedge", test::make_wedge_on_hex()},         {"tetwedge", test::make_tet_wedge()},
+        {"split", test::make_split_top_cube()},       {"pentagon", test::make_pentagon_cells()},
         {"collapsed-hex", test::make_collapsed_hex()}};
     const std::filesystem::path root = test::scratch_dir("cell_shapes_checkmesh");
     for (const auto& [name, mesh] : cases)

@@ -64,7 +64,8 @@ TEST(OpenfoamCases, binary_gz_variant_has_compressed_binary_files)
     const fs::path dir = test::openfoam_case("curved-block-binary-gz");
     for (const char* file : {"points", "faces", "owner", "neighbour", "boundary"})
     {
-        EXPECT_TRUE(fs::is_regular_file(dir / "constant" / "polyMesh" / (std::string(file) + ".gz")))
+        EXPECT_TRUE(
+            fs::is_regular_file(dir / "constant" / "polyMesh" / (std::string(file) + ".gz")))
             << file;
         EXPECT_FALSE(fs::exists(dir / "constant" / "polyMesh" / file)) << file;
     }

@@ -46,9 +46,9 @@ TEST(PolyMesh, block_mesh_faces_upper_triangular_and_oriented)
         EXPECT_LT(mesh.owner[f], mesh.neighbour[f]);
     for (Index f = 1; f < mesh.n_internal_faces(); ++f)
     {
-        const bool ordered = mesh.owner[f - 1] < mesh.owner[f] ||
-                             (mesh.owner[f - 1] == mesh.owner[f] &&
-                              mesh.neighbour[f - 1] < mesh.neighbour[f]);
+        const bool ordered =
+            mesh.owner[f - 1] < mesh.owner[f] ||
+            (mesh.owner[f - 1] == mesh.owner[f] && mesh.neighbour[f - 1] < mesh.neighbour[f]);
         EXPECT_TRUE(ordered) << "face " << f;
     }
     // Every cell is closed: the sum of its outward area vectors vanishes.

@@ -25,8 +25,7 @@ namespace
 fs::path write_case(const std::string& name, const PolyMesh& mesh)
 {
     const fs::path dir = test::scratch_dir(name);
-    io::write_poly_mesh(mesh, io::default_poly_mesh_files(io::FoamFormat::ascii), dir,
-                        "constant");
+    io::write_poly_mesh(mesh, io::default_poly_mesh_files(io::FoamFormat::ascii), dir, "constant");
     fs::create_directories(dir / "system");
     std::ofstream(dir / "system" / "controlDict")
         << "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
@@ -72,7 +71,8 @@ PolyMesh damaged_box()
 TEST(CheckMeshQualityApp, good_mesh_exits_0_and_writes_json)
 {
     const fs::path dir = write_case("app_good", test::make_box_mesh(4, 3, 2));
-    const AppRun r = run({"-case", dir.string(), "-allGeometry", "-json", (dir / "q.json").string()});
+    const AppRun r =
+        run({"-case", dir.string(), "-allGeometry", "-json", (dir / "q.json").string()});
     ASSERT_EQ(r.status, app::exit_mesh_ok) << r.err;
     EXPECT_NE(r.out.find("Time = constant\n\nMesh stats\n"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\nMesh OK.\n"), std::string::npos);
@@ -84,14 +84,31 @@ TEST(CheckMeshQualityApp, good_mesh_exits_0_and_writes_json)
     EXPECT_EQ(j["failedChecks"], 0);
     EXPECT_DOUBLE_EQ(j["totalVolume"].get<double>(), 1.0);
     EXPECT_DOUBLE_EQ(j["minScaledJacobian"].get<double>(), 1.0);
-    for (const char* key :
-         {"points", "faces", "internalFaces", "patches", "boundingBox", "maxCellOpenness",
-          "maxAspectRatio", "minFaceArea", "maxFaceArea", "minVolume", "maxVolume",
-          "negativeVolumeCells", "maxNonOrthogonality", "avgNonOrthogonality",
-          "severelyNonOrthogonalFaces", "nonOrthogonalityErrors",
-          "incorrectlyOrientedFacePyramids", "maxSkewness", "highlySkewedFaces", "minFaceWeight",
-          "minVolumeRatio", "smallDeterminantCells", "concaveCells", "warpedFaces",
-          "faceTetErrors"})
+    for (const char* key : {"points",
+                            "faces",
+                            "internalFaces",
+                            "patches",
+                            "boundingBox",
+                            "maxCellOpenness",
+                            "maxAspectRatio",
+                            "minFaceArea",
+                            "maxFaceArea",
+                            "minVolume",
+                            "maxVolume",
+                            "negativeVolumeCells",
+                            "maxNonOrthogonality",
+                            "avgNonOrthogonality",
+                            "severelyNonOrthogonalFaces",
+                            "nonOrthogonalityErrors",
+                            "incorrectlyOrientedFacePyramids",
+                            "maxSkewness",
+                            "highlySkewedFaces",
+                            "minFaceWeight",
+                            "minVolumeRatio",
+                            "smallDeterminantCells",
+                            "concaveCells",
+                            "warpedFaces",
+                            "faceTetErrors"})
         EXPECT_TRUE(j.contains(key)) << key;
     EXPECT_FALSE(j.contains("meshQualityFailures"));
 }
@@ -202,8 +219,8 @@ TEST(CheckMeshQualityApp, vtk_file_has_the_quality_fields)
     const AppRun r = run({"-case", dir.string(), "-vtk", (dir / "quality.vtu").string()});
     ASSERT_EQ(r.status, app::exit_checks_failed) << r.err;
     const std::string vtu = read_text(dir / "quality.vtu");
-    for (const char* field : {"nonOrthogonality", "skewness", "aspectRatio", "volume",
-                              "determinant", "scaledJacobian"})
+    for (const char* field :
+         {"nonOrthogonality", "skewness", "aspectRatio", "volume", "determinant", "scaledJacobian"})
         EXPECT_NE(vtu.find("Name=\"" + std::string(field) + "\""), std::string::npos) << field;
     EXPECT_NE(vtu.find("NumberOfCells=\"27\""), std::string::npos);
 #else

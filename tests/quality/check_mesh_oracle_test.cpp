@@ -79,7 +79,8 @@ std::vector<std::string> tokens(const std::string& line)
     for (std::string t; in >> t;)
     {
         // "0.225." -> number and the sentence's full stop.
-        if (t.size() > 1 && t.back() == '.' && std::isdigit(static_cast<unsigned char>(t[t.size() - 2])))
+        if (t.size() > 1 && t.back() == '.' &&
+            std::isdigit(static_cast<unsigned char>(t[t.size() - 2])))
         {
             result.push_back(t.substr(0, t.size() - 1));
             result.push_back(".");
@@ -121,8 +122,7 @@ std::string compare_reports(const std::vector<std::string>& expected,
                 if (ie && ia)
                     same = ve == va;
                 else
-                    same = std::abs(ve - va) <=
-                           1e-6 * std::max(std::abs(ve), std::abs(va)) + 1e-12;
+                    same = std::abs(ve - va) <= 1e-6 * std::max(std::abs(ve), std::abs(va)) + 1e-12;
             }
             else
                 same = e[k] == a[k];
@@ -146,8 +146,8 @@ std::string read_text(const fs::path& path)
 std::string run_checkmesh(const fs::path& case_dir, const std::string& args)
 {
     const fs::path log = case_dir / "log.checkMesh.oracle";
-    const std::string command = "cd '" + case_dir.string() + "' && checkMesh " + args + " > '" +
-                                log.string() + "' 2>&1";
+    const std::string command =
+        "cd '" + case_dir.string() + "' && checkMesh " + args + " > '" + log.string() + "' 2>&1";
     EXPECT_EQ(std::system(command.c_str()), 0) << command;
     return read_text(log);
 }
@@ -165,8 +165,8 @@ OurRun run_ours(const fs::path& case_dir, std::vector<std::string> args)
     for (const std::string& a : args)
         argv.push_back(a.c_str());
     std::ostringstream out, err;
-    const int status = app::run_check_mesh_quality(static_cast<int>(argv.size()), argv.data(),
-                                                   out, err);
+    const int status =
+        app::run_check_mesh_quality(static_cast<int>(argv.size()), argv.data(), out, err);
     return {status, out.str(), err.str()};
 }
 
@@ -200,8 +200,8 @@ void expect_same_report(const std::string& name, const std::vector<std::string>&
     EXPECT_EQ(ours.status == 0, expected.back() == "Mesh OK.");
 }
 
-#define REQUIRE_OPENFOAM(what)                                                                   \
-    if (!test::openfoam_available())                                                             \
+#define REQUIRE_OPENFOAM(what)                                                                     \
+    if (!test::openfoam_available())                                                               \
     GTEST_SKIP() << "OpenFOAM not installed: " what " not compared with checkMesh"
 
 const std::vector<std::string> all_checks = {"-allGeometry", "-allTopology"};
@@ -298,8 +298,8 @@ TEST(CheckMeshOracle, written_sets_match_checkmesh_sets)
         EXPECT_TRUE(fs::exists(sets / entry.path().filename()))
             << "checkMesh wrote set " << entry.path().filename() << ", we did not";
     ASSERT_TRUE(fs::exists(sets / "wrongOrientedFaces"));
-    const std::string command = "cd '" + dir.string() +
-                                "' && foamToVTK -faceSet wrongOrientedFaces > log.foamToVTK 2>&1";
+    const std::string command =
+        "cd '" + dir.string() + "' && foamToVTK -faceSet wrongOrientedFaces > log.foamToVTK 2>&1";
     EXPECT_EQ(std::system(command.c_str()), 0) << read_text(dir / "log.foamToVTK");
     const std::string log = read_text(dir / "log.foamToVTK");
     EXPECT_EQ(log.find("FOAM FATAL"), std::string::npos) << log;

@@ -33,15 +33,14 @@ PolyMesh reference_cube(bool moved = true)
     if (moved)
         mesh.points.row(13) = Eigen::RowVector3d(0.6, 0.5, 0.5);
     const std::vector<std::array<Index, 4>> faces = {
-        {1, 4, 13, 10},   {3, 12, 13, 4},   {9, 10, 13, 12},  {4, 13, 14, 5},
-        {10, 11, 14, 13}, {4, 7, 16, 13},   {12, 13, 16, 15}, {13, 14, 17, 16},
-        {10, 13, 22, 19}, {12, 21, 22, 13}, {13, 22, 23, 14}, {13, 16, 25, 22},
-        {0, 9, 12, 3},    {3, 12, 15, 6},   {9, 18, 21, 12},  {12, 21, 24, 15},
-        {2, 5, 14, 11},   {5, 8, 17, 14},   {11, 14, 23, 20}, {14, 17, 26, 23},
-        {0, 1, 10, 9},    {9, 10, 19, 18},  {1, 2, 11, 10},   {10, 11, 20, 19},
-        {6, 15, 16, 7},   {15, 24, 25, 16}, {7, 16, 17, 8},   {16, 25, 26, 17},
-        {0, 3, 4, 1},     {3, 6, 7, 4},     {1, 4, 5, 2},     {4, 7, 8, 5},
-        {18, 19, 22, 21}, {21, 22, 25, 24}, {19, 20, 23, 22}, {22, 23, 26, 25}};
+        {1, 4, 13, 10},   {3, 12, 13, 4},   {9, 10, 13, 12},  {4, 13, 14, 5},   {10, 11, 14, 13},
+        {4, 7, 16, 13},   {12, 13, 16, 15}, {13, 14, 17, 16}, {10, 13, 22, 19}, {12, 21, 22, 13},
+        {13, 22, 23, 14}, {13, 16, 25, 22}, {0, 9, 12, 3},    {3, 12, 15, 6},   {9, 18, 21, 12},
+        {12, 21, 24, 15}, {2, 5, 14, 11},   {5, 8, 17, 14},   {11, 14, 23, 20}, {14, 17, 26, 23},
+        {0, 1, 10, 9},    {9, 10, 19, 18},  {1, 2, 11, 10},   {10, 11, 20, 19}, {6, 15, 16, 7},
+        {15, 24, 25, 16}, {7, 16, 17, 8},   {16, 25, 26, 17}, {0, 3, 4, 1},     {3, 6, 7, 4},
+        {1, 4, 5, 2},     {4, 7, 8, 5},     {18, 19, 22, 21}, {21, 22, 25, 24}, {19, 20, 23, 22},
+        {22, 23, 26, 25}};
     for (const auto& f : faces)
         mesh.faces.push_back(std::span<const Index>(f));
     mesh.owner = {0, 0, 0, 1, 1, 2, 2, 3, 4, 4, 5, 6, 0, 2, 4, 6, 1, 3,
@@ -155,15 +154,17 @@ TEST(CheckMesh, scaled_domains_keep_relative_metrics)
     // Non-dimensional metrics do not depend on the length scale (1e-6 .. 1e6).
     for (double scale : {1e-6, 1.0, 1e6})
     {
-        PolyMesh mesh = test::make_block_mesh(3, 2, 2, [&](double u, double v, double w) {
-            return Vector3(scale * (u + 0.1 * v * v), scale * v, scale * (w + 0.05 * u));
-        });
+        PolyMesh mesh = test::make_block_mesh(
+            3, 2, 2,
+            [&](double u, double v, double w)
+            { return Vector3(scale * (u + 0.1 * v * v), scale * v, scale * (w + 0.05 * u)); });
         CheckMeshSettings settings;
         settings.all_geometry = true;
         const QualityReport r = check_mesh(mesh, settings);
-        PolyMesh unit = test::make_block_mesh(3, 2, 2, [&](double u, double v, double w) {
-            return Vector3(u + 0.1 * v * v, v, w + 0.05 * u);
-        });
+        PolyMesh unit = test::make_block_mesh(3, 2, 2,
+                                              [&](double u, double v, double w) {
+                                                  return Vector3(u + 0.1 * v * v, v, w + 0.05 * u);
+                                              });
         const QualityReport ru = check_mesh(unit, settings);
         EXPECT_NEAR(r.max_non_orthogonality, ru.max_non_orthogonality, 1e-9);
         EXPECT_NEAR(r.max_skewness, ru.max_skewness, 1e-9);
@@ -201,9 +202,12 @@ TEST(CheckMesh, inverted_cell_fails_volume_pyramid_and_tet_checks)
 
 TEST(CheckMesh, results_do_not_depend_on_thread_count)
 {
-    PolyMesh mesh = test::make_block_mesh(6, 5, 4, [](double u, double v, double w) {
-        return Vector3(u + 0.2 * std::sin(3 * v) * w, v + 0.1 * u * u, w + 0.1 * std::cos(4 * u));
-    });
+    PolyMesh mesh =
+        test::make_block_mesh(6, 5, 4,
+                              [](double u, double v, double w) {
+                                  return Vector3(u + 0.2 * std::sin(3 * v) * w, v + 0.1 * u * u,
+                                                 w + 0.1 * std::cos(4 * u));
+                              });
     CheckMeshSettings settings;
     settings.all_geometry = true;
     settings.all_topology = true;

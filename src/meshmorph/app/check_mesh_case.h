@@ -19,7 +19,7 @@ namespace meshmorph::app
 //! Exit statuses of checkMeshQuality (listed by -help).
 inline constexpr int exit_mesh_ok = 0;
 inline constexpr int exit_checks_failed = 1;
-inline constexpr int exit_input_error = 2;  //!< bad command line, missing/malformed files
+inline constexpr int exit_input_error = 2; //!< bad command line, missing/malformed files
 inline constexpr int exit_internal_error = 3;
 
 //! \brief The meshQualityDict criteria (spec §5) of `path` (usually system/meshQualityDict).

@@ -93,8 +93,8 @@ void Options::parse(int argc, const char* const argv[])
     if (positional_.size() != positional_names_.size())
     {
         if (positional_names_.empty())
-            throw UsageError("unexpected argument '" + positional_.front() + "' (see " +
-                             app_name_ + " -help)");
+            throw UsageError("unexpected argument '" + positional_.front() + "' (see " + app_name_ +
+                             " -help)");
         throw UsageError("expected " + std::to_string(positional_names_.size()) +
                          " argument(s), got " + std::to_string(positional_.size()));
     }
@@ -158,8 +158,8 @@ std::string Options::help_text() const
         std::string left = "  -" + spec.name;
         if (!spec.argument.empty())
             left += " <" + spec.argument + ">";
-        out << left << std::string(width + 4 - std::min(width + 3, left.size()), ' ')
-            << spec.help << "\n";
+        out << left << std::string(width + 4 - std::min(width + 3, left.size()), ' ') << spec.help
+            << "\n";
     }
     if (!description_.empty())
         out << "\n" << description_ << "\n";

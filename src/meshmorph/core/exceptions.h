@@ -28,8 +28,7 @@ class ParseError : public Error
 {
 public:
     ParseError(std::string path, std::size_t line, const std::string& message)
-        : Error(format(path, line, message)), path_(std::move(path)), line_(line),
-          message_(message)
+        : Error(format(path, line, message)), path_(std::move(path)), line_(line), message_(message)
     {
     }
     const std::string& path() const { return path_; }

@@ -33,11 +33,20 @@ void set_sink(Sink sink)
     current_sink() = std::move(sink);
 }
 
-void set_level(Level level) { current_level() = static_cast<int>(level); }
+void set_level(Level level)
+{
+    current_level() = static_cast<int>(level);
+}
 
-Level level() { return static_cast<Level>(current_level().load()); }
+Level level()
+{
+    return static_cast<Level>(current_level().load());
+}
 
-bool enabled(Level l) { return static_cast<int>(l) <= current_level().load(); }
+bool enabled(Level l)
+{
+    return static_cast<int>(l) <= current_level().load();
+}
 
 void write(Level l, const std::string& message)
 {
@@ -63,18 +72,19 @@ void write(Level l, const std::string& message)
     }
 }
 
-CaptureScope::CaptureScope()
-    : text_(std::make_shared<std::string>()), previous_level_(level())
+CaptureScope::CaptureScope() : text_(std::make_shared<std::string>()), previous_level_(level())
 {
     std::shared_ptr<std::string> text = text_;
-    set_sink([text](Level l, const std::string& m) {
-        if (l == Level::error)
-            *text += "Error: ";
-        else if (l == Level::warning)
-            *text += "Warning: ";
-        *text += m;
-        *text += '\n';
-    });
+    set_sink(
+        [text](Level l, const std::string& m)
+        {
+            if (l == Level::error)
+                *text += "Error: ";
+            else if (l == Level::warning)
+                *text += "Warning: ";
+            *text += m;
+            *text += '\n';
+        });
 }
 
 CaptureScope::~CaptureScope()

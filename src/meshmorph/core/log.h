@@ -58,10 +58,22 @@ private:
     std::ostringstream stream_;
 };
 
-inline Line error() { return Line(Level::error); }
-inline Line warning() { return Line(Level::warning); }
-inline Line info() { return Line(Level::info); }
-inline Line debug() { return Line(Level::debug); }
+inline Line error()
+{
+    return Line(Level::error);
+}
+inline Line warning()
+{
+    return Line(Level::warning);
+}
+inline Line info()
+{
+    return Line(Level::info);
+}
+inline Line debug()
+{
+    return Line(Level::debug);
+}
 
 //! RAII: capture every message into a string while alive (for tests), restoring the sink.
 class CaptureScope

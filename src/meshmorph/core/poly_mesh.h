@@ -56,7 +56,7 @@ using VerbatimEntries = std::vector<std::pair<std::string, std::string>>;
 struct Patch
 {
     std::string name;
-    std::string type;                   //!< patch, wall, empty, wedge, symmetryPlane, cyclic, processor, ...
+    std::string type; //!< patch, wall, empty, wedge, symmetryPlane, cyclic, processor, ...
     Index start_face = 0;
     Index n_faces = 0;
     std::vector<std::string> in_groups; //!< parsed `inGroups` (also kept in `entries`)
@@ -68,25 +68,25 @@ struct Patch
 struct Zone
 {
     std::string name;
-    std::string type;          //!< pointZone, faceZone, cellZone
-    std::vector<Index> labels; //!< pointLabels / faceLabels / cellLabels
+    std::string type;           //!< pointZone, faceZone, cellZone
+    std::vector<Index> labels;  //!< pointLabels / faceLabels / cellLabels
     std::vector<char> flip_map; //!< faceZone only (same size as labels), else empty
-    VerbatimEntries entries;   //!< other entries, verbatim
+    VerbatimEntries entries;    //!< other entries, verbatim
     bool operator==(const Zone&) const = default;
 };
 
 //! An OpenFOAM polyMesh in memory. Plain data: readers fill it, algorithms read it.
 struct PolyMesh
 {
-    Points points;               //!< nPoints x 3
-    CompactList faces;           //!< nFaces vertex loops
-    std::vector<Index> owner;    //!< nFaces
+    Points points;                //!< nPoints x 3
+    CompactList faces;            //!< nFaces vertex loops
+    std::vector<Index> owner;     //!< nFaces
     std::vector<Index> neighbour; //!< nInternalFaces
     std::vector<Patch> patches;
     std::vector<Zone> point_zones;
     std::vector<Zone> face_zones;
     std::vector<Zone> cell_zones;
-    Index n_cells = 0;           //!< 1 + max(owner, neighbour), set by finalize()
+    Index n_cells = 0; //!< 1 + max(owner, neighbour), set by finalize()
 
     Index n_points() const { return static_cast<Index>(points.rows()); }
     Index n_faces() const { return faces.size(); }
