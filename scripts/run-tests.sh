@@ -14,7 +14,7 @@ deps_args=()
 for arg in "$@"; do
     case "$arg" in
         --no-openfoam) deps_args+=(--no-openfoam) ;;
-        -h|--help) sed -n '3,10p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '3,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "run-tests.sh: unknown option '$arg' (try --help)" >&2; exit 2 ;;
     esac
 done
