@@ -15,6 +15,7 @@
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/quality/check_mesh.h"
 #include "meshmorph/quality/mesh_geometry.h"
+#include "meshmorph/quality/report_text.h"
 
 using namespace meshmorph;
 
@@ -147,6 +148,25 @@ TEST(CheckMesh, unmoved_cube_is_perfect)
     for (Index c = 0; c < r.n_cells; ++c)
         EXPECT_DOUBLE_EQ(r.cell_determinant[c], 0.125);
     EXPECT_TRUE(r.mesh_ok());
+}
+
+TEST(CheckMesh, empty_cell_zone_prints_openfoams_inverted_box)
+{
+    // checkMesh on a split-region case: an empty cellZone's bounding box is boundBox's
+    // invertedBox, +-ROOTVGREAT (1e+150), not +-VGREAT.
+    PolyMesh mesh = reference_cube(false);
+    mesh.cell_zones.push_back(Zone{"empty", "cellZone", {}, {}, {}});
+    mesh.cell_zones.push_back(Zone{"all", "cellZone", {0}, {}, {}});
+    const CheckMeshSettings settings;
+    const QualityReport r = check_mesh(mesh, settings);
+    ASSERT_EQ(r.cell_zones.size(), 2u);
+    EXPECT_EQ(r.cell_zones[0].n_points, 0);
+    EXPECT_EQ(r.cell_zones[0].bb_min, Vector3::Constant(1e150));
+    EXPECT_EQ(r.cell_zones[0].bb_max, Vector3::Constant(-1e150));
+    EXPECT_EQ(r.cell_zones[1].bb_min, mesh.points.colwise().minCoeff().transpose());
+    const std::string text = report_text(r, settings);
+    EXPECT_NE(text.find("(1e+150 1e+150 1e+150) (-1e+150 -1e+150 -1e+150)"), std::string::npos)
+        << text;
 }
 
 TEST(CheckMesh, scaled_domains_keep_relative_metrics)

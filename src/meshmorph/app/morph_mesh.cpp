@@ -238,6 +238,7 @@ MorphResult morph_case(const MorphOptions& options)
         result.timings.fit += s.fit_seconds;
         result.timings.evaluate += s.evaluate_seconds;
         result.timings.check += s.check_seconds;
+        result.timings.untangle += s.untangle_seconds;
     }
     result.morph = std::move(stepped.last);
     result.morph.displacement = std::move(stepped.displacement);
@@ -394,11 +395,9 @@ std::string morph_json(const MorphResult& result, int exit_status)
                               {"fit", s.fit_seconds},
                               {"evaluate", s.evaluate_seconds},
                               {"check", s.check_seconds}});
-    j["timings"] = {{"read", result.timings.read},
-                    {"fit", result.timings.fit},
-                    {"evaluate", result.timings.evaluate},
-                    {"check", result.timings.check},
-                    {"write", result.timings.write}};
+    j["timings"] = {{"read", result.timings.read},         {"fit", result.timings.fit},
+                    {"evaluate", result.timings.evaluate}, {"check", result.timings.check},
+                    {"untangle", result.timings.untangle}, {"write", result.timings.write}};
     j["before"] = quality_json(result.before);
     j["after"] = quality_json(result.after);
     j["instance"] = result.instance;
@@ -495,7 +494,8 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
         out << "\nTimings [s]: read " << format_seconds(result.timings.read) << ", fit "
             << format_seconds(result.timings.fit) << ", evaluate "
             << format_seconds(result.timings.evaluate) << ", check "
-            << format_seconds(result.timings.check) << ", write "
+            << format_seconds(result.timings.check) << ", untangle "
+            << format_seconds(result.timings.untangle) << ", write "
             << format_seconds(result.timings.write) << "\n";
         if (result.refused)
         {

@@ -46,7 +46,7 @@ struct MorphOptions
 //! Wall-clock seconds per stage.
 struct MorphTimings
 {
-    double read = 0, fit = 0, evaluate = 0, check = 0, write = 0;
+    double read = 0, fit = 0, evaluate = 0, check = 0, untangle = 0, write = 0;
 };
 
 //! What a morphMesh run did.

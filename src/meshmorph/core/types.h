@@ -34,6 +34,7 @@ inline constexpr double vsmall = 1e-300;
 inline constexpr double rootvsmall = 1e-150;
 inline constexpr double great = 1e15;
 inline constexpr double vgreat = 1e300;
+inline constexpr double rootvgreat = 1e150;
 } // namespace constants
 
 } // namespace meshmorph

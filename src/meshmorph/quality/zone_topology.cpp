@@ -164,9 +164,14 @@ cell_zone_summaries(const PolyMesh& mesh, const CompactList& cell_faces, const M
     for (const Zone& z : mesh.cell_zones)
     {
         std::fill(in_zone.begin(), in_zone.end(), 0);
-        CellZoneSummary s{
-            z.name, static_cast<Index>(z.labels.size()),  0,
-            0,      Vector3::Constant(constants::vgreat), Vector3::Constant(-constants::vgreat)};
+        // An empty zone keeps OpenFOAM's boundBox::invertedBox, (ROOTVGREAT) (-ROOTVGREAT):
+        // checkMesh prints (1e+150 1e+150 1e+150) (-1e+150 -1e+150 -1e+150) for it.
+        CellZoneSummary s{z.name,
+                          static_cast<Index>(z.labels.size()),
+                          0,
+                          0,
+                          Vector3::Constant(constants::rootvgreat),
+                          Vector3::Constant(-constants::rootvgreat)};
         for (Index cell : z.labels)
         {
             s.volume += g.cell_volumes[cell];
