@@ -175,13 +175,14 @@ int main(int argc, char** argv)
                 return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
                        1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
             };
-            const double c0 = children_cpu();
-            const double t0 = now();
+            const double cpu_start = children_cpu();
+            const double wall_start = now();
             const int rc = std::system(cmd.c_str());
-            const double t = now() - t0;
+            const double t = now() - wall_start;
             std::printf("checkMesh : %.3f s wall, %.3f s CPU (exit %d; reads the same mesh, then "
                         "checks it; log %s)\n",
-                        t, children_cpu() - c0, rc, (case_dir / "log.benchCheckMesh").c_str());
+                        t, children_cpu() - cpu_start, rc,
+                        (case_dir / "log.benchCheckMesh").c_str());
         }
     }
     catch (const meshmorph::Error& e)

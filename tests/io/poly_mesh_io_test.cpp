@@ -393,7 +393,8 @@ INSTANTIATE_TEST_SUITE_P(
                       "faces:", "byte offset"},
         MalformedCase{"neighbour_too_long", "neighbour", "ascii",
                       "neighbour:", "more than the 52"}),
-    [](const testing::TestParamInfo<MalformedCase>& info) { return std::string(info.param.name); });
+    [](const testing::TestParamInfo<MalformedCase>& param_info)
+    { return std::string(param_info.param.name); });
 
 TEST(PolyMeshIo, missing_file_is_an_io_error_naming_it)
 {

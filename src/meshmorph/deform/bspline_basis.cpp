@@ -302,12 +302,12 @@ Vector3 FfdLattice::local_coordinates(const Vector3& x) const
             for (int b = 0; b < 4; ++b)
                 for (int a = 0; a < 4; ++a)
                 {
-                    const Vector3 cp =
+                    const Vector3 point =
                         control_.row(index(first[0] + a, first[1] + b, first[2] + c)).transpose();
-                    f += cp * (w[0][a] * w[1][b] * w[2][c]);
-                    J.col(0) += cp * (dw[0][a] * w[1][b] * w[2][c]);
-                    J.col(1) += cp * (w[0][a] * dw[1][b] * w[2][c]);
-                    J.col(2) += cp * (w[0][a] * w[1][b] * dw[2][c]);
+                    f += point * (w[0][a] * w[1][b] * w[2][c]);
+                    J.col(0) += point * (dw[0][a] * w[1][b] * w[2][c]);
+                    J.col(1) += point * (w[0][a] * dw[1][b] * w[2][c]);
+                    J.col(2) += point * (w[0][a] * w[1][b] * dw[2][c]);
                 }
         const Vector3 step = J.partialPivLu().solve(f);
         t -= step;

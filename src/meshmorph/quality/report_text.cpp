@@ -26,8 +26,9 @@ namespace
 class Writer
 {
 public:
-    Writer(const QualityReport& report, const CheckMeshSettings& settings)
-        : report(report), settings(settings), right_justify_(report.cell_types.polyhedron > 0)
+    Writer(const QualityReport& report_in, const CheckMeshSettings& settings_in)
+        : report(report_in), settings(settings_in),
+          right_justify_(report_in.cell_types.polyhedron > 0)
     {
     }
     std::string s(double v) const { return format_scalar(v, settings.write_precision); }
