@@ -117,6 +117,40 @@ TEST(MorphMesh, writes_only_points_in_the_next_time_and_constraints_are_exact)
     EXPECT_NE(r.log.find("Step 1: motion 0 -> 1"), std::string::npos) << r.log;
 }
 
+TEST(MorphMesh, region_option_morphs_that_region_and_writes_its_time_directory)
+{
+    // chtMultiRegion layout: constant/solid/polyMesh, system/solid/morphDict; the morphed
+    // points go to 1/solid/polyMesh/points, which OpenFOAM's checkMesh -region reads.
+    const PolyMesh mesh = test::make_box_mesh(4, 4, 4);
+    const fs::path dir = make_case("region", mesh, lift_top);
+    fs::remove_all(dir / "constant/polyMesh");
+    io::write_poly_mesh(mesh, io::default_poly_mesh_files(io::FoamFormat::ascii), dir, "constant",
+                        "solid");
+    fs::create_directories(dir / "system/solid");
+    fs::rename(dir / "system/morphDict", dir / "system/solid/morphDict");
+    for (const char* f : {"fvSchemes", "fvSolution"})
+        fs::copy_file(dir / "system" / f, dir / "system/solid" / f);
+    const RunResult r =
+        run({"-case", dir.string(), "-region", "solid", "-json", (dir / "m.json").string()});
+    ASSERT_EQ(r.code, 0) << r.err << r.log;
+    ASSERT_TRUE(fs::exists(dir / "1/solid/polyMesh/points"));
+    EXPECT_FALSE(fs::exists(dir / "1/polyMesh"));
+    const Points moved = io::read_points_file(dir / "1/solid/polyMesh/points");
+    EXPECT_NEAR((moved - mesh.points).col(2).maxCoeff(), 0.05, 1e-12);
+    EXPECT_NE(read_text(dir / "m.json").find("\"region\": \"solid\""), std::string::npos);
+    if (test::openfoam_available())
+    {
+        const std::string cmd =
+            "cd '" + dir.string() + "' && checkMesh -region solid -time 1 > log.checkMesh 2>&1";
+        EXPECT_EQ(std::system(cmd.c_str()), 0) << read_text(dir / "log.checkMesh");
+        EXPECT_NE(read_text(dir / "log.checkMesh").find("Mesh OK."), std::string::npos)
+            << read_text(dir / "log.checkMesh");
+    }
+    const RunResult missing = run({"-case", dir.string()});
+    EXPECT_EQ(missing.code, exit_morph_input_error);
+    EXPECT_NE(missing.err.find("system/morphDict"), std::string::npos) << missing.err;
+}
+
 TEST(MorphMesh, overwrite_replaces_points_in_place_keeping_binary_format)
 {
     const PolyMesh mesh = test::make_box_mesh(4, 4, 4);

@@ -134,6 +134,40 @@ TEST(CheckMeshQualityApp, damaged_mesh_exits_1_and_writes_openfoam_sets)
     EXPECT_NE(text.find("\n" + count + "\n(\n"), std::string::npos) << text;
 }
 
+TEST(CheckMeshQualityApp, region_option_reads_and_writes_the_regions_directories)
+{
+    // A multi-region case (chtMultiRegion layout): constant/solid/polyMesh,
+    // system/solid/meshQualityDict, sets to constant/solid/polyMesh/sets.
+    const fs::path dir = test::scratch_dir("app_region");
+    io::write_poly_mesh(damaged_box(), io::default_poly_mesh_files(io::FoamFormat::ascii), dir,
+                        "constant", "solid");
+    fs::create_directories(dir / "system" / "solid");
+    std::ofstream(dir / "system" / "controlDict")
+        << "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n";
+    std::ofstream(dir / "system" / "solid" / "meshQualityDict")
+        << "FoamFile { version 2.0; format ascii; class dictionary; object meshQualityDict; }\n"
+        << "maxNonOrtho 65;\nmaxBoundarySkewness 20;\nmaxInternalSkewness 4;\n"
+        << "maxConcave 80;\nminVol 1e-13;\nminTetQuality 1e-15;\nminArea -1;\n"
+        << "minTwist 0.02;\nminDeterminant 0.001;\nminFaceWeight 0.05;\nminVolRatio 0.01;\n"
+        << "minTriangleTwist -1;\n";
+    const AppRun r = run({"-case", dir.string(), "-region", "solid", "-writeSets", "-meshQuality",
+                          "-json", (dir / "q.json").string()});
+    ASSERT_EQ(r.status, app::exit_checks_failed) << r.err;
+    const fs::path set = dir / "constant/solid/polyMesh/sets/zeroVolumeCells";
+    ASSERT_TRUE(fs::exists(set)) << r.out;
+    EXPECT_NE(read_text(set).find("location    \"constant/solid/polyMesh/sets\";"),
+              std::string::npos);
+    EXPECT_FALSE(fs::exists(dir / "constant/polyMesh"));
+    EXPECT_NE(read_text(dir / "q.json").find("\"region\": \"solid\""), std::string::npos);
+
+    const AppRun missing = run({"-case", dir.string(), "-region", "fluid"});
+    EXPECT_EQ(missing.status, app::exit_input_error);
+    EXPECT_NE(missing.err.find("constant/fluid/polyMesh"), std::string::npos) << missing.err;
+    const AppRun bad = run({"-case", dir.string(), "-region", "../solid"});
+    EXPECT_EQ(bad.status, app::exit_input_error);
+    EXPECT_NE(bad.err.find("-region"), std::string::npos) << bad.err;
+}
+
 TEST(CheckMeshQualityApp, without_write_sets_nothing_is_written)
 {
     const fs::path dir = write_case("app_nosets", damaged_box());

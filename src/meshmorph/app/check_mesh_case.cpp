@@ -133,19 +133,20 @@ std::string mesh_set_file_text(const MeshSet& set, const std::string& location)
 }
 
 std::vector<fs::path> write_mesh_sets(const std::vector<MeshSet>& sets, const fs::path& case_dir,
-                                      const std::string& instance)
+                                      const std::string& instance, const std::string& region)
 {
     std::vector<fs::path> written;
     if (sets.empty())
         return written;
-    const fs::path dir = case_dir / instance / "polyMesh" / "sets";
+    const fs::path dir = case_dir / instance / region / "polyMesh" / "sets";
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec)
         throw IoError("cannot create directory " + dir.string() + ": " + ec.message());
     for (const MeshSet& set : sets)
         written.push_back(io::write_file_atomic(
-            dir / set.name, mesh_set_file_text(set, instance + "/polyMesh/sets")));
+            dir / set.name,
+            mesh_set_file_text(set, (fs::path(instance) / region / "polyMesh" / "sets").string())));
     return written;
 }
 
@@ -157,6 +158,8 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
         "(same checks, formulas and report text as v1912), optionally writing the sets of\n"
         "offending faces/cells, a VTK file with per-cell quality fields and a JSON summary.",
         {{"case", "DIR", "Case directory (default: the current directory)"},
+         {"region", "NAME",
+          "Check region NAME (constant/NAME/polyMesh; system/NAME/meshQualityDict)"},
          {"time", "TIME", "Check the mesh at this time (a time name or value, or constant)"},
          {"latestTime", "", "Check the mesh at the latest time"},
          {"allGeometry", "", "Include the extra geometry checks (face tets, flatness, ...)"},
@@ -192,6 +195,7 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
         StageTimer timer(info);
 
         io::PolyMeshReadOptions read_options;
+        read_options.region = region_option(options);
         if (options.found("latestTime"))
             read_options.time = io::TimeSelection::latest_time();
         else if (const std::optional<std::string> t = options.get("time"))
@@ -205,7 +209,8 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
         settings.scaled_jacobian = options.found("json") || options.found("vtk");
         settings.write_precision = read_write_precision(case_dir);
         if (options.found("meshQuality"))
-            settings.mesh_quality = read_mesh_quality_dict(case_dir / "system" / "meshQualityDict");
+            settings.mesh_quality = read_mesh_quality_dict(case_dir / "system" /
+                                                           read_options.region / "meshQualityDict");
 
         const io::FoamPolyMesh foam = io::read_poly_mesh(case_dir, read_options);
         const PolyMesh& mesh = foam.mesh;
@@ -221,9 +226,10 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
         if (settings.report_sets)
         {
             const std::vector<fs::path> files =
-                write_mesh_sets(report.sets, case_dir, foam.points_instance);
+                write_mesh_sets(report.sets, case_dir, foam.points_instance, read_options.region);
             timer.lap("Wrote " + std::to_string(files.size()) + " sets to " +
-                      (case_dir / foam.points_instance / "polyMesh" / "sets").string());
+                      (case_dir / foam.points_instance / read_options.region / "polyMesh" / "sets")
+                          .string());
         }
         if (const std::optional<std::string> vtk = options.get("vtk"))
         {
@@ -247,6 +253,7 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
             nlohmann::json j = quality_json(report);
             j["case"] = case_dir.string();
             j["time"] = foam.time;
+            j["region"] = read_options.region;
             const std::string text = j.dump(2) + "\n";
             io::write_file_atomic(fs::absolute(*json_path), text);
             timer.lap("Wrote " + *json_path);

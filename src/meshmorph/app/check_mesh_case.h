@@ -38,11 +38,12 @@ int read_write_precision(const std::filesystem::path& case_dir);
 //! \param location the header's `location`, e.g. "constant/polyMesh/sets".
 std::string mesh_set_file_text(const MeshSet& set, const std::string& location);
 
-//! \brief Write every set to `<case>/<instance>/polyMesh/sets/<name>` atomically.
-//! Returns the paths written. \throw IoError naming the path on failure.
+//! \brief Write every set to `<case>/<instance>[/<region>]/polyMesh/sets/<name>`
+//! atomically. Returns the paths written. \throw IoError naming the path on failure.
 std::vector<std::filesystem::path> write_mesh_sets(const std::vector<MeshSet>& sets,
                                                    const std::filesystem::path& case_dir,
-                                                   const std::string& instance);
+                                                   const std::string& instance,
+                                                   const std::string& region = "");
 
 //! \brief Run checkMeshQuality with argv (argv[0] = program name); the report goes to `out`,
 //! errors to `err`. Returns the exit status (exit_mesh_ok, exit_checks_failed,

@@ -122,7 +122,8 @@ MorphResult morph_case(const MorphOptions& options)
     const fs::path case_dir = fs::absolute(options.case_dir);
     if (!fs::is_directory(case_dir))
         throw IoError("case directory " + case_dir.string() + " does not exist");
-    fs::path dict_path = options.dict.empty() ? fs::path("system/morphDict") : options.dict;
+    fs::path dict_path =
+        options.dict.empty() ? fs::path("system") / options.region / "morphDict" : options.dict;
     if (dict_path.is_relative())
         dict_path = case_dir / dict_path;
 
@@ -136,9 +137,11 @@ MorphResult morph_case(const MorphOptions& options)
 
     io::PolyMeshReadOptions read_options;
     read_options.time = options.time;
+    read_options.region = options.region;
     io::FoamPolyMesh foam = io::read_poly_mesh(case_dir, read_options);
     const PolyMesh& mesh = foam.mesh;
     result.instance = foam.points_instance;
+    result.region = options.region;
     log::info() << "Read mesh from " << foam.points_dir.string() << ": " << mesh.n_points()
                 << " points, " << mesh.n_cells << " cells, " << mesh.patches.size() << " patches";
 
@@ -154,10 +157,11 @@ MorphResult morph_case(const MorphOptions& options)
                     [](const PatchAssignment& a)
                     { return a.motion == MotionType::point_displacement; }))
     {
-        // <time>/pointDisplacement of the time read (0/ when the mesh came from constant/).
+        // <time>[/<region>]/pointDisplacement of the time read (0/ when the mesh came from
+        // constant/).
         const std::string time = foam.time == "constant" ? "0" : foam.time;
-        const io::PointVectorField field =
-            io::read_point_vector_field(case_dir, time, "pointDisplacement", mesh);
+        const io::PointVectorField field = io::read_point_vector_field(
+            case_dir / time / options.region / "pointDisplacement", mesh);
         // Patches of type pointDisplacement take their boundaryField values (fixedValue /
         // calculated), else the internalField at their points. Other patches' entries are
         // not used, so their disagreements do not matter here.
@@ -332,7 +336,8 @@ MorphResult morph_case(const MorphOptions& options)
     {
         const fs::path dir = case_dir / "VTK";
         fs::create_directories(dir);
-        result.vtk_file = dir / ("morphMesh_" + result.output_instance + ".vtu");
+        const std::string region = options.region.empty() ? "" : options.region + "_";
+        result.vtk_file = dir / ("morphMesh_" + region + result.output_instance + ".vtu");
         std::vector<io::VtkField> point_data;
         point_data.emplace_back("displacement", result.morph.displacement);
         std::vector<io::VtkField> cell_data;
@@ -401,6 +406,7 @@ std::string morph_json(const MorphResult& result, int exit_status)
     j["before"] = quality_json(result.before);
     j["after"] = quality_json(result.after);
     j["instance"] = result.instance;
+    j["region"] = result.region;
     j["outputInstance"] = result.output_instance;
     j["written"] = result.written;
     j["refused"] = result.refused;
@@ -424,13 +430,17 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
         "(default fixed: such points do not move); handles override boundary prescriptions.",
         {{"case", "DIR", "Case directory (default: the current directory)"},
          {"dict", "FILE", "Alternative morphDict (relative to the case; default system/morphDict)"},
+         {"region", "NAME",
+          "Morph region NAME (constant/NAME/polyMesh, system/NAME/morphDict, "
+          "<time>/NAME/pointDisplacement)"},
          {"time", "TIME", "Morph the mesh at this time (a time name or value, or constant)"},
          {"latestTime", "", "Morph the mesh at the latest time"},
          {"overwrite", "", "Replace the points of the mesh instance instead of writing a new time"},
          {"noOverwrite", "", "Write a new time directory (the default)"},
          {"method", "rbf|dmffd|ffd|idw", "Override the dictionary's method"},
          {"json", "FILE", "Write constraints, timings and before/after quality as JSON"},
-         {"vtk", "", "Also write VTK/morphMesh_<time>.vtu with the displacement and quality"},
+         {"vtk", "",
+          "Also write VTK/morphMesh_[<region>_]<time>.vtu with the displacement and quality"},
          {"force", "", "Write even if the morph creates invalid cells"}},
         {{exit_morph_ok, "morphed mesh written"},
          {exit_morph_input_error, "bad option, dictionary, mesh or surface file; nothing written"},
@@ -469,6 +479,7 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
         morph.case_dir = fs::absolute(options.value_or("case", "."));
         if (const std::optional<std::string> d = options.get("dict"))
             morph.dict = *d;
+        morph.region = region_option(options);
         if (options.found("latestTime"))
             morph.time = io::TimeSelection::latest_time();
         else if (const std::optional<std::string> t = options.get("time"))

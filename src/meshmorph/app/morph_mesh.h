@@ -32,9 +32,12 @@ namespace meshmorph::app
 struct MorphOptions
 {
     std::filesystem::path case_dir = ".";
-    //! morphDict; empty: <case>/system/morphDict; a relative path is relative to the case
-    //! (OpenFOAM's -dict).
+    //! morphDict; empty: <case>/system[/<region>]/morphDict; a relative path is relative to
+    //! the case (OpenFOAM's -dict).
     std::filesystem::path dict;
+    //! -region: the mesh constant/<region>/polyMesh, its dictionaries in system/<region>/,
+    //! its fields and points in <time>/<region>/; "" for the default region.
+    std::string region;
     io::TimeSelection time;
     bool overwrite = false;
     std::optional<std::string> method; //!< overrides the dictionary's `method`
@@ -54,6 +57,7 @@ struct MorphResult
 {
     std::string method;
     std::string instance;        //!< instance the mesh was read from
+    std::string region;          //!< -region ("" for the default region)
     std::string output_instance; //!< instance written (or that would have been)
     Constraints constraints;     //!< the resolved constraint set (counts, conflicts)
     PointMorph morph;

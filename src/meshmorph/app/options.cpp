@@ -195,4 +195,17 @@ std::optional<int> parse_command_line(Options& options, int argc, const char* co
     return std::nullopt;
 }
 
+std::string region_option(const Options& options)
+{
+    const std::optional<std::string> region = options.get("region");
+    if (!region || *region == "region0")
+        return "";
+    if (region->empty() || *region == "." || *region == ".." ||
+        region->find('/') != std::string::npos)
+        throw UsageError("-region '" + *region +
+                         "': expected the name of a region (a directory of constant/, e.g. "
+                         "-region fluid)");
+    return *region;
+}
+
 } // namespace meshmorph::app

@@ -100,4 +100,9 @@ private:
 std::optional<int> parse_command_line(Options& options, int argc, const char* const argv[],
                                       std::ostream& out, std::ostream& err);
 
+//! \brief The `-region NAME` of a command line: "" when absent or `region0` (OpenFOAM's
+//! default region, whose files are not in a subdirectory). \throw UsageError when NAME is
+//! not a single directory name (empty, `.`, `..`, or containing `/`).
+std::string region_option(const Options& options);
+
 } // namespace meshmorph::app
