@@ -343,6 +343,23 @@ TEST(FoamDictionary, variable_substitution_and_scoping)
     EXPECT_TRUE(contains(m, "f:3:") && contains(m, "$nothingLikeThis")) << m;
 }
 
+TEST(FoamDictionary, slash_scoping_of_openfoam_v1912)
+{
+    // channel395DFSEM's controlDict: `timeStart ${/timeStart};` inside functions.
+    const std::string text = "top 1;\n"
+                             "a { b 2; c { d 3; } }\n"
+                             "outer\n{\n    x 10;\n    inner\n    {\n        x 20;\n"
+                             "        root ${/top};\n        path $/a/c/d;\n"
+                             "        parent $../x;\n        mixed ${/a/b};\n    }\n}\n";
+    const FoamDictionary d = parse_dictionary(text, "f");
+    const FoamDictionary& inner = d.sub_dict("outer").sub_dict("inner");
+    EXPECT_EQ(inner.get<int>("root"), 1);
+    EXPECT_EQ(inner.get<int>("path"), 3);
+    EXPECT_EQ(inner.get<int>("parent"), 10);
+    EXPECT_EQ(inner.get<int>("mixed"), 2);
+    EXPECT_THROW(parse_dictionary("x { y $../../../z; }\n", "f"), ParseError);
+}
+
 TEST(FoamDictionary, code_directives_are_rejected_with_file_and_line)
 {
     for (const char* directive : {"#calc", "#eval", "#codeStream"})

@@ -343,14 +343,14 @@ struct detail_dictionary_access
 
     // ---- scoped lookup for $var -------------------------------------------------------
 
-    // `name` in dict, where `name` may continue into sub-dictionaries with '.' (a keyword
-    // containing dots, such as `motorBike.obj`, is tried whole first).
+    // `name` in dict, where `name` may continue into sub-dictionaries with '.' or '/' (a
+    // keyword containing dots, such as `motorBike.obj`, is tried whole first).
     static const FoamEntry* find_path(const FoamDictionary& dict, const std::string& name)
     {
         if (const FoamEntry* e = dict.find(name))
             return e;
-        for (std::size_t dot = name.find('.'); dot != std::string::npos;
-             dot = name.find('.', dot + 1))
+        for (std::size_t dot = name.find_first_of("./"); dot != std::string::npos;
+             dot = name.find_first_of("./", dot + 1))
         {
             const FoamEntry* head = dict.find(name.substr(0, dot));
             if (head && head->is_dict())
@@ -364,8 +364,22 @@ struct detail_dictionary_access
     {
         if (scopes.empty() || name.empty())
             return nullptr;
-        if (name[0] == ':')
+        // Scopes: `:a.b` (old syntax) and `/a/b` from the top level, `..a` and `../a` from
+        // the parent, as OpenFOAM v1912 reads them (`${/endTime}` in stock controlDicts).
+        if (name[0] == ':' || name[0] == '/')
             return find_path(*scopes.front(), name.substr(1));
+        if (name.rfind("../", 0) == 0)
+        {
+            std::size_t ups = 0;
+            while (name.rfind("../", 0) == 0)
+            {
+                ++ups;
+                name = name.substr(3);
+            }
+            if (ups >= scopes.size())
+                return nullptr;
+            return find_path(*scopes[scopes.size() - 1 - ups], name);
+        }
         if (name[0] == '.')
         {
             std::size_t dots = 0;
