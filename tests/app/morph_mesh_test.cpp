@@ -151,6 +151,36 @@ TEST(MorphMesh, region_option_morphs_that_region_and_writes_its_time_directory)
     EXPECT_NE(missing.err.find("system/morphDict"), std::string::npos) << missing.err;
 }
 
+TEST(MorphMesh, helper_entries_and_included_design_values_drive_the_morph)
+{
+    // The OpenFOAM idiom for parameter studies: design values in an included file and
+    // helper entries at the top level, used as $variables. An unused unknown entry is
+    // still an error (a typo must not pass silently).
+    const fs::path dir = make_case("helpers", test::make_box_mesh(3, 3, 3), R"(
+#include "designValues"
+lift    $height;
+method  rbf;
+conflicts last;
+boundary
+{
+    zMax { type translate; vector (0 0 $lift); }
+}
+)");
+    write_text(dir / "system/designValues", "height 0.04;\n");
+    const RunResult r = run({"-case", dir.string()});
+    ASSERT_EQ(r.code, 0) << r.err << r.log;
+    const Points moved = io::read_points_file(dir / "1/polyMesh/points");
+    const PolyMesh mesh = test::make_box_mesh(3, 3, 3);
+    EXPECT_NEAR((moved - mesh.points).col(2).maxCoeff(), 0.04, 1e-12);
+
+    write_text(dir / "system/morphDict", std::string(dict_header) + "metod rbf;\nboundary {}\n");
+    const RunResult typo = run({"-case", dir.string()});
+    EXPECT_EQ(typo.code, exit_morph_input_error);
+    EXPECT_NE(typo.err.find("morphDict:2"), std::string::npos) << typo.err;
+    EXPECT_NE(typo.err.find("unknown keyword"), std::string::npos) << typo.err;
+    EXPECT_NE(typo.err.find("$metod"), std::string::npos) << typo.err;
+}
+
 TEST(MorphMesh, overwrite_replaces_points_in_place_keeping_binary_format)
 {
     const PolyMesh mesh = test::make_box_mesh(4, 4, 4);

@@ -360,6 +360,15 @@ TEST(FoamDictionary, slash_scoping_of_openfoam_v1912)
     EXPECT_THROW(parse_dictionary("x { y $../../../z; }\n", "f"), ParseError);
 }
 
+TEST(FoamDictionary, referenced_variables_are_the_top_level_helpers)
+{
+    const FoamDictionary d = parse_dictionary("height 0.04;\nlift $height;\nspan 2;\nx { y 1; }\n"
+                                              "b { v (0 0 $lift); w ${/span}; u $:x.y; }\n"
+                                              "unused 3;\n",
+                                              "f");
+    EXPECT_EQ(d.referenced_variables(), (std::vector<std::string>{"height", "lift", "span", "x"}));
+}
+
 TEST(FoamDictionary, code_directives_are_rejected_with_file_and_line)
 {
     for (const char* directive : {"#calc", "#eval", "#codeStream"})

@@ -237,16 +237,55 @@ ParseError FoamDictionary::error(const std::string& msg) const
 }
 
 void FoamDictionary::check_keywords(const std::vector<std::string>& allowed,
-                                    const std::string& what) const
+                                    const std::string& what,
+                                    const std::vector<std::string>& helpers) const
 {
+    const auto listed = [](const std::vector<std::string>& v, const std::string& k)
+    { return std::find(v.begin(), v.end(), k) != v.end(); };
     for (const FoamEntry& e : entries_)
-        if (std::find(allowed.begin(), allowed.end(), e.keyword()) == allowed.end())
+        if (!listed(allowed, e.keyword()) && !listed(helpers, e.keyword()))
         {
             std::string list;
             for (const std::string& a : allowed)
                 list += (list.empty() ? "" : " ") + a;
-            throw e.error("unknown keyword for " + what + " (valid: " + list + ")");
+            throw e.error("unknown keyword for " + what + " (valid: " + list +
+                          "; a helper entry must be used somewhere as $" + e.keyword() + ")");
         }
+}
+
+namespace
+{
+
+//! The first keyword of each `$...` variable in `text`, without scope prefixes.
+void collect_variables(const std::string& text, std::vector<std::string>& names)
+{
+    const auto is_name = [](char c)
+    { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; };
+    for (std::size_t at = text.find('$'); at != std::string::npos; at = text.find('$', at + 1))
+    {
+        std::size_t i = at + 1;
+        if (i < text.size() && text[i] == '{')
+            ++i;
+        while (i < text.size() && (text[i] == ':' || text[i] == '/' || text[i] == '.'))
+            ++i;
+        std::size_t end = i;
+        while (end < text.size() && is_name(text[end]))
+            ++end;
+        if (end > i)
+            names.push_back(text.substr(i, end - i));
+    }
+}
+
+} // namespace
+
+std::vector<std::string> FoamDictionary::referenced_variables() const
+{
+    std::vector<std::string> names;
+    for (const FoamEntry& e : entries_)
+        collect_variables(e.source_text(), names);
+    std::sort(names.begin(), names.end());
+    names.erase(std::unique(names.begin(), names.end()), names.end());
+    return names;
 }
 
 bool FoamDictionary::remove(const std::string& keyword)

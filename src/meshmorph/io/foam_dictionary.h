@@ -217,10 +217,16 @@ public:
     //! Remove the entry with exactly this keyword (regex keys: the written pattern). Returns
     //! whether one was removed.
     bool remove(const std::string& keyword);
-    //! \brief Reject keywords not in `allowed` (a typo must not be silently ignored).
+    //! \brief Reject keywords not in `allowed` (a typo must not be silently ignored), except
+    //! those in `helpers` (not listed as valid).
     //! \throw ParseError at the offending entry: "path:line: unknown keyword for <what>
     //! (valid: a b c)".
-    void check_keywords(const std::vector<std::string>& allowed, const std::string& what) const;
+    void check_keywords(const std::vector<std::string>& allowed, const std::string& what,
+                        const std::vector<std::string>& helpers = {}) const;
+    //! \brief The top-level keywords that some entry's text refers to as a variable
+    //! (`$name`, `${name}`, `$name.sub`, `${/name}`, `$:name`): helper entries, the
+    //! OpenFOAM idiom for parameter studies (`lift 0.05; ... vector (0 0 $lift);`).
+    std::vector<std::string> referenced_variables() const;
 
     //! ParseError at this dictionary: "path:line: msg".
     ParseError error(const std::string& msg) const;
