@@ -219,6 +219,31 @@ TEST(MorphSetup, empty_planes_remove_normal_motion_and_refuse_explicit_entries)
     EXPECT_THROW(build_constraints(mesh, setup), ParseError);
 }
 
+TEST(MorphSetup, points_handle_in_a_2d_case_moves_the_pair_on_both_empty_planes)
+{
+    const PolyMesh mesh = test::make_block_mesh(
+        4, 4, 1, [](double u, double v, double w) { return Vector3(u, v, 0.1 * w); },
+        {"patch", "patch", "patch", "patch", "empty", "empty"});
+    MorphSetup setup;
+    HandleEntry h;
+    h.name = "pt";
+    h.selection = HandleEntry::Selection::points;
+    h.points = Points(1, 3);
+    h.points.row(0) << 0.49, 0.51, 0.03; // nearest to (0.5 0.5), closer to the z = 0 plane
+    h.displacement = Vector3(0.01, 0.02, 0.0);
+    setup.handles.push_back(h);
+    const Constraints c = build_constraints(mesh, setup);
+    std::vector<Vector3> moved;
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+        if (c.displacements.row(static_cast<Eigen::Index>(i)).norm() > 0.0)
+            moved.push_back(mesh.points.row(c.points[i]).transpose());
+    ASSERT_EQ(moved.size(), 2u) << "one point on each empty plane";
+    EXPECT_EQ(moved[0].head<2>(), Vector3(0.5, 0.5, 0).head<2>());
+    EXPECT_EQ(moved[1].head<2>(), moved[0].head<2>());
+    EXPECT_NE(moved[0].z(), moved[1].z());
+    EXPECT_EQ(c.n_handle_points, 2);
+}
+
 TEST(MorphSetup, slip_patch_gets_projector_of_its_plane_and_curved_patch_is_refused)
 {
     const PolyMesh mesh = test::make_box_mesh(3, 3, 3);

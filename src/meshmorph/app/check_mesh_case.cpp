@@ -169,8 +169,10 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
          {"writeSets", "",
           "Write the offending faces/cells/points as OpenFOAM sets to "
           "<instance>/polyMesh/sets"},
-         {"vtk", "FILE", "Write the mesh with per-cell quality fields as a VTK .vtu file"},
-         {"json", "FILE", "Write the results as JSON"},
+         {"vtk", "FILE",
+          "Write the mesh with per-cell quality fields as a VTK .vtu file (path relative to the "
+          "working directory)"},
+         {"json", "FILE", "Write the results as JSON (path relative to the working directory)"},
          {"quiet", "", "Print only the report (no banner or timings)"}},
         {{exit_mesh_ok, "the mesh passed every check (\"Mesh OK.\")"},
          {exit_checks_failed, "some checks failed (\"Failed N mesh checks.\")"},

@@ -593,6 +593,32 @@ void require_some_motion(const std::vector<Claim>& claims, const MorphSetup& set
 
 } // namespace
 
+namespace
+{
+
+//! The mesh point nearest to x; in a 2D case (empty_normal set) the nearest in the plane of
+//! the case, on every empty plane (within `tolerance` of the nearest), so that a handle
+//! moves both points of a pair, as the 2D motion needs.
+std::vector<Index> nearest_points(const PolyMesh& mesh, const Vector3& x,
+                                  const std::optional<Vector3>& empty_normal, double tolerance)
+{
+    Eigen::MatrixXd d = mesh.points.rowwise() - x.transpose();
+    if (empty_normal)
+        d -= (d * *empty_normal) * empty_normal->transpose();
+    const Eigen::VectorXd dist = d.rowwise().norm();
+    Eigen::Index nearest = 0;
+    const double closest = dist.minCoeff(&nearest);
+    if (!empty_normal)
+        return {static_cast<Index>(nearest)};
+    std::vector<Index> out;
+    for (Index p = 0; p < mesh.n_points(); ++p)
+        if (dist[p] <= closest + tolerance)
+            out.push_back(p);
+    return out;
+}
+
+} // namespace
+
 Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
                               const ConstraintInputs& inputs)
 {
@@ -935,14 +961,9 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
             break;
         case HandleEntry::Selection::points:
             for (Eigen::Index k = 0; k < handle.points.rows(); ++k)
-            {
-                Eigen::Index nearest = 0;
-                (mesh.points.rowwise() - handle.points.row(k))
-                    .rowwise()
-                    .squaredNorm()
-                    .minCoeff(&nearest);
-                selected.push_back(static_cast<Index>(nearest));
-            }
+                for (Index p : nearest_points(mesh, handle.points.row(k).transpose(),
+                                              out.empty_normal, agree_tol))
+                    selected.push_back(p);
             break;
         }
         if (selected.empty())
