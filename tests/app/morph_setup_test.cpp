@@ -382,9 +382,39 @@ TEST(MorphSetup, a_motion_within_a_slip_plane_to_its_precision_is_no_conflict)
         }
     EXPECT_EQ(shared, 4) << "the edge xMin/zMax";
 
-    // A real normal component is still a conflict.
+    // A normal component below 10% of the edge (0.01 of 1/3: snapping-sized) is projected
+    // into the plane and reported apart from conflicts; a real one is still a conflict.
     setup.boundary[1] = translate("zMax", Vector3(0.01, 0.0, 0.05));
+    const Constraints near = build_constraints(mesh, setup);
+    EXPECT_EQ(near.n_conflicts, 0);
+    EXPECT_EQ(near.n_near_agreements, 4);
+    EXPECT_NEAR(near.max_near_agreement, 0.03, 1e-12);
+    for (std::size_t i = 0; i < near.points.size(); ++i)
+        if (slip[near.points[i]])
+        {
+            EXPECT_EQ(near.displacements(Eigen::Index(i), 0), 0.0);
+            EXPECT_EQ(near.displacements(Eigen::Index(i), 2), 0.05);
+        }
+    setup.boundary[1] = translate("zMax", Vector3(0.05, 0.0, 0.05));
     EXPECT_EQ(build_constraints(mesh, setup).n_conflicts, 4);
+}
+
+TEST(MorphSetup, snapping_sized_disagreements_at_patch_edges_are_no_conflicts)
+{
+    // A lid lifted by 1% of its edge length next to fixed sides (as a projection onto the
+    // STL a snapped patch came from moves its edge points): rule fixed holds the shared
+    // points, but they are not reported as conflicts; 20% of the edge is a conflict.
+    const PolyMesh mesh = test::make_box_mesh(4, 4, 4);
+    MorphSetup setup;
+    setup.boundary.push_back(translate("zMax", Vector3(0.0, 0.0, 0.0025)));
+    const Constraints small = build_constraints(mesh, setup);
+    EXPECT_EQ(small.n_conflicts, 0);
+    EXPECT_EQ(small.n_near_agreements, 16) << "the lid's rim: 4 x 4 points";
+    EXPECT_NEAR(small.max_near_agreement, 0.01, 1e-12);
+    setup.boundary[0] = translate("zMax", Vector3(0.0, 0.0, 0.05));
+    const Constraints big = build_constraints(mesh, setup);
+    EXPECT_EQ(big.n_conflicts, 16);
+    EXPECT_EQ(big.n_near_agreements, 0);
 }
 
 TEST(MorphSetup, motion_asked_for_but_resolved_to_nothing_is_an_error)
@@ -393,7 +423,7 @@ TEST(MorphSetup, motion_asked_for_but_resolved_to_nothing_is_an_error)
     const PolyMesh mesh = test::make_box_mesh(1, 1, 1);
     MorphSetup setup;
     setup.dict_path = "system/morphDict";
-    setup.boundary.push_back(translate("zMax", Vector3(0.0, 0.0, 0.1)));
+    setup.boundary.push_back(translate("zMax", Vector3(0.0, 0.0, 0.3)));
     try
     {
         build_constraints(mesh, setup);

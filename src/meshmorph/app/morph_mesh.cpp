@@ -212,6 +212,14 @@ MorphResult morph_case(const MorphOptions& options)
         for (const std::string& line : c.conflict_summary)
             w << "\n    " << line;
     }
+    if (c.n_near_agreements > 0)
+        log::info() << c.n_near_agreements
+                    << " points shared by patches get prescriptions that differ by at most "
+                    << std::lround(100.0 * c.max_near_agreement)
+                    << "% of their shortest edge (as snappyHexMesh leaves patch edges slightly "
+                       "off the surfaces): not conflicts; slip points keep the motion within "
+                       "their plane, others follow rule '"
+                    << to_string(c.conflict_rule) << "'";
 
     // Quality before.
     stage.restart();
@@ -376,6 +384,7 @@ std::string morph_json(const MorphResult& result, int exit_status)
     j["slipPoints"] = result.morph.n_slip;
     j["handlePoints"] = result.constraints.n_handle_points;
     j["conflicts"] = result.constraints.n_conflicts;
+    j["nearAgreements"] = result.constraints.n_near_agreements;
     j["conflictRule"] = to_string(result.constraints.conflict_rule);
     j["solver"] = result.morph.report.solver;
     j["conditionEstimate"] = result.morph.report.condition_estimate;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <regex>
@@ -596,6 +597,28 @@ void require_some_motion(const std::vector<Claim>& claims, const MorphSetup& set
 namespace
 {
 
+//! Per point, the length of its shortest edge on a boundary face (infinity off the
+//! boundary).
+std::vector<double> shortest_boundary_edges(const PolyMesh& mesh)
+{
+    std::vector<double> shortest(static_cast<std::size_t>(mesh.n_points()),
+                                 std::numeric_limits<double>::infinity());
+    for (Index f = mesh.n_internal_faces(); f < mesh.n_faces(); ++f)
+    {
+        const std::span<const Index> face = mesh.faces[f];
+        for (std::size_t i = 0; i < face.size(); ++i)
+        {
+            const Index a = face[i], b = face[(i + 1) % face.size()];
+            const double l = (mesh.points.row(a) - mesh.points.row(b)).norm();
+            shortest[static_cast<std::size_t>(a)] =
+                std::min(shortest[static_cast<std::size_t>(a)], l);
+            shortest[static_cast<std::size_t>(b)] =
+                std::min(shortest[static_cast<std::size_t>(b)], l);
+        }
+    }
+    return shortest;
+}
+
 //! The mesh point nearest to x; in a 2D case (empty_normal set) the nearest in the plane of
 //! the case, on every empty plane (within `tolerance` of the nearest), so that a handle
 //! moves both points of a pair, as the 2D motion needs.
@@ -631,6 +654,10 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
     // meaningful for a mesh, far above round-off of the closed-form motions.
     const double agree_tol = 1e-12 * diag;
     const double in_plane_tol = 1e-5; // relative; 10x patch_plane's planarity tolerance
+    // Prescriptions of a point that differ by at most this fraction of its shortest
+    // boundary edge agree "to the mesh's resolution" (see the resolution loop).
+    const double near_agreement = 0.1;
+    const std::vector<double> edge_lengths = shortest_boundary_edges(mesh);
 
     // 2D cases: the empty planes must be parallel.
     for (std::size_t pi = 0; pi < mesh.patches.size(); ++pi)
@@ -823,18 +850,26 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
             continue;
         }
         bool conflict = false;
+        double spread = 0.0; // how far apart the prescriptions are
         for (const Claim* c : values)
+        {
+            spread = std::max(spread, (c->value - values.front()->value).norm());
             if ((c->value - values.front()->value).norm() > agree_tol)
                 conflict = true;
+        }
+        const bool values_agree = !conflict;
         // A motion leaves a slip (or wedge) plane when its normal component exceeds the
         // tolerance to which the patch was found planar (patch_plane: 1e-6 of its size),
         // relative to the motion: a translation along a wedge's axis, written to 6 digits,
         // stays in both wedge planes.
         if (!values.empty())
             for (const Claim* s : slips)
+            {
+                spread = std::max(spread, std::abs(values.front()->value.dot(s->value)));
                 if (std::abs(values.front()->value.dot(s->value)) >
                     in_plane_tol * values.front()->value.norm() + agree_tol)
                     conflict = true;
+            }
 
         const auto slip_result = [&](const std::vector<const Claim*>& planes)
         {
@@ -848,6 +883,20 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
             return Resolved{point, true, Vector3::Zero(), P};
         };
 
+        // snappyHexMesh leaves the points of patch edges micrometres off the surfaces, so a
+        // projection moves them a little where a neighbouring patch holds or slides them:
+        // a difference far below the cells' size is no conflict worth a warning. A value
+        // that leaves a slip plane by that little is projected into it; values that differ
+        // by that little are resolved by the rule (fixed, the default, holds the point).
+        const bool near =
+            conflict && spread <= near_agreement * edge_lengths[static_cast<std::size_t>(point)];
+        if (near)
+        {
+            ++out.n_near_agreements;
+            out.max_near_agreement = std::max(
+                out.max_near_agreement, spread / edge_lengths[static_cast<std::size_t>(point)]);
+            conflict = !values_agree;
+        }
         if (!conflict)
         {
             if (values.empty())
@@ -862,16 +911,19 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
             continue;
         }
 
-        ++out.n_conflicts;
-        std::set<std::string> names;
-        for (const Claim* c : values)
-            names.insert(mesh.patches[c->patch].name);
-        for (const Claim* c : slips)
-            names.insert(mesh.patches[c->patch].name);
-        std::string key;
-        for (const std::string& n : names)
-            key += (key.empty() ? "" : "/") + n;
-        ++conflict_pairs[key];
+        if (!near)
+        {
+            ++out.n_conflicts;
+            std::set<std::string> names;
+            for (const Claim* c : values)
+                names.insert(mesh.patches[c->patch].name);
+            for (const Claim* c : slips)
+                names.insert(mesh.patches[c->patch].name);
+            std::string key;
+            for (const std::string& n : names)
+                key += (key.empty() ? "" : "/") + n;
+            ++conflict_pairs[key];
+        }
 
         switch (setup.conflicts)
         {

@@ -192,6 +192,11 @@ struct Constraints
     Index n_handle_points = 0;
     Index n_handle_overrides = 0; //!< boundary points whose prescription a handle replaced
     Index n_conflicts = 0;        //!< points with disagreeing prescriptions
+    //! Points whose prescriptions differ by at most 10% of their shortest boundary edge
+    //! (snapped patch edges), not counted or warned about as conflicts: a value off a slip
+    //! plane by that little is projected into it, differing values go by the rule.
+    Index n_near_agreements = 0;
+    double max_near_agreement = 0.0; //!< their largest difference / shortest edge
     ConflictRule conflict_rule = ConflictRule::fixed;
     //! Patch pairs involved in conflicts, e.g. "frontWheel/lowerWall: 120 points".
     std::vector<std::string> conflict_summary;
