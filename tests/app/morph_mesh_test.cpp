@@ -147,7 +147,7 @@ TEST(MorphMesh, region_option_morphs_that_region_and_writes_its_time_directory)
             << read_text(dir / "log.checkMesh");
     }
     const RunResult missing = run({"-case", dir.string()});
-    EXPECT_EQ(missing.code, exit_morph_input_error);
+    EXPECT_EQ(missing.code, exit_input_error);
     EXPECT_NE(missing.err.find("system/morphDict"), std::string::npos) << missing.err;
 }
 
@@ -175,7 +175,7 @@ boundary
 
     write_text(dir / "system/morphDict", std::string(dict_header) + "metod rbf;\nboundary {}\n");
     const RunResult typo = run({"-case", dir.string()});
-    EXPECT_EQ(typo.code, exit_morph_input_error);
+    EXPECT_EQ(typo.code, exit_input_error);
     EXPECT_NE(typo.err.find("morphDict:2"), std::string::npos) << typo.err;
     EXPECT_NE(typo.err.find("unknown keyword"), std::string::npos) << typo.err;
     EXPECT_NE(typo.err.find("$metod"), std::string::npos) << typo.err;
@@ -244,10 +244,10 @@ TEST(MorphMesh, a_failed_run_replaces_an_earlier_json_report_with_the_error)
     write_text(dir / "system/morphDict",
                std::string(dict_header) + "boundary { wing { type fixed; } }\n");
     const RunResult r = run({"-case", dir.string(), "-json", json.string()});
-    EXPECT_EQ(r.code, exit_morph_input_error);
+    EXPECT_EQ(r.code, exit_input_error);
     const nlohmann::json j = nlohmann::json::parse(read_text(json));
     EXPECT_FALSE(j["written"].get<bool>()) << "no stale success may remain";
-    EXPECT_EQ(j["exitStatus"].get<int>(), exit_morph_input_error);
+    EXPECT_EQ(j["exitStatus"].get<int>(), exit_input_error);
     EXPECT_NE(j["error"].get<std::string>().find("wing"), std::string::npos) << j.dump();
 }
 
@@ -259,7 +259,7 @@ conflicts last;
 boundary { zMax { type translate; vector (0 0 -1.6); } }
 )");
     const RunResult refused = run({"-case", dir.string()});
-    EXPECT_EQ(refused.code, exit_morph_refused) << refused.err;
+    EXPECT_EQ(refused.code, exit_refused) << refused.err;
     EXPECT_NE(refused.err.find("negative-volume"), std::string::npos) << refused.err;
     EXPECT_TRUE(times(dir).empty()) << "nothing may be written";
 
@@ -302,7 +302,7 @@ TEST(MorphMesh, every_dictionary_error_names_file_and_entry_and_writes_nothing)
         const fs::path dir = make_case("bad_" + c.name, test::make_box_mesh(2, 2, 2), c.text);
         const std::string original = read_text(dir / "constant/polyMesh/points");
         const RunResult r = run({"-case", dir.string(), "-json", (dir / "out.json").string()});
-        EXPECT_EQ(r.code, exit_morph_input_error) << c.name << ": " << r.err;
+        EXPECT_EQ(r.code, exit_input_error) << c.name << ": " << r.err;
         EXPECT_NE(r.err.find((dir / "system/morphDict").string()), std::string::npos)
             << c.name << ": the message must name the file: " << r.err;
         for (const std::string& s : c.expected)
@@ -312,7 +312,7 @@ TEST(MorphMesh, every_dictionary_error_names_file_and_entry_and_writes_nothing)
         // The report says what failed (issue: a stale success must never remain).
         const nlohmann::json j = nlohmann::json::parse(read_text(dir / "out.json"));
         EXPECT_FALSE(j["written"].get<bool>()) << c.name;
-        EXPECT_EQ(j["exitStatus"].get<int>(), exit_morph_input_error) << c.name;
+        EXPECT_EQ(j["exitStatus"].get<int>(), exit_input_error) << c.name;
         EXPECT_EQ(read_text(dir / "constant/polyMesh/points"), original) << c.name;
     }
 }
@@ -322,12 +322,12 @@ TEST(MorphMesh, missing_dictionary_and_bad_options_are_errors)
     const fs::path dir = make_case("no_dict", test::make_box_mesh(2, 2, 2), "");
     fs::remove(dir / "system/morphDict");
     RunResult r = run({"-case", dir.string()});
-    EXPECT_EQ(r.code, exit_morph_input_error);
+    EXPECT_EQ(r.code, exit_input_error);
     EXPECT_NE(r.err.find("morphDict"), std::string::npos) << r.err;
     r = run({"-case", dir.string(), "-method", "spline"});
-    EXPECT_EQ(r.code, exit_usage_error);
+    EXPECT_EQ(r.code, exit_input_error);
     r = run({"-case", dir.string(), "-time", "1", "-latestTime"});
-    EXPECT_EQ(r.code, exit_usage_error);
+    EXPECT_EQ(r.code, exit_input_error);
     EXPECT_TRUE(times(dir).empty());
 }
 

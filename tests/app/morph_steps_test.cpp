@@ -175,7 +175,7 @@ TEST(MorphSteps, a_squeeze_that_inverts_cells_in_one_step_is_valid_in_several)
     // the local repair, which would save the single step: see the next test.)
     const fs::path one = venturi_case("one_step", 0.8, "steps 1;\nuntangle no;\n");
     const test::MorphRun refused = run(one);
-    EXPECT_EQ(refused.code, exit_morph_refused) << refused.err << refused.log;
+    EXPECT_EQ(refused.code, exit_refused) << refused.err << refused.log;
     EXPECT_FALSE(fs::exists(one / "1")) << "a refused morph writes nothing";
 
     const fs::path several = venturi_case("auto_steps", 0.8, "untangle no;\n");
@@ -210,7 +210,7 @@ TEST(MorphSteps, untangling_repairs_in_place_the_cells_a_step_inverts)
     // The squeeze above in one step: refused without the repair, valid with it (the
     // default), boundary points exact, the repair in the log and the JSON.
     const test::MorphRun refused = run(venturi_case("no_repair", 0.8, "steps 1;\nuntangle no;\n"));
-    EXPECT_EQ(refused.code, exit_morph_refused) << refused.err << refused.log;
+    EXPECT_EQ(refused.code, exit_refused) << refused.err << refused.log;
 
     const fs::path dir = venturi_case("repair", 0.8, "steps 1;\n");
     const test::MorphRun r = run(dir);
@@ -293,7 +293,7 @@ TEST(MorphSteps, when_even_the_shortest_step_fails_the_whole_motion_is_refused_o
                "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n"
                "conflicts last;\nboundary { zMax { type translate; vector (0 0 -1.6); } }\n");
     const test::MorphRun refused = run(dir);
-    EXPECT_EQ(refused.code, exit_morph_refused) << refused.err;
+    EXPECT_EQ(refused.code, exit_refused) << refused.err;
     EXPECT_FALSE(fs::exists(dir / "1"));
     const nlohmann::json j = read_json(dir / "morph.json");
     EXPECT_LT(j["validFraction"].get<double>(), 1.0);

@@ -98,7 +98,7 @@ TEST(Options, parse_command_line_returns_exit_codes)
     EXPECT_EQ(parse_command_line(o, 2, help, out, err), 0);
     EXPECT_NE(out.str().find("Usage:"), std::string::npos);
     const char* bad[] = {"checkMeshQuality", "-bogus"};
-    EXPECT_EQ(parse_command_line(o, 2, bad, out, err), exit_usage_error);
+    EXPECT_EQ(parse_command_line(o, 2, bad, out, err), exit_input_error);
     EXPECT_NE(err.str().find("Error: unknown option '-bogus'"), std::string::npos);
     const char* good[] = {"checkMeshQuality", "-allGeometry"};
     EXPECT_EQ(parse_command_line(o, 2, good, out, err), std::nullopt);

@@ -73,7 +73,7 @@ TEST(CheckMeshQualityApp, good_mesh_exits_0_and_writes_json)
     const fs::path dir = write_case("app_good", test::make_box_mesh(4, 3, 2));
     const AppRun r =
         run({"-case", dir.string(), "-allGeometry", "-json", (dir / "q.json").string()});
-    ASSERT_EQ(r.status, app::exit_mesh_ok) << r.err;
+    ASSERT_EQ(r.status, app::exit_ok) << r.err;
     EXPECT_NE(r.out.find("Time = constant\n\nMesh stats\n"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\nMesh OK.\n"), std::string::npos);
     EXPECT_NE(r.out.find("\nEnd\n"), std::string::npos);

@@ -150,6 +150,97 @@ std::vector<fs::path> write_mesh_sets(const std::vector<MeshSet>& sets, const fs
     return written;
 }
 
+namespace
+{
+
+//! checkMeshQuality after its options are parsed; throws on errors (run_guarded reports
+//! them).
+int check_mesh_quality_main(const Options& options, std::ostream& out)
+{
+    if (options.found("time") && options.found("latestTime"))
+        throw UsageError("-time and -latestTime are mutually exclusive");
+    fs::path case_dir = fs::absolute(options.value_or("case", ".")).lexically_normal();
+    if (!case_dir.has_filename() && case_dir.has_parent_path())
+        case_dir = case_dir.parent_path();
+    if (!fs::is_directory(case_dir))
+        throw IoError("case directory " + case_dir.string() + " does not exist");
+    const bool quiet = options.found("quiet");
+    std::ostringstream discard;
+    std::ostream& info = quiet ? discard : out;
+    print_banner(info, {"checkMeshQuality", options.command_line(), case_dir.string()});
+    StageTimer timer(info);
+
+    io::PolyMeshReadOptions read_options;
+    read_options.region = region_option(options);
+    if (options.found("latestTime"))
+        read_options.time = io::TimeSelection::latest_time();
+    else if (const std::optional<std::string> t = options.get("time"))
+        read_options.time = io::TimeSelection::at(*t);
+    CheckMeshSettings settings;
+    settings.all_geometry = options.found("allGeometry");
+    settings.all_topology = options.found("allTopology");
+    settings.no_topology = options.found("noTopology");
+    settings.report_sets = options.found("writeSets");
+    // The scaled Jacobian is reported in the JSON and VTK outputs only.
+    settings.scaled_jacobian = options.found("json") || options.found("vtk");
+    settings.write_precision = read_write_precision(case_dir);
+    if (options.found("meshQuality"))
+        settings.mesh_quality =
+            read_mesh_quality_dict(case_dir / "system" / read_options.region / "meshQualityDict");
+
+    const io::FoamPolyMesh foam = io::read_poly_mesh(case_dir, read_options);
+    const PolyMesh& mesh = foam.mesh;
+    timer.lap("Read mesh (" + std::to_string(mesh.n_cells) + " cells)");
+
+    const CompactList cf = cell_faces(mesh);
+    const MeshGeometry geometry = compute_geometry(mesh, cf);
+    QualityReport report = check_mesh(mesh, cf, geometry, settings);
+    out << "Time = " << foam.time << "\n\n" << report.text;
+    info << "\n";
+    timer.lap("Checked mesh");
+
+    if (settings.report_sets)
+    {
+        const std::vector<fs::path> files =
+            write_mesh_sets(report.sets, case_dir, foam.points_instance, read_options.region);
+        timer.lap(
+            "Wrote " + std::to_string(files.size()) + " sets to " +
+            (case_dir / foam.points_instance / read_options.region / "polyMesh" / "sets").string());
+    }
+    if (const std::optional<std::string> vtk = options.get("vtk"))
+    {
+#if MESHMORPH_WITH_VTK
+        std::vector<io::VtkField> fields;
+        fields.emplace_back("nonOrthogonality", report.cell_non_orthogonality);
+        fields.emplace_back("skewness", report.cell_skewness);
+        fields.emplace_back("aspectRatio", report.cell_aspect_ratio);
+        fields.emplace_back("volume", geometry.cell_volumes);
+        fields.emplace_back("determinant", report.cell_determinant);
+        if (report.cell_scaled_jacobian.size() == mesh.n_cells)
+            fields.emplace_back("scaledJacobian", report.cell_scaled_jacobian);
+        io::write_vtu(fs::absolute(*vtk), mesh, {}, fields);
+        timer.lap("Wrote " + *vtk);
+#else
+        throw UsageError("-vtk: this build has no VTK support (MESHMORPH_WITH_VTK=OFF)");
+#endif
+    }
+    if (const std::optional<std::string> json_path = options.get("json"))
+    {
+        nlohmann::json j = quality_json(report);
+        j["case"] = case_dir.string();
+        j["time"] = foam.time;
+        j["region"] = read_options.region;
+        const std::string text = j.dump(2) + "\n";
+        io::write_file_atomic(fs::absolute(*json_path), text);
+        timer.lap("Wrote " + *json_path);
+    }
+    if (!quiet)
+        print_end(out);
+    return report.mesh_ok() ? exit_ok : exit_checks_failed;
+}
+
+} // namespace
+
 int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out, std::ostream& err)
 {
     Options options(
@@ -174,111 +265,14 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
           "working directory)"},
          {"json", "FILE", "Write the results as JSON (path relative to the working directory)"},
          {"quiet", "", "Print only the report (no banner or timings)"}},
-        {{exit_mesh_ok, "the mesh passed every check (\"Mesh OK.\")"},
+        {{exit_ok, "the mesh passed every check (\"Mesh OK.\")"},
          {exit_checks_failed, "some checks failed (\"Failed N mesh checks.\")"},
          {exit_input_error,
           "input error: bad option, missing or malformed case files or dictionaries"},
          {exit_internal_error, "unexpected internal error"}});
     if (const std::optional<int> code = parse_command_line(options, argc, argv, out, err))
         return *code;
-    try
-    {
-        if (options.found("time") && options.found("latestTime"))
-            throw UsageError("-time and -latestTime are mutually exclusive");
-        fs::path case_dir = fs::absolute(options.value_or("case", ".")).lexically_normal();
-        if (!case_dir.has_filename() && case_dir.has_parent_path())
-            case_dir = case_dir.parent_path();
-        if (!fs::is_directory(case_dir))
-            throw IoError("case directory " + case_dir.string() + " does not exist");
-        const bool quiet = options.found("quiet");
-        std::ostringstream discard;
-        std::ostream& info = quiet ? discard : out;
-        print_banner(info, {"checkMeshQuality", options.command_line(), case_dir.string()});
-        StageTimer timer(info);
-
-        io::PolyMeshReadOptions read_options;
-        read_options.region = region_option(options);
-        if (options.found("latestTime"))
-            read_options.time = io::TimeSelection::latest_time();
-        else if (const std::optional<std::string> t = options.get("time"))
-            read_options.time = io::TimeSelection::at(*t);
-        CheckMeshSettings settings;
-        settings.all_geometry = options.found("allGeometry");
-        settings.all_topology = options.found("allTopology");
-        settings.no_topology = options.found("noTopology");
-        settings.report_sets = options.found("writeSets");
-        // The scaled Jacobian is reported in the JSON and VTK outputs only.
-        settings.scaled_jacobian = options.found("json") || options.found("vtk");
-        settings.write_precision = read_write_precision(case_dir);
-        if (options.found("meshQuality"))
-            settings.mesh_quality = read_mesh_quality_dict(case_dir / "system" /
-                                                           read_options.region / "meshQualityDict");
-
-        const io::FoamPolyMesh foam = io::read_poly_mesh(case_dir, read_options);
-        const PolyMesh& mesh = foam.mesh;
-        timer.lap("Read mesh (" + std::to_string(mesh.n_cells) + " cells)");
-
-        const CompactList cf = cell_faces(mesh);
-        const MeshGeometry geometry = compute_geometry(mesh, cf);
-        QualityReport report = check_mesh(mesh, cf, geometry, settings);
-        out << "Time = " << foam.time << "\n\n" << report.text;
-        info << "\n";
-        timer.lap("Checked mesh");
-
-        if (settings.report_sets)
-        {
-            const std::vector<fs::path> files =
-                write_mesh_sets(report.sets, case_dir, foam.points_instance, read_options.region);
-            timer.lap("Wrote " + std::to_string(files.size()) + " sets to " +
-                      (case_dir / foam.points_instance / read_options.region / "polyMesh" / "sets")
-                          .string());
-        }
-        if (const std::optional<std::string> vtk = options.get("vtk"))
-        {
-#if MESHMORPH_WITH_VTK
-            std::vector<io::VtkField> fields;
-            fields.emplace_back("nonOrthogonality", report.cell_non_orthogonality);
-            fields.emplace_back("skewness", report.cell_skewness);
-            fields.emplace_back("aspectRatio", report.cell_aspect_ratio);
-            fields.emplace_back("volume", geometry.cell_volumes);
-            fields.emplace_back("determinant", report.cell_determinant);
-            if (report.cell_scaled_jacobian.size() == mesh.n_cells)
-                fields.emplace_back("scaledJacobian", report.cell_scaled_jacobian);
-            io::write_vtu(fs::absolute(*vtk), mesh, {}, fields);
-            timer.lap("Wrote " + *vtk);
-#else
-            throw UsageError("-vtk: this build has no VTK support (MESHMORPH_WITH_VTK=OFF)");
-#endif
-        }
-        if (const std::optional<std::string> json_path = options.get("json"))
-        {
-            nlohmann::json j = quality_json(report);
-            j["case"] = case_dir.string();
-            j["time"] = foam.time;
-            j["region"] = read_options.region;
-            const std::string text = j.dump(2) + "\n";
-            io::write_file_atomic(fs::absolute(*json_path), text);
-            timer.lap("Wrote " + *json_path);
-        }
-        if (!quiet)
-            print_end(out);
-        return report.mesh_ok() ? exit_mesh_ok : exit_checks_failed;
-    }
-    catch (const UsageError& e)
-    {
-        err << "Error: " << e.what() << "\n";
-        return exit_usage_error;
-    }
-    catch (const Error& e)
-    {
-        err << "Error: " << e.what() << "\n";
-        return exit_input_error;
-    }
-    catch (const std::exception& e)
-    {
-        err << "Error (internal): " << e.what() << "\n";
-        return exit_internal_error;
-    }
+    return run_guarded([&] { return check_mesh_quality_main(options, out); }, err, false);
 }
 
 } // namespace meshmorph::app

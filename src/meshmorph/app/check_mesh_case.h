@@ -6,6 +6,7 @@
 //! behaviour (options, exit codes, files written) is testable in-process.
 #pragma once
 
+#include "meshmorph/app/exit_status.h"
 #include <filesystem>
 #include <iosfwd>
 #include <string>
@@ -15,12 +16,6 @@
 
 namespace meshmorph::app
 {
-
-//! Exit statuses of checkMeshQuality (listed by -help).
-inline constexpr int exit_mesh_ok = 0;
-inline constexpr int exit_checks_failed = 1;
-inline constexpr int exit_input_error = 2; //!< bad command line, missing/malformed files
-inline constexpr int exit_internal_error = 3;
 
 //! \brief The meshQualityDict criteria (spec §5) of `path` (usually system/meshQualityDict).
 //! Keys are looked up with regex matching; all are mandatory except minFaceFlatness.
@@ -46,7 +41,7 @@ std::vector<std::filesystem::path> write_mesh_sets(const std::vector<MeshSet>& s
                                                    const std::string& region = "");
 
 //! \brief Run checkMeshQuality with argv (argv[0] = program name); the report goes to `out`,
-//! errors to `err`. Returns the exit status (exit_mesh_ok, exit_checks_failed,
+//! errors to `err`. Returns the exit status (exit_ok, exit_checks_failed,
 //! exit_input_error, exit_internal_error); never throws.
 int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out,
                            std::ostream& err);

@@ -2,6 +2,8 @@
 // The morph pipeline: constraints -> fitted space deformation -> displaced mesh points.
 #include "meshmorph/app/morph_mesh.h"
 
+#include "meshmorph/app/exit_status.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -424,6 +426,66 @@ std::string morph_json(const MorphResult& result, int exit_status)
     return j.dump(2) + "\n";
 }
 
+namespace
+{
+
+//! morphMesh after its options are parsed; throws on errors (run_guarded reports them).
+int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostream& out,
+                    std::ostream& err)
+{
+    if (options.found("time") && options.found("latestTime"))
+        throw UsageError("-time and -latestTime are mutually exclusive");
+    if (options.found("overwrite") && options.found("noOverwrite"))
+        throw UsageError("-overwrite and -noOverwrite are mutually exclusive");
+    MorphOptions morph;
+    morph.case_dir = fs::absolute(options.value_or("case", "."));
+    if (const std::optional<std::string> d = options.get("dict"))
+        morph.dict = *d;
+    morph.region = region_option(options);
+    if (options.found("latestTime"))
+        morph.time = io::TimeSelection::latest_time();
+    else if (const std::optional<std::string> t = options.get("time"))
+        morph.time = io::TimeSelection::at(*t);
+    morph.overwrite = options.found("overwrite");
+    if (const std::optional<std::string> m = options.get("method"))
+    {
+        deformation_method_from_string(*m); // validate early: a usage error
+        morph.method = *m;
+    }
+    morph.json = json_path;
+    morph.vtk = options.found("vtk");
+    morph.force = options.found("force");
+
+    print_banner(out, {"morphMesh", options.command_line(), morph.case_dir.string()});
+    const MorphResult result = morph_case(morph);
+    if (!morph.json.empty())
+    {
+        io::write_file_atomic(morph.json,
+                              morph_json(result, result.refused ? exit_refused : exit_ok));
+        out << "Wrote " << morph.json.string() << "\n";
+    }
+    out << "\nTimings [s]: read " << format_seconds(result.timings.read) << ", fit "
+        << format_seconds(result.timings.fit) << ", evaluate "
+        << format_seconds(result.timings.evaluate) << ", check "
+        << format_seconds(result.timings.check) << ", untangle "
+        << format_seconds(result.timings.untangle) << ", write "
+        << format_seconds(result.timings.write) << "\n";
+    if (result.refused)
+    {
+        err << "Error: " << result.refusal
+            << ". Nothing written: reduce the motion, change the method or use -force.\n";
+        return exit_refused;
+    }
+    out << (result.after.mesh_ok()
+                ? "Mesh OK."
+                : "Failed " + std::to_string(result.after.failed_checks) + " mesh checks.")
+        << "\n";
+    print_end(out);
+    return exit_ok;
+}
+
+} // namespace
+
 int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::ostream& err)
 {
     Options options(
@@ -452,22 +514,21 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
          {"vtk", "",
           "Also write VTK/morphMesh_[<region>_]<time>.vtu with the displacement and quality"},
          {"force", "", "Write even if the morph creates invalid cells"}},
-        {{exit_morph_ok, "morphed mesh written"},
-         {exit_morph_input_error, "bad option, dictionary, mesh or surface file; nothing written"},
-         {exit_morph_refused, "the morph creates invalid cells; nothing written (see -force)"},
-         {exit_morph_solver_error, "the deformation could not be fitted; nothing written"},
-         {exit_morph_internal_error, "unexpected internal error"}});
+        {{exit_ok, "morphed mesh written"},
+         {exit_input_error, "bad option, dictionary, mesh or surface file; nothing written"},
+         {exit_refused, "the morph creates invalid cells; nothing written (see -force)"},
+         {exit_fit_failed, "the deformation could not be fitted; nothing written"},
+         {exit_internal_error, "unexpected internal error"}});
     if (const std::optional<int> code = parse_command_line(options, argc, argv, out, err))
         return *code;
     fs::path json_path; // set as soon as known: a failure replaces any earlier report
     if (const std::optional<std::string> j = options.get("json"))
         json_path = fs::absolute(*j);
-    // Prints the error and, with -json, writes {written: false, exitStatus, error}.
-    const auto fail = [&](int status, const std::string& text)
+    // With -json, a failure writes {written: false, exitStatus, error}.
+    const auto report_failure = [&](int status, const std::string& text)
     {
-        err << text;
         if (json_path.empty())
-            return status;
+            return;
         try
         {
             const nlohmann::json j = {{"written", false}, {"exitStatus", status}, {"error", text}};
@@ -477,78 +538,9 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
         {
             err << "Error: could not write " << json_path.string() << ": " << e.what() << "\n";
         }
-        return status;
     };
-    try
-    {
-        if (options.found("time") && options.found("latestTime"))
-            throw UsageError("-time and -latestTime are mutually exclusive");
-        if (options.found("overwrite") && options.found("noOverwrite"))
-            throw UsageError("-overwrite and -noOverwrite are mutually exclusive");
-        MorphOptions morph;
-        morph.case_dir = fs::absolute(options.value_or("case", "."));
-        if (const std::optional<std::string> d = options.get("dict"))
-            morph.dict = *d;
-        morph.region = region_option(options);
-        if (options.found("latestTime"))
-            morph.time = io::TimeSelection::latest_time();
-        else if (const std::optional<std::string> t = options.get("time"))
-            morph.time = io::TimeSelection::at(*t);
-        morph.overwrite = options.found("overwrite");
-        if (const std::optional<std::string> m = options.get("method"))
-        {
-            deformation_method_from_string(*m); // validate early: a usage error
-            morph.method = *m;
-        }
-        morph.json = json_path;
-        morph.vtk = options.found("vtk");
-        morph.force = options.found("force");
-
-        print_banner(out, {"morphMesh", options.command_line(), morph.case_dir.string()});
-        const MorphResult result = morph_case(morph);
-        if (!morph.json.empty())
-        {
-            io::write_file_atomic(morph.json, morph_json(result, result.refused ? exit_morph_refused
-                                                                                : exit_morph_ok));
-            out << "Wrote " << morph.json.string() << "\n";
-        }
-        out << "\nTimings [s]: read " << format_seconds(result.timings.read) << ", fit "
-            << format_seconds(result.timings.fit) << ", evaluate "
-            << format_seconds(result.timings.evaluate) << ", check "
-            << format_seconds(result.timings.check) << ", untangle "
-            << format_seconds(result.timings.untangle) << ", write "
-            << format_seconds(result.timings.write) << "\n";
-        if (result.refused)
-        {
-            err << "Error: " << result.refusal
-                << ". Nothing written: reduce the motion, change the method or use -force.\n";
-            return exit_morph_refused;
-        }
-        out << (result.after.mesh_ok()
-                    ? "Mesh OK."
-                    : "Failed " + std::to_string(result.after.failed_checks) + " mesh checks.")
-            << "\n";
-        print_end(out);
-        return exit_morph_ok;
-    }
-    catch (const UsageError& e)
-    {
-        return fail(exit_usage_error, "Error: " + std::string(e.what()) + "\n");
-    }
-    catch (const SolverError& e)
-    {
-        return fail(exit_morph_solver_error,
-                    "Error: " + std::string(e.what()) + "\nNothing written.\n");
-    }
-    catch (const Error& e)
-    {
-        return fail(exit_morph_input_error,
-                    "Error: " + std::string(e.what()) + "\nNothing written.\n");
-    }
-    catch (const std::exception& e)
-    {
-        return fail(exit_morph_internal_error, "Internal error: " + std::string(e.what()) + "\n");
-    }
+    return run_guarded([&] { return morph_mesh_main(options, json_path, out, err); }, err, true,
+                       report_failure);
 }
 
 } // namespace meshmorph::app

@@ -12,6 +12,7 @@
 //!   (more than before) is refused: nothing is written unless `force`.
 #pragma once
 
+#include "meshmorph/app/exit_status.h"
 #include <filesystem>
 #include <iosfwd>
 #include <memory>
@@ -83,13 +84,6 @@ MorphResult morph_case(const MorphOptions& options);
 //! relativeConstraintError, conflicts, handlePoints, slipPoints, outputInstance, written,
 //! refused.
 std::string morph_json(const MorphResult& result, int exit_status);
-
-//! Exit statuses of morphMesh (listed by -help).
-inline constexpr int exit_morph_ok = 0;
-inline constexpr int exit_morph_input_error = 2;  //!< options, dictionary, mesh, surface files
-inline constexpr int exit_morph_refused = 3;      //!< new invalid cells; nothing written
-inline constexpr int exit_morph_solver_error = 4; //!< the fit failed
-inline constexpr int exit_morph_internal_error = 5;
 
 //! \brief The morphMesh application (argv[0] = program name): options, banner, morph_case,
 //! summary. Report to `out`, errors to `err`. Returns an exit status; never throws.

@@ -185,7 +185,7 @@ std::optional<int> parse_command_line(Options& options, int argc, const char* co
         err << "Error: " << e.what() << "\n"
             << "Usage: " << options.app_name() << " [OPTIONS]; see " << options.app_name()
             << " -help\n";
-        return exit_usage_error;
+        return exit_input_error;
     }
     if (options.help_requested())
     {

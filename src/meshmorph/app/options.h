@@ -6,6 +6,7 @@
 //! code 2 for it). The table generates the `-help` text, so help and parser cannot drift.
 #pragma once
 
+#include "meshmorph/app/exit_status.h"
 #include <iosfwd>
 #include <map>
 #include <optional>
@@ -38,9 +39,6 @@ struct ExitCode
     int code;
     std::string meaning;
 };
-
-//! The exit status for command-line errors shared by the applications.
-inline constexpr int exit_usage_error = 2;
 
 //! The option table of one application and, after parse(), its values.
 class Options
@@ -96,7 +94,7 @@ private:
 
 //! Parse the command line the way every meshmorph application does: on -help print the
 //! help text to `out` and return 0; on a UsageError print "Error: <what>" and a hint to
-//! `err` and return exit_usage_error; otherwise return std::nullopt (continue).
+//! `err` and return exit_input_error; otherwise return std::nullopt (continue).
 std::optional<int> parse_command_line(Options& options, int argc, const char* const argv[],
                                       std::ostream& out, std::ostream& err);
 

@@ -2,6 +2,7 @@
 # morphDict), the deformation factory. Depends on every other module.
 set(MESHMORPH_APP_SOURCES
     meshmorph/app/options.cpp
+    meshmorph/app/exit_status.cpp
     meshmorph/app/banner.cpp
     meshmorph/app/check_mesh_case.cpp
     meshmorph/app/morph_setup.cpp
