@@ -134,6 +134,11 @@ inline const std::map<std::string, std::string>& openfoam_case_scripts()
         {"damaged", "damaged.sh {curved-block} {dir}"},    // curved-block, inverted + twisted
         {"motorbike-coarse", "motorbike.sh {dir} coarse"}, // ~14k cells, < 10 s
         {"motorbike", "motorbike.sh {dir}"},               // full tutorial, ~353k cells, minutes
+        {"wedge-block", "wedge-block.sh {dir}"},           // 50 cells, wedges about z
+        {"wedge-twisted", "wedge-block.sh {dir} twisted"}, // the same, edges across leaning
+        // Wedge tutorials: 1900 cells about x; 3466 cells about z.
+        {"wedge-cone", "wedge-tutorial.sh {dir} incompressible/pimpleFoam/laminar/movingCone"},
+        {"wedge-dlr", "wedge-tutorial.sh {dir} combustion/reactingFoam/RAS/DLR_A_LTS"},
     };
     return scripts;
 }

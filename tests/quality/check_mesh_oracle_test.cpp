@@ -271,6 +271,30 @@ TEST(CheckMeshOracle, snappy_flange_mesh_quality_dict)
     EXPECT_EQ(compare_reports(expected, report_block(ours.out)), "");
 }
 
+TEST(CheckMeshOracle, wedge_meshes)
+{
+    REQUIRE_OPENFOAM("wedge meshes");
+    // The wedge lines, the directions and what follows them (aspect ratio, determinant).
+    for (const std::string name : {"wedge-block", "wedge-cone", "wedge-dlr"})
+    {
+        expect_same_report(name, {});
+        expect_same_report(name, all_checks);
+    }
+}
+
+TEST(CheckMeshOracle, wedge_with_edges_leaning_across_fails_alike)
+{
+    REQUIRE_OPENFOAM("non-aligned wedge edges");
+    expect_same_report("wedge-twisted", {"-allGeometry"});
+    // The "<<Writing" line of the nonAlignedEdges point set too.
+    const fs::path dir = copy_case("wedge-twisted", "quality_oracle_wedge_sets");
+    const std::string theirs = run_checkmesh(dir, "");
+    const OurRun ours = run_ours(dir, {"-writeSets"});
+    EXPECT_EQ(ours.status, app::exit_checks_failed) << ours.err;
+    EXPECT_NE(theirs.find("to set nonAlignedEdges"), std::string::npos) << theirs;
+    EXPECT_EQ(compare_reports(report_block(theirs, true), report_block(ours.out, true)), "");
+}
+
 TEST(CheckMeshOracle, binary_and_compressed_files)
 {
     REQUIRE_OPENFOAM("binary / compressed meshes");

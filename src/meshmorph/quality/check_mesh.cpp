@@ -162,10 +162,15 @@ void run_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
                          const CheckMeshSettings& settings, QualityReport& r)
 {
     bounding_box(mesh, r);
-    r.directions = mesh_directions(mesh, g.face_areas);
+    const std::vector<WedgeGeometry> wedges = wedge_geometries(mesh);
+    r.directions = mesh_directions(mesh, g.face_areas, wedges);
     const MeshDirections& dirs = r.directions;
     std::vector<CheckResult>& checks = r.checks;
-    if (dirs.n_geometric() < 3 && !dirs.has_wedges)
+    // As checkGeometry.C: the wedge check where wedges knock out a direction the solution
+    // keeps, else the plain edge alignment.
+    if (dirs.n_geometric() < 3 && dirs.geometric != dirs.solution)
+        checks.push_back(check_wedges(mesh, wedges, wedge_findings(mesh, wedges, dirs)));
+    else if (dirs.n_geometric() < 3)
         checks.push_back(check_edge_alignment(non_aligned_edges(mesh, dirs)));
     checks.push_back(check_closed_boundary(boundary_openness(mesh, g)));
     CellClosedness closedness = cell_closedness(mesh, cell_faces, g, dirs);

@@ -59,6 +59,10 @@ const Statistic::Counts& CheckResult::counts(std::string_view key) const
 {
     return typed<Statistic::Counts>(*this, key);
 }
+const Statistic::Reals& CheckResult::reals(std::string_view key) const
+{
+    return typed<Statistic::Reals>(*this, key);
+}
 
 std::vector<Index> as_set(std::vector<Index> labels)
 {

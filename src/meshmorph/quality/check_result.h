@@ -46,7 +46,9 @@ struct Statistic
 {
     //! Named counts (meshQualityFailures: criterion -> faces), in report order.
     using Counts = std::vector<std::pair<std::string, Index>>;
-    using Value = std::variant<Index, double, Vector3, Counts>;
+    //! Named reals (wedgeAngles: patch -> degrees), in report order.
+    using Reals = std::vector<std::pair<std::string, double>>;
+    using Value = std::variant<Index, double, Vector3, Counts, Reals>;
 
     std::string key; //!< the JSON key (camelCase)
     Value value;
@@ -80,6 +82,7 @@ struct CheckResult
     double real(std::string_view key) const;
     const Vector3& vector(std::string_view key) const;
     const Statistic::Counts& counts(std::string_view key) const;
+    const Statistic::Reals& reals(std::string_view key) const;
 };
 
 //! \brief A container's size as a count statistic.

@@ -82,14 +82,12 @@ CheckResult check_low_values(const LowValueCheck& spec, const Eigen::VectorXd& v
     return r;
 }
 
-} // namespace
-
-CheckResult check_edge_alignment(const std::vector<Edge>& non_aligned)
+//! The edge alignment verdict, count and set (of the edges' points) into r.
+void add_edge_alignment(const std::vector<Edge>& non_aligned, CheckResult& r)
 {
-    CheckResult r("edgeAlignment");
     r.add("nonAlignedEdges", size_of(non_aligned), false);
     if (non_aligned.empty())
-        return r;
+        return;
     r.failure = "edgeAlignment";
     std::vector<Index> points;
     for (const Edge& e : non_aligned)
@@ -99,6 +97,46 @@ CheckResult check_edge_alignment(const std::vector<Edge>& non_aligned)
     }
     r.add_set("nonAlignedEdges", MeshSet::Kind::point, std::move(points),
               "points on non-aligned edges");
+}
+
+} // namespace
+
+CheckResult check_edge_alignment(const std::vector<Edge>& non_aligned)
+{
+    CheckResult r("edgeAlignment");
+    add_edge_alignment(non_aligned, r);
+    return r;
+}
+
+CheckResult check_wedges(const PolyMesh& mesh, const std::vector<WedgeGeometry>& wedges,
+                         const WedgeFindings& found)
+{
+    using Problem = WedgeFindings::Problem;
+    CheckResult r("wedges");
+    Statistic::Reals angles;
+    for (std::size_t i = 0; i < found.n_examined; ++i)
+        angles.emplace_back(mesh.patches[static_cast<std::size_t>(wedges[i].patch)].name,
+                            detail::rad_to_deg(std::acos(wedges[i].cos_angle)));
+    r.add("wedgeAngles", std::move(angles));
+    switch (found.problem)
+    {
+    case Problem::none:
+        add_edge_alignment(found.non_aligned, r);
+        break;
+    case Problem::no_opposite:
+        r.failure = "wedgeOpposite";
+        break;
+    case Problem::different_axes:
+        r.failure = "wedgeAxes";
+        r.add("wedgeAxis", wedges[found.n_examined - 1].axis, false);
+        r.add("oppositeWedgeAxis", found.opposite_axis, false);
+        break;
+    case Problem::not_planar:
+        r.failure = "wedgePlanarity";
+        r.add("offPlanePoint", found.off_plane_point, false);
+        r.add("offPlaneDistance", found.off_plane_distance, false);
+        break;
+    }
     return r;
 }
 

@@ -12,6 +12,7 @@
 #include "meshmorph/quality/check_result.h"
 #include "meshmorph/quality/edge_alignment.h"
 #include "meshmorph/quality/edge_lengths.h"
+#include "meshmorph/quality/wedge_alignment.h"
 
 namespace meshmorph
 {
@@ -20,6 +21,15 @@ namespace meshmorph
 //! "edgeAlignment"; statistic "nonAlignedEdges"; set nonAlignedEdges (their points).
 //! \param non_aligned non_aligned_edges(mesh, directions).
 CheckResult check_edge_alignment(const std::vector<Edge>& non_aligned);
+
+//! \brief Wedge meshes, in place of check_edge_alignment: the examined wedges' angles, then
+//! the first wedge problem or else the edge alignment. Fails "wedgeOpposite", "wedgeAxes",
+//! "wedgePlanarity" or "edgeAlignment". Statistics wedgeAngles [deg] (patch -> angle),
+//! "nonAlignedEdges" and the problem's details ("wedgeAxis", "oppositeWedgeAxis",
+//! "offPlanePoint", "offPlaneDistance"); set nonAlignedEdges (points).
+//! \param wedges wedge_geometries(mesh). \param found wedge_findings(mesh, wedges, ...).
+CheckResult check_wedges(const PolyMesh& mesh, const std::vector<WedgeGeometry>& wedges,
+                         const WedgeFindings& found);
 
 //! \brief Boundary openness above 1e-6 in some direction. Fails "boundaryOpenness";
 //! statistic boundaryOpenness. \param openness boundary_openness(mesh, geometry).

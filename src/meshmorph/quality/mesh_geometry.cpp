@@ -133,34 +133,19 @@ Eigen::VectorXd face_area_magnitudes(const MeshGeometry& g)
     return mag_area;
 }
 
-MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas)
+MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas,
+                               const std::vector<WedgeGeometry>& wedges)
 {
     MeshDirections d;
     FoamVector empty_sum;
     bool has_empty = false;
-    FoamVector wedge_sum;
     for (const Patch& patch : mesh.patches)
-    {
         if (patch.type == "empty" && patch.n_faces > 0)
         {
             has_empty = true;
             for (Index f = patch.start_face; f < patch.start_face + patch.n_faces; ++f)
                 empty_sum += detail::cmpt_mag(row(face_areas, f));
         }
-        else if (patch.type == "wedge" && patch.n_faces > 0)
-        {
-            d.has_wedges = true;
-            // The wedge's centre normal: the area-weighted mean unit normal of its faces.
-            FoamVector sum;
-            double sum_mag = 0;
-            for (Index f = patch.start_face; f < patch.start_face + patch.n_faces; ++f)
-            {
-                sum += row(face_areas, f);
-                sum_mag += detail::mag(row(face_areas, f));
-            }
-            wedge_sum += detail::cmpt_mag(sum / (sum_mag + constants::vsmall));
-        }
-    }
     if (has_empty)
     {
         const double m = detail::mag(empty_sum);
@@ -170,14 +155,25 @@ MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas)
                 d.solution[k] = -1;
     }
     d.geometric = d.solution;
+    d.has_wedges = !wedges.empty();
     if (d.has_wedges)
     {
+        // The wedges' coordinate planes (centreNormal), not their tilted mean normals.
+        FoamVector wedge_sum;
+        for (const WedgeGeometry& w : wedges)
+            wedge_sum +=
+                detail::cmpt_mag({w.centre_normal.x(), w.centre_normal.y(), w.centre_normal.z()});
         const double m = detail::mag(wedge_sum);
-        const FoamVector unit = m > constants::vsmall ? wedge_sum / m : FoamVector{};
+        const FoamVector unit = m >= constants::rootvsmall ? wedge_sum / m : FoamVector{};
         for (int k = 0; k < 3; ++k)
             d.geometric[k] = unit[k] > 1e-6 ? -1 : 1;
     }
     return d;
+}
+
+MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas)
+{
+    return mesh_directions(mesh, face_areas, wedge_geometries(mesh));
 }
 
 } // namespace meshmorph

@@ -7,9 +7,12 @@
 //! primitiveMesh so that every printed checkMesh number is reproduced.
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/quality/wedge_geometry.h"
 
 namespace meshmorph
 {
@@ -61,7 +64,13 @@ struct MeshDirections
     bool has_wedges = false;
 };
 
-//! \brief geometricD and solutionD from the empty and wedge patches (spec §2.4).
+//! \brief geometricD and solutionD (OpenFOAM polyMesh::calcDirections): a direction is
+//! empty where the summed |area| of the empty patches' faces has a unit component above
+//! 1e-6; geometricD also drops the directions of the wedges' centre normals.
+//! \param wedges wedge_geometries(mesh).
+MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas,
+                               const std::vector<WedgeGeometry>& wedges);
+//! Convenience overload computing wedge_geometries(mesh).
 MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas);
 
 } // namespace meshmorph

@@ -32,10 +32,14 @@ nlohmann::json statistic_json(const Statistic::Value& value)
         return number(*real);
     if (const Vector3* v = std::get_if<Vector3>(&value))
         return {v->x(), v->y(), v->z()};
-    nlohmann::json counts = nlohmann::json::object();
-    for (const auto& [key, count] : std::get<Statistic::Counts>(value))
-        counts[key] = count;
-    return counts;
+    nlohmann::json named = nlohmann::json::object();
+    if (const Statistic::Reals* reals = std::get_if<Statistic::Reals>(&value))
+        for (const auto& [key, real] : *reals)
+            named[key] = number(real);
+    else
+        for (const auto& [key, count] : std::get<Statistic::Counts>(value))
+            named[key] = count;
+    return named;
 }
 
 } // namespace

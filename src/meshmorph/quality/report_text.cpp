@@ -170,6 +170,31 @@ void edge_alignment(const CheckResult& c, Writer& t)
         t.out << "    All edges aligned with or perpendicular to non-empty directions.\n";
 }
 
+void wedges(const CheckResult& c, Writer& t)
+{
+    const Statistic::Reals& angles = c.reals("wedgeAngles");
+    for (const auto& [name, angle] : angles)
+        t.out << "    Wedge " << name << " with angle " << t.s(angle) << " degrees\n";
+    // checkWedges stops at the first problem: it is the last wedge's.
+    const std::string name = angles.empty() ? "" : angles.back().first;
+    if (c.failure == "wedgeOpposite")
+        t.out << " ***Cannot find opposite wedge for wedge " << name << "\n";
+    else if (c.failure == "wedgeAxes")
+    {
+        // (sic: v1912 prints the opposite axis twice, the second without a space)
+        const std::string opposite = t.v(c.vector("oppositeWedgeAxis"));
+        t.out << " ***Wedges do not have the same axis. Encountered " << t.v(c.vector("wedgeAxis"))
+              << " on patch " << name << " which differs from " << opposite
+              << " on opposite wedge patch" << opposite << "\n";
+    }
+    else if (c.failure == "wedgePlanarity")
+        t.out << " ***Wedge patch " << name << " not planar. Point "
+              << t.v(c.vector("offPlanePoint")) << " is not in patch plane by "
+              << t.s(c.real("offPlaneDistance")) << " metre.\n";
+    else
+        edge_alignment(c, t);
+}
+
 void closed_boundary(const CheckResult& c, Writer& t)
 {
     const std::string o = t.v(c.vector("boundaryOpenness"));
@@ -426,6 +451,7 @@ const Format formats[] = {
     {"internalFaceCells", Section::topology, no_lines},
     {"regions", Section::topology, regions},
     {"edgeAlignment", Section::geometry, edge_alignment},
+    {"wedges", Section::geometry, wedges},
     {"closedBoundary", Section::geometry, closed_boundary},
     {"closedCells", Section::geometry, closed_cells},
     {"faceAreas", Section::geometry, face_areas},

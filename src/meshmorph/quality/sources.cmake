@@ -27,6 +27,8 @@ set(MESHMORPH_QUALITY_SOURCES
     meshmorph/quality/face_weights.cpp
     meshmorph/quality/mesh_edges.cpp
     meshmorph/quality/point_faces.cpp
+    meshmorph/quality/wedge_alignment.cpp
+    meshmorph/quality/wedge_geometry.cpp
     meshmorph/quality/zone_topology.cpp
     meshmorph/quality/check_result.cpp
     meshmorph/quality/topology_checks.cpp

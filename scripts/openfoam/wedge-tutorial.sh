@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# An axisymmetric (wedge) tutorial mesh made by blockMesh, e.g.
+# incompressible/pimpleFoam/laminar/movingCone (1900 cells, wedges normal to z, axis x) or
+# combustion/reactingFoam/RAS/DLR_A_LTS (3466 cells, wedges normal to y, axis z). Both have
+# an empty axis patch that blockMesh collapses to no faces, and prisms along the axis.
+# Usage: wedge-tutorial.sh DIR TUTORIAL (the path under the tutorials directory)
+#
+# Steps: blockMesh, checkMesh (must say "Mesh OK"). controlDict's writePrecision is raised
+# to 15 so that checkMesh prints 15 digits.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+
+[[ $# -eq 2 ]] || { echo "usage: $foam_script_name DIR TUTORIAL" >&2; exit 2; }
+case_dir=$1
+need_tool blockMesh checkMesh
+copy_tutorial "$2" "$case_dir"
+rm -f "$case_dir/Allrun" "$case_dir/Allclean"
+set_control "$case_dir" writePrecision 15
+
+run_step "$case_dir" blockMesh
+run_step "$case_dir" checkMesh
+grep -q "Mesh OK" "$case_dir/log.checkMesh" || die "checkMesh did not report 'Mesh OK' (see $case_dir/log.checkMesh)"
+echo "$foam_script_name: wrote $case_dir/constant/polyMesh"
