@@ -6,7 +6,7 @@
 // table and optionally as CSV. Greedy RBF rows are separate fits, each timed; the refined
 // DM-FFD's total time (a fresh SVD per step) is on its last row.
 //
-// Usage: deformAdaptivityBenchmark [-n <points per side, 41>] [-width <bump sigma, 0.05>]
+// Usage: benchAdaptivity [-n <points per side, 41>] [-width <bump sigma, 0.05>]
 //                                  [-tolerance <relative max error, 1e-3>]
 //                                  [-clamping <DM-FFD SVD clamping, 1e-2>] [-csv <file>]
 #include <algorithm>

@@ -3,8 +3,8 @@
 // translated, the rest fixed; evaluation time at every mesh point and the tree's error
 // against the direct sum (theta = 0) on a sample, for several opening ratios theta.
 //
-// Usage: deformIdwBenchmark CASE [patch-regex] [sample] [theta...]
-//   e.g. deformIdwBenchmark build/cases/motorBike-full 'motorBike_.*' 20000 0.2 0.3 0.4 0.5
+// Usage: benchIdw CASE [patch-regex] [sample] [theta...]
+//   e.g. benchIdw build/cases/motorBike-full 'motorBike_.*' 20000 0.2 0.3 0.4 0.5
 // Prints per theta: evaluate seconds, max and RMS |tree - direct| relative to the largest
 // displacement.
 #include <cstdlib>
@@ -22,7 +22,7 @@ int main(int argc, char** argv)
 {
     if (argc < 2)
     {
-        std::cerr << "usage: deformIdwBenchmark CASE [patch-regex] [sample] [theta...]\n";
+        std::cerr << "usage: benchIdw CASE [patch-regex] [sample] [theta...]\n";
         return 2;
     }
     const std::regex moving(argc > 2 ? argv[2] : "motorBike_.*");
