@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <regex>
@@ -282,6 +283,10 @@ FoamDictionary read_dictionary(const std::filesystem::path& path, ParseOptions o
 //! \throw ParseError on an unknown type word, a size mismatch or truncated data.
 FoamCompound read_compound(FoamTokenizer& tokenizer, const std::string& type_word,
                            const ParseOptions& options = {});
+
+//! A uniform list `N{v}` is expanded in memory; N beyond the label range is malformed input
+//! (OpenFOAM could not hold it either), not a reason to exhaust memory.
+inline constexpr std::int64_t max_uniform_list_size = std::numeric_limits<Index>::max();
 
 //! Whether `word` names a compound type read_compound() understands (`List<label>`, …).
 bool is_compound_type(std::string_view word);

@@ -4,6 +4,8 @@ set(MESHMORPH_IO_SOURCES
     meshmorph/io/foam_tokenizer.cpp
     meshmorph/io/foam_header.cpp
     meshmorph/io/foam_dictionary.cpp
+    meshmorph/io/foam_dictionary_parser.cpp
+    meshmorph/io/foam_compound.cpp
     meshmorph/io/boundary_io.cpp
     meshmorph/io/foam_file.cpp
     meshmorph/io/foam_lists.cpp
