@@ -135,11 +135,6 @@ FoamVector vector_entry(const Patch& p, std::string_view key)
     return r;
 }
 
-bool is_cyclic(const Patch& p)
-{
-    return p.type == "cyclic" || p.type == "cyclicSlip";
-}
-
 //! The unit normal of every face of patch `p` (0 where the area is below ROOTVSMALL on both
 //! sides: cyclicPolyPatch then uses a dummy (1 0 0) on both).
 std::vector<FoamVector> unit_normals(const Patch& p, const MeshGeometry& g)
@@ -247,7 +242,7 @@ Index neighbour_index(const PolyMesh& mesh, const Patch& p)
 {
     const std::string name = word_entry(p, "neighbourPatch", "");
     for (std::size_t i = 0; i < mesh.patches.size(); ++i)
-        if (mesh.patches[i].name == name && is_cyclic(mesh.patches[i]))
+        if (mesh.patches[i].name == name && is_coupled_patch(mesh.patches[i]))
             return static_cast<Index>(i);
     throw InvalidInput("cyclic patch " + p.name + " has no cyclic neighbourPatch '" + name + "'");
 }
@@ -277,6 +272,11 @@ CyclicPatch cyclic_patch(const PolyMesh& mesh, const MeshGeometry& g, Index inde
 }
 
 } // namespace
+
+bool is_coupled_patch(const Patch& p)
+{
+    return p.type == "cyclic" || p.type == "cyclicSlip";
+}
 
 std::vector<double> face_tolerances(const PolyMesh& mesh, const MeshGeometry& g, const Patch& p)
 {
@@ -327,7 +327,7 @@ std::vector<CyclicPatch> cyclic_patches(const PolyMesh& mesh, const MeshGeometry
 {
     std::vector<CyclicPatch> cyclics;
     for (std::size_t i = 0; i < mesh.patches.size(); ++i)
-        if (is_cyclic(mesh.patches[i]) && mesh.patches[i].n_faces > 0)
+        if (is_coupled_patch(mesh.patches[i]) && mesh.patches[i].n_faces > 0)
             cyclics.push_back(cyclic_patch(mesh, g, static_cast<Index>(i)));
     return cyclics;
 }

@@ -17,6 +17,9 @@
 namespace meshmorph
 {
 
+//! \brief Whether checkMesh couples the patch's faces: cyclic and cyclicSlip.
+bool is_coupled_patch(const Patch& patch);
+
 //! One cyclic (or cyclicSlip) patch with faces and the transform that brings its neighbour
 //! patch's positions onto it (cyclicPolyPatch::calcTransforms and transformPosition).
 struct CyclicPatch
