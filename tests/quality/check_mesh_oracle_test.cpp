@@ -295,6 +295,18 @@ TEST(CheckMeshOracle, wedge_with_edges_leaning_across_fails_alike)
     EXPECT_EQ(compare_reports(report_block(theirs, true), report_block(ours.out, true)), "");
 }
 
+TEST(CheckMeshOracle, cyclic_meshes)
+{
+    REQUIRE_OPENFOAM("cyclic meshes");
+    // Coupled faces in non-orthogonality, skewness, weights, volume ratio, the determinant
+    // (the column's cells have only two internal faces) and the coupled point match.
+    for (const std::string name : {"cyclic-box", "cyclic-column"})
+    {
+        expect_same_report(name, {});
+        expect_same_report(name, all_checks);
+    }
+}
+
 TEST(CheckMeshOracle, binary_and_compressed_files)
 {
     REQUIRE_OPENFOAM("binary / compressed meshes");

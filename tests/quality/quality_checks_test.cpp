@@ -65,12 +65,14 @@ TEST(GeometryChecks, severe_non_orthogonality_warns_and_errors_fail)
 {
     const PolyMesh mesh = test::make_block_mesh(
         3, 3, 2, [](double u, double v, double w) { return Vector3(u + 3.2 * v, v, w); });
-    const CheckResult r = check_face_orthogonality(
-        mesh.n_internal_faces(), face_orthogonality(mesh, compute_geometry(mesh)));
+    const MeshGeometry g = compute_geometry(mesh);
+    const CoupledFaces internal = coupled_faces(mesh, g, {});
+    const CheckResult r =
+        check_face_orthogonality(face_orthogonality(mesh, g), internal.statistics_faces());
     EXPECT_NEAR(r.real("maxNonOrthogonality"), std::atan(3.2) * 180 / M_PI, 1e-9);
     EXPECT_EQ(r.count("severelyNonOrthogonalFaces"), 24); // internal x- and y-faces, 12 each
     EXPECT_FALSE(r.failed());
-    const CheckResult errors = check_face_orthogonality(1, Eigen::Vector2d(-0.5, 1.0));
+    const CheckResult errors = check_face_orthogonality(Eigen::Vector2d(-0.5, 1.0), {1, 0});
     EXPECT_EQ(errors.failure, "nonOrthogonality");
     EXPECT_EQ(errors.count("nonOrthogonalityErrors"), 1);
 }

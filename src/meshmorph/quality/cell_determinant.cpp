@@ -16,15 +16,16 @@ namespace
 {
 
 //! checkMesh's determinant of one cell (primitiveMeshTools::cellDeterminant).
-double cell_determinant_of(const PolyMesh& mesh, std::span<const Index> faces,
-                           const MeshGeometry& g, const MeshDirections& dirs,
-                           const Eigen::VectorXd& mag_area)
+//! `counts(f)`: face f joins two cells (internal or coupled).
+template <class Counts>
+double cell_determinant_of(std::span<const Index> faces, const MeshGeometry& g,
+                           const MeshDirections& dirs, const Eigen::VectorXd& mag_area,
+                           const Counts& counts)
 {
-    const Index n_int = mesh.n_internal_faces();
     double avg = 0;
     Index n_internal = 0;
     for (Index f : faces)
-        if (f < n_int)
+        if (counts(f))
         {
             avg += mag_area[f];
             ++n_internal;
@@ -34,7 +35,7 @@ double cell_determinant_of(const PolyMesh& mesh, std::span<const Index> faces,
     avg /= static_cast<double>(n_internal);
     double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
     for (Index f : faces)
-        if (f < n_int)
+        if (counts(f))
         {
             const FoamVector a = row(g.face_areas, f) / avg;
             xx += a.x * a.x;
@@ -58,19 +59,37 @@ double cell_determinant_of(const PolyMesh& mesh, std::span<const Index> faces,
     return std::abs(det) / 8.0;
 }
 
-} // namespace
-
-Eigen::VectorXd cell_determinant(const PolyMesh& mesh, const CompactList& cell_faces,
-                                 const MeshGeometry& g, const MeshDirections& dirs,
-                                 const Eigen::VectorXd& mag_area)
+template <class Counts>
+Eigen::VectorXd cell_determinants(const PolyMesh& mesh, const CompactList& cell_faces,
+                                  const MeshGeometry& g, const MeshDirections& dirs,
+                                  const Eigen::VectorXd& mag_area, const Counts& counts)
 {
     const Index n_cells = mesh.n_cells;
     Eigen::VectorXd det(n_cells);
     const bool one_d = dirs.n_geometric() == 1;
 #pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
     for (Index cell = 0; cell < n_cells; ++cell)
-        det[cell] = one_d ? 1.0 : cell_determinant_of(mesh, cell_faces[cell], g, dirs, mag_area);
+        det[cell] = one_d ? 1.0 : cell_determinant_of(cell_faces[cell], g, dirs, mag_area, counts);
     return det;
+}
+
+} // namespace
+
+Eigen::VectorXd cell_determinant(const PolyMesh& mesh, const CompactList& cell_faces,
+                                 const MeshGeometry& g, const MeshDirections& dirs,
+                                 const Eigen::VectorXd& mag_area)
+{
+    return cell_determinants(mesh, cell_faces, g, dirs, mag_area,
+                             [&](Index f) { return mesh.is_internal_face(f); });
+}
+
+Eigen::VectorXd cell_determinant(const PolyMesh& mesh, const CompactList& cell_faces,
+                                 const MeshGeometry& g, const MeshDirections& dirs,
+                                 const Eigen::VectorXd& mag_area, const CoupledFaces& coupled)
+{
+    return cell_determinants(
+        mesh, cell_faces, g, dirs, mag_area,
+        [&](Index f) { return coupled.internal_or_coupled[static_cast<std::size_t>(f)] != 0; });
 }
 
 Eigen::VectorXd cell_area_determinant(const CompactList& cell_faces, const MeshGeometry& g)

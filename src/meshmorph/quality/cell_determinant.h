@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/quality/coupled_patches.h"
 #include "meshmorph/quality/mesh_geometry.h"
 
 namespace meshmorph
@@ -19,6 +20,13 @@ namespace meshmorph
 Eigen::VectorXd cell_determinant(const PolyMesh& mesh, const CompactList& cell_faces,
                                  const MeshGeometry& geometry, const MeshDirections& directions,
                                  const Eigen::VectorXd& face_area_magnitudes);
+
+//! \brief The same over internal and cyclic faces (syncTools::getInternalOrCoupledFaces), as
+//! checkMesh (polyMesh::checkCellDeterminant) computes it.
+Eigen::VectorXd cell_determinant(const PolyMesh& mesh, const CompactList& cell_faces,
+                                 const MeshGeometry& geometry, const MeshDirections& directions,
+                                 const Eigen::VectorXd& face_area_magnitudes,
+                                 const CoupledFaces& coupled);
 
 //! \brief snappyHexMesh's determinant: det(sum over all faces of Af Af^T / |Af|, divided by
 //! the sum of |Af|) / (1/27), so 1 for a cube. OpenMP over cells. \return nCells values.

@@ -17,6 +17,8 @@
 #include "meshmorph/quality/cell_determinant.h"
 #include "meshmorph/quality/cell_regions.h"
 #include "meshmorph/quality/cell_validity.h"
+#include "meshmorph/quality/coupled_patches.h"
+#include "meshmorph/quality/coupled_points.h"
 #include "meshmorph/quality/face_concavity.h"
 #include "meshmorph/quality/face_flatness.h"
 #include "meshmorph/quality/face_orthogonality.h"
@@ -141,7 +143,7 @@ void bounding_box(const PolyMesh& mesh, QualityReport& r)
 
 void run_all_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces,
                              const MeshGeometry& g, const Eigen::VectorXd& mag_area,
-                             QualityReport& r)
+                             const CoupledFaces& coupled, QualityReport& r)
 {
     const Eigen::Vector3d& lo = r.bounding_box_min;
     const Eigen::Vector3d& hi = r.bounding_box_max;
@@ -154,8 +156,9 @@ void run_all_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces
     checks.push_back(check_face_flatness(mesh, mag_area, face_flatness(mesh, g, mag_area)));
     checks.push_back(check_cell_determinant(r.cell_determinant));
     checks.push_back(check_concave_cells(concave_cells(mesh, cell_faces, g)));
-    checks.push_back(check_face_weight(face_weights(mesh, g)));
-    checks.push_back(check_volume_ratio(face_volume_ratio(mesh, g.cell_volumes)));
+    const std::vector<char> summed = coupled.statistics_faces();
+    checks.push_back(check_face_weight(face_weights(mesh, g, coupled), summed));
+    checks.push_back(check_volume_ratio(face_volume_ratio(mesh, g.cell_volumes, coupled), summed));
 }
 
 void run_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces, const MeshGeometry& g,
@@ -179,17 +182,20 @@ void run_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
     const Eigen::VectorXd mag_area = face_area_magnitudes(g);
     checks.push_back(check_face_areas(mag_area));
     checks.push_back(check_cell_volumes(g.cell_volumes));
-    const Eigen::VectorXd ortho = face_orthogonality(mesh, g);
-    checks.push_back(check_face_orthogonality(mesh.n_internal_faces(), ortho));
+    // checkMesh measures cyclic faces against the cell across them (polyMeshCheck.C).
+    const std::vector<CyclicPatch> cyclics = cyclic_patches(mesh, g);
+    const CoupledFaces coupled = coupled_faces(mesh, g, cyclics);
+    const Eigen::VectorXd ortho = face_orthogonality(mesh, g, coupled);
+    checks.push_back(check_face_orthogonality(ortho, coupled.statistics_faces()));
     checks.push_back(check_face_pyramids(face_pyramid_errors(mesh, g)));
-    const Eigen::VectorXd skewness = face_skewness(mesh, g);
-    checks.push_back(check_face_skewness(skewness));
-    checks.push_back(check_coupled_points());
+    const Eigen::VectorXd skewness = face_skewness(mesh, g, coupled);
+    checks.push_back(check_face_skewness(skewness, coupled.master));
+    checks.push_back(check_coupled_points(coupled_point_match(mesh, g, cyclics)));
     r.cell_non_orthogonality = cell_non_orthogonality(cell_faces, ortho);
     r.cell_skewness = cell_skewness(cell_faces, skewness);
-    r.cell_determinant = cell_determinant(mesh, cell_faces, g, dirs, mag_area);
+    r.cell_determinant = cell_determinant(mesh, cell_faces, g, dirs, mag_area, coupled);
     if (settings.all_geometry)
-        run_all_geometry_checks(mesh, cell_faces, g, mag_area, r);
+        run_all_geometry_checks(mesh, cell_faces, g, mag_area, coupled, r);
     if (settings.mesh_quality)
         checks.push_back(check_mesh_quality(mesh, cell_faces, g, *settings.mesh_quality, skewness));
 }

@@ -13,18 +13,39 @@ namespace meshmorph
 using detail::FoamVector;
 using detail::row;
 
+namespace
+{
+
+double orthogonality(const FoamVector& own_cc, const FoamVector& nei_cc, const FoamVector& s,
+                     double eps)
+{
+    const FoamVector d = nei_cc - own_cc;
+    return detail::dot(d, s) / (detail::mag(d) * detail::mag(s) + eps);
+}
+
+} // namespace
+
 Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& g, double eps)
 {
     const Index n_int = mesh.n_internal_faces();
     Eigen::VectorXd ortho = Eigen::VectorXd::Ones(mesh.n_faces());
 #pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
     for (Index f = 0; f < n_int; ++f)
-    {
-        const FoamVector d =
-            row(g.cell_centres, mesh.neighbour[f]) - row(g.cell_centres, mesh.owner[f]);
-        const FoamVector s = row(g.face_areas, f);
-        ortho[f] = detail::dot(d, s) / (detail::mag(d) * detail::mag(s) + eps);
-    }
+        ortho[f] = orthogonality(row(g.cell_centres, mesh.owner[f]),
+                                 row(g.cell_centres, mesh.neighbour[f]), row(g.face_areas, f), eps);
+    return ortho;
+}
+
+Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& g,
+                                   const CoupledFaces& coupled)
+{
+    Eigen::VectorXd ortho = face_orthogonality(mesh, g, constants::rootvsmall);
+    const Index n_int = mesh.n_internal_faces();
+    for (Index f = n_int; f < mesh.n_faces(); ++f)
+        if (coupled.coupled_boundary(mesh, f))
+            ortho[f] = orthogonality(row(g.cell_centres, mesh.owner[f]),
+                                     row(coupled.neighbour_cell_centres, f - n_int),
+                                     row(g.face_areas, f), constants::rootvsmall);
     return ortho;
 }
 

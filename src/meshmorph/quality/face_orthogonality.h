@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/quality/coupled_patches.h"
 #include "meshmorph/quality/mesh_geometry.h"
 
 namespace meshmorph
@@ -16,6 +17,11 @@ namespace meshmorph
 //! \return nFaces values; boundary faces (which have no neighbour) get 1. OpenMP over faces.
 Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& geometry,
                                    double eps = constants::rootvsmall);
+
+//! \brief checkMesh's (polyMeshTools::faceOrthogonality): as above with ROOTVSMALL, and
+//! cyclic faces measured against the cell across them. \return nFaces values.
+Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& geometry,
+                                   const CoupledFaces& coupled);
 
 //! \brief Per cell, the largest non-orthogonality [deg] of its faces: acos of the smallest
 //! face_orthogonality, clamped to [-1, 1] (0 for a cell without faces).

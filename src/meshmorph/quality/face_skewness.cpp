@@ -16,7 +16,8 @@ using detail::row;
 namespace
 {
 
-double skewness_of(const PolyMesh& mesh, const MeshGeometry& g, Index f)
+//! Skewness of face f; `across` is the cell centre on the other side, if any.
+double skewness_of(const PolyMesh& mesh, const MeshGeometry& g, Index f, const FoamVector* across)
 {
     constexpr double rootvsmall = constants::rootvsmall;
     const FoamVector cf = row(g.face_centres, f);
@@ -25,9 +26,9 @@ double skewness_of(const PolyMesh& mesh, const MeshGeometry& g, Index f)
     const FoamVector cpf = cf - own_cc;
     FoamVector d;
     double factor;
-    if (f < mesh.n_internal_faces())
+    if (across)
     {
-        d = row(g.cell_centres, mesh.neighbour[f]) - own_cc;
+        d = *across - own_cc;
         factor = 0.2;
     }
     else
@@ -53,7 +54,25 @@ Eigen::VectorXd face_skewness(const PolyMesh& mesh, const MeshGeometry& g)
     Eigen::VectorXd skewness(n_faces);
 #pragma omp parallel for schedule(static) if (n_faces > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
-        skewness[f] = skewness_of(mesh, g, f);
+    {
+        const FoamVector across =
+            f < mesh.n_internal_faces() ? row(g.cell_centres, mesh.neighbour[f]) : FoamVector{};
+        skewness[f] = skewness_of(mesh, g, f, f < mesh.n_internal_faces() ? &across : nullptr);
+    }
+    return skewness;
+}
+
+Eigen::VectorXd face_skewness(const PolyMesh& mesh, const MeshGeometry& g,
+                              const CoupledFaces& coupled)
+{
+    Eigen::VectorXd skewness = face_skewness(mesh, g);
+    const Index n_int = mesh.n_internal_faces();
+    for (Index f = n_int; f < mesh.n_faces(); ++f)
+        if (coupled.coupled_boundary(mesh, f))
+        {
+            const FoamVector across = row(coupled.neighbour_cell_centres, f - n_int);
+            skewness[f] = skewness_of(mesh, g, f, &across);
+        }
     return skewness;
 }
 

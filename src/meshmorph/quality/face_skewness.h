@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/quality/coupled_patches.h"
 #include "meshmorph/quality/mesh_geometry.h"
 
 namespace meshmorph
@@ -15,6 +16,11 @@ namespace meshmorph
 //! \brief Skewness per face (nFaces). A boundary face measures against the owner centre's
 //! projection onto the face normal, with twice the normalisation factor. OpenMP over faces.
 Eigen::VectorXd face_skewness(const PolyMesh& mesh, const MeshGeometry& geometry);
+
+//! \brief checkMesh's (polyMeshTools::faceSkewness): as above, but cyclic faces measure
+//! against the cell across them, as internal faces do.
+Eigen::VectorXd face_skewness(const PolyMesh& mesh, const MeshGeometry& geometry,
+                              const CoupledFaces& coupled);
 
 //! \brief Per cell, the largest skewness of its faces (0 for a cell without faces).
 //! \param skewness face_skewness(mesh, geometry). \return nCells values.

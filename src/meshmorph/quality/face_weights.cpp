@@ -13,33 +13,70 @@ namespace meshmorph
 using detail::FoamVector;
 using detail::row;
 
+namespace
+{
+
+double weight(const FoamVector& fc, const FoamVector& fa, const FoamVector& own_cc,
+              const FoamVector& nei_cc)
+{
+    const double d_own = std::abs(detail::dot(fa, fc - own_cc));
+    const double d_nei = std::abs(detail::dot(fa, nei_cc - fc));
+    return std::min(d_nei, d_own) / (d_nei + d_own + constants::vsmall);
+}
+
+double ratio(double vo, double vn)
+{
+    return std::min(vo, vn) / (std::max(vo, vn) + constants::vsmall);
+}
+
+} // namespace
+
 Eigen::VectorXd face_weights(const PolyMesh& mesh, const MeshGeometry& g)
 {
     const Index n_int = mesh.n_internal_faces();
-    Eigen::VectorXd weight(n_int);
+    Eigen::VectorXd weights(n_int);
 #pragma omp parallel for schedule(static) if (mesh.n_faces() > detail::parallel_threshold)
     for (Index f = 0; f < n_int; ++f)
-    {
-        const FoamVector fc = row(g.face_centres, f);
-        const FoamVector fa = row(g.face_areas, f);
-        const double d_own = std::abs(detail::dot(fa, fc - row(g.cell_centres, mesh.owner[f])));
-        const double d_nei = std::abs(detail::dot(fa, row(g.cell_centres, mesh.neighbour[f]) - fc));
-        weight[f] = std::min(d_nei, d_own) / (d_nei + d_own + constants::vsmall);
-    }
-    return weight;
+        weights[f] =
+            weight(row(g.face_centres, f), row(g.face_areas, f), row(g.cell_centres, mesh.owner[f]),
+                   row(g.cell_centres, mesh.neighbour[f]));
+    return weights;
+}
+
+Eigen::VectorXd face_weights(const PolyMesh& mesh, const MeshGeometry& g,
+                             const CoupledFaces& coupled)
+{
+    const Index n_int = mesh.n_internal_faces();
+    Eigen::VectorXd weights = Eigen::VectorXd::Ones(mesh.n_faces());
+    weights.head(n_int) = face_weights(mesh, g);
+    for (Index f = n_int; f < mesh.n_faces(); ++f)
+        if (coupled.coupled_boundary(mesh, f))
+            weights[f] = weight(row(g.face_centres, f), row(g.face_areas, f),
+                                row(g.cell_centres, mesh.owner[f]),
+                                row(coupled.neighbour_cell_centres, f - n_int));
+    return weights;
 }
 
 Eigen::VectorXd face_volume_ratio(const PolyMesh& mesh, const Eigen::VectorXd& cell_volumes)
 {
     const Index n_int = mesh.n_internal_faces();
-    Eigen::VectorXd ratio(n_int);
+    Eigen::VectorXd ratios(n_int);
     for (Index f = 0; f < n_int; ++f)
-    {
-        const double vo = cell_volumes[mesh.owner[f]];
-        const double vn = cell_volumes[mesh.neighbour[f]];
-        ratio[f] = std::min(vo, vn) / (std::max(vo, vn) + constants::vsmall);
-    }
-    return ratio;
+        ratios[f] = ratio(cell_volumes[mesh.owner[f]], cell_volumes[mesh.neighbour[f]]);
+    return ratios;
+}
+
+Eigen::VectorXd face_volume_ratio(const PolyMesh& mesh, const Eigen::VectorXd& cell_volumes,
+                                  const CoupledFaces& coupled)
+{
+    const Index n_int = mesh.n_internal_faces();
+    Eigen::VectorXd ratios = Eigen::VectorXd::Ones(mesh.n_faces());
+    ratios.head(n_int) = face_volume_ratio(mesh, cell_volumes);
+    for (Index f = n_int; f < mesh.n_faces(); ++f)
+        if (coupled.coupled_boundary(mesh, f))
+            ratios[f] =
+                ratio(cell_volumes[mesh.owner[f]], coupled.neighbour_cell_volumes[f - n_int]);
+    return ratios;
 }
 
 } // namespace meshmorph

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/quality/coupled_patches.h"
 #include "meshmorph/quality/mesh_geometry.h"
 
 namespace meshmorph
@@ -17,9 +18,19 @@ namespace meshmorph
 //! OpenMP over faces. \return nInternalFaces values.
 Eigen::VectorXd face_weights(const PolyMesh& mesh, const MeshGeometry& geometry);
 
+//! \brief checkMesh's (polyMeshTools::faceWeights): the same over internal and cyclic faces
+//! (against the cell across), 1 on the other boundary faces. \return nFaces values.
+Eigen::VectorXd face_weights(const PolyMesh& mesh, const MeshGeometry& geometry,
+                             const CoupledFaces& coupled);
+
 //! \brief min(V_own, V_nei) / (max(V_own, V_nei) + VSMALL) per internal face.
 //! \param cell_volumes the signed volumes (checkMesh) or their magnitudes (snappyHexMesh).
 //! \return nInternalFaces values.
 Eigen::VectorXd face_volume_ratio(const PolyMesh& mesh, const Eigen::VectorXd& cell_volumes);
+
+//! \brief checkMesh's (polyMeshTools::volRatio): the same over internal and cyclic faces
+//! (against the cell across), 1 on the other boundary faces. \return nFaces values.
+Eigen::VectorXd face_volume_ratio(const PolyMesh& mesh, const Eigen::VectorXd& cell_volumes,
+                                  const CoupledFaces& coupled);
 
 } // namespace meshmorph

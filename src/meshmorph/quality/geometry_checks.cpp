@@ -68,13 +68,28 @@ struct LowValueCheck
     const char* description;
 };
 
-CheckResult check_low_values(const LowValueCheck& spec, const Eigen::VectorXd& values)
+//! Values below the threshold over all faces; min and average over the `summed` ones (all if
+//! empty): checkMesh counts both sides of a coupled face but averages its owner side only.
+CheckResult check_low_values(const LowValueCheck& spec, const Eigen::VectorXd& values,
+                             const std::vector<char>& summed)
 {
-    FieldRange range = field_range(values, spec.threshold);
-    const Index n = static_cast<Index>(values.size());
+    FieldRange range;
+    Index n = 0;
+    for (Eigen::Index i = 0; i < values.size(); ++i)
+    {
+        if (values[i] < spec.threshold)
+            range.below.push_back(static_cast<Index>(i));
+        if (summed.empty() || summed[static_cast<std::size_t>(i)])
+        {
+            range.min = std::min(range.min, values[i]);
+            range.sum += values[i];
+            ++n;
+        }
+    }
     CheckResult r(spec.id);
     r.add(spec.min_key, n > 0 ? range.min : 0.0);
-    r.add(spec.avg_key, n > 0 ? range.sum / n : 0.0);
+    r.add(spec.avg_key, n > 0 ? range.sum / static_cast<double>(n) : 0.0);
+    r.add("summedFaces", n, false);
     r.add(spec.count_key, size_of(range.below));
     if (!range.below.empty())
         r.failure = spec.failure;
@@ -205,8 +220,9 @@ CheckResult check_cell_volumes(const Eigen::VectorXd& volumes)
     return r;
 }
 
-CheckResult check_face_orthogonality(Index n_int, const Eigen::VectorXd& ortho)
+CheckResult check_face_orthogonality(const Eigen::VectorXd& ortho, const std::vector<char>& summed)
 {
+    Index n_summed = 0;
     const double threshold = std::cos(detail::deg_to_rad(70.0));
     double min_cos = great, sum_cos = 0;
     Index severe = 0, errors = 0;
@@ -219,15 +235,18 @@ CheckResult check_face_orthogonality(Index n_int, const Eigen::VectorXd& ortho)
             faces.push_back(f);
             (o > small ? severe : errors)++;
         }
-        if (f < n_int)
+        if (summed[static_cast<std::size_t>(f)])
         {
             min_cos = std::min(min_cos, o);
             sum_cos += o;
+            ++n_summed;
         }
     }
+    const double avg_cos = sum_cos / static_cast<double>(std::max<Index>(n_summed, 1));
     CheckResult r("faceOrthogonality");
-    r.add("maxNonOrthogonality", n_int > 0 ? non_orthogonality_degrees(min_cos) : 0.0);
-    r.add("avgNonOrthogonality", n_int > 0 ? non_orthogonality_degrees(sum_cos / n_int) : 0.0);
+    r.add("maxNonOrthogonality", n_summed > 0 ? non_orthogonality_degrees(min_cos) : 0.0);
+    r.add("avgNonOrthogonality", n_summed > 0 ? non_orthogonality_degrees(avg_cos) : 0.0);
+    r.add("summedFaces", n_summed, false);
     r.add("severelyNonOrthogonalFaces", severe);
     r.add("nonOrthogonalityErrors", errors);
     if (errors > 0)
@@ -248,28 +267,39 @@ CheckResult check_face_pyramids(const std::vector<char>& errors)
     return r;
 }
 
-CheckResult check_face_skewness(const Eigen::VectorXd& skewness)
+CheckResult check_face_skewness(const Eigen::VectorXd& skewness, const std::vector<char>& counted)
 {
+    Index n_counted = 0;
     double max_skew = skewness.size() > 0 ? skewness[0] : 0;
     std::vector<Index> faces;
     for (Eigen::Index f = 0; f < skewness.size(); ++f)
     {
         max_skew = std::max(max_skew, skewness[f]);
         if (skewness[f] > 4)
+        {
             faces.push_back(static_cast<Index>(f));
+            n_counted += counted.empty() || counted[static_cast<std::size_t>(f)];
+        }
     }
     CheckResult r("faceSkewness");
     r.add("maxSkewness", max_skew);
-    r.add("highlySkewedFaces", size_of(faces));
+    r.add("highlySkewedFaces", n_counted);
     if (!faces.empty())
         r.failure = "skewness";
     r.add_set("skewFaces", MeshSet::Kind::face, std::move(faces), "skew faces");
     return r;
 }
 
-CheckResult check_coupled_points()
+CheckResult check_coupled_points(const CoupledPointMatch& match)
 {
-    return CheckResult("coupledPoints");
+    CheckResult r("coupledPoints");
+    r.add("averageCoupledMismatch", match.average_mismatch);
+    r.add("mismatchedCoupledFaces", size_of(match.mismatched_faces));
+    if (!match.mismatched_faces.empty())
+        r.failure = "coupledPoints";
+    r.add_set("coupledFaces", MeshSet::Kind::face, match.mismatched_faces,
+              "faces with incorrectly matched 0th (or consecutive) vertex");
+    return r;
 }
 
 CheckResult check_face_tets(const std::vector<char>& errors)
@@ -370,20 +400,20 @@ CheckResult check_concave_cells(const std::vector<char>& concave)
     return r;
 }
 
-CheckResult check_face_weight(const Eigen::VectorXd& weights)
+CheckResult check_face_weight(const Eigen::VectorXd& weights, const std::vector<char>& summed)
 {
     return check_low_values({"faceWeight", "minFaceWeight", "avgFaceWeight", "lowWeightFaces", 0.05,
                              "faceWeight", "lowWeightFaces",
                              "faces with low interpolation weights"},
-                            weights);
+                            weights, summed);
 }
 
-CheckResult check_volume_ratio(const Eigen::VectorXd& ratios)
+CheckResult check_volume_ratio(const Eigen::VectorXd& ratios, const std::vector<char>& summed)
 {
     return check_low_values({"volumeRatio", "minVolumeRatio", "avgVolumeRatio",
                              "lowVolumeRatioFaces", 0.01, "volumeRatio", "lowVolRatioFaces",
                              "faces with low volume ratio cells"},
-                            ratios);
+                            ratios, summed);
 }
 
 } // namespace meshmorph

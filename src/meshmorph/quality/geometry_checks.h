@@ -10,6 +10,7 @@
 
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/quality/check_result.h"
+#include "meshmorph/quality/coupled_points.h"
 #include "meshmorph/quality/edge_alignment.h"
 #include "meshmorph/quality/edge_lengths.h"
 #include "meshmorph/quality/wedge_alignment.h"
@@ -53,7 +54,9 @@ CheckResult check_cell_volumes(const Eigen::VectorXd& cell_volumes);
 //! errors. Fails "nonOrthogonality" on errors; statistics maxNonOrthogonality,
 //! avgNonOrthogonality (over internal faces), severelyNonOrthogonalFaces,
 //! nonOrthogonalityErrors; set nonOrthoFaces. \param orthogonality face_orthogonality().
-CheckResult check_face_orthogonality(Index n_internal_faces, const Eigen::VectorXd& orthogonality);
+//! \param summed per face: enters the max and average (CoupledFaces::statistics_faces()).
+CheckResult check_face_orthogonality(const Eigen::VectorXd& orthogonality,
+                                     const std::vector<char>& summed);
 
 //! \brief Wrongly oriented face pyramids. Fails "facePyramids"; statistic
 //! incorrectlyOrientedFacePyramids; set wrongOrientedFaces.
@@ -62,10 +65,13 @@ CheckResult check_face_pyramids(const std::vector<char>& errors);
 
 //! \brief Skewness above 4. Fails "skewness"; statistics maxSkewness, highlySkewedFaces;
 //! set skewFaces. \param skewness face_skewness(mesh, geometry).
-CheckResult check_face_skewness(const Eigen::VectorXd& skewness);
+//! \param counted per face: counted if highly skewed (CoupledFaces::master); empty: all.
+CheckResult check_face_skewness(const Eigen::VectorXd& skewness,
+                                const std::vector<char>& counted = {});
 
-//! \brief Coupled point locations: always passes (no patches are treated as coupled).
-CheckResult check_coupled_points();
+//! \brief Coupled point locations. Fails "coupledPoints"; statistics averageCoupledMismatch,
+//! mismatchedCoupledFaces; set coupledFaces. \param match coupled_point_match(mesh, ...).
+CheckResult check_coupled_points(const CoupledPointMatch& match);
 
 //! \brief -allGeometry: face tet errors. Fails "faceTets"; statistic faceTetErrors; set
 //! lowQualityTetFaces. \param errors face_tet_errors(mesh, geometry).
@@ -95,12 +101,14 @@ CheckResult check_concave_cells(const std::vector<char>& concave);
 
 //! \brief -allGeometry: interpolation weights below 0.05. Fails "faceWeight"; statistics
 //! minFaceWeight, avgFaceWeight, lowWeightFaces; set lowWeightFaces.
-//! \param weights face_weights(mesh, geometry).
-CheckResult check_face_weight(const Eigen::VectorXd& weights);
+//! \param weights face_weights(mesh, geometry[, coupled]).
+//! \param summed per face: enters the min and average; empty: all.
+CheckResult check_face_weight(const Eigen::VectorXd& weights, const std::vector<char>& summed = {});
 
 //! \brief -allGeometry: neighbour volume ratios below 0.01. Fails "volumeRatio"; statistics
 //! minVolumeRatio, avgVolumeRatio, lowVolumeRatioFaces; set lowVolRatioFaces.
-//! \param ratios face_volume_ratio(mesh, geometry.cell_volumes).
-CheckResult check_volume_ratio(const Eigen::VectorXd& ratios);
+//! \param ratios face_volume_ratio(mesh, geometry.cell_volumes[, coupled]).
+//! \param summed per face: enters the min and average; empty: all.
+CheckResult check_volume_ratio(const Eigen::VectorXd& ratios, const std::vector<char>& summed = {});
 
 } // namespace meshmorph

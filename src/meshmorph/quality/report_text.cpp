@@ -243,7 +243,7 @@ void cell_volumes(const CheckResult& c, Writer& t)
 
 void face_orthogonality(const CheckResult& c, Writer& t)
 {
-    if (t.report.n_internal_faces > 0)
+    if (c.count("summedFaces") > 0)
         t.out << "    Mesh non-orthogonality Max: " << t.s(c.real("maxNonOrthogonality"))
               << " average: " << t.s(c.real("avgNonOrthogonality")) << "\n";
     if (const Index severe = c.count("severelyNonOrthogonalFaces"); severe > 0)
@@ -274,9 +274,16 @@ void face_skewness(const CheckResult& c, Writer& t)
         t.out << "    Max skewness = " << t.s(c.real("maxSkewness")) << " OK.\n";
 }
 
-void coupled_points(const CheckResult&, Writer& t)
+void coupled_points(const CheckResult& c, Writer& t)
 {
-    t.out << "    Coupled point location match (average 0) OK.\n";
+    if (c.failed())
+        t.out << "  **Error in coupled point location: " << c.count("mismatchedCoupledFaces")
+              << " faces have their 0th or consecutive vertex not opposite their coupled"
+                 " equivalent. Average mismatch "
+              << t.s(c.real("averageCoupledMismatch")) << ".\n";
+    else
+        t.out << "    Coupled point location match (average "
+              << t.s(c.real("averageCoupledMismatch")) << ") OK.\n";
 }
 
 void face_tets(const CheckResult& c, Writer& t)
@@ -347,7 +354,7 @@ void concave_cells(const CheckResult& c, Writer& t)
 void low_values(const CheckResult& c, Writer& t, std::string_view what, std::string_view limit,
                 std::string_view min_key, std::string_view avg_key, std::string_view count_key)
 {
-    if (t.report.n_internal_faces > 0)
+    if (c.count("summedFaces") > 0)
         t.out << "    Face " << what << " : minimum: " << t.s(c.real(min_key))
               << " average: " << t.s(c.real(avg_key)) << "\n";
     if (c.failed())

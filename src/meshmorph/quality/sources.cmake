@@ -25,6 +25,8 @@ set(MESHMORPH_QUALITY_SOURCES
     meshmorph/quality/face_tets.cpp
     meshmorph/quality/face_twist.cpp
     meshmorph/quality/face_weights.cpp
+    meshmorph/quality/coupled_patches.cpp
+    meshmorph/quality/coupled_points.cpp
     meshmorph/quality/mesh_edges.cpp
     meshmorph/quality/point_faces.cpp
     meshmorph/quality/wedge_alignment.cpp

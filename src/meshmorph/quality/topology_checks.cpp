@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <string>
 
+#include "meshmorph/quality/coupled_patches.h"
+
 namespace meshmorph
 {
 
@@ -234,6 +236,11 @@ CheckResult check_internal_face_cells(const PolyMesh& mesh)
         ++n_internal[mesh.owner[f]];
         ++n_internal[mesh.neighbour[f]];
     }
+    // A coupled face joins two cells as an internal one does (checkTopology.C).
+    for (const Patch& p : mesh.patches)
+        if (is_coupled_patch(p))
+            for (Index f = p.start_face; f < p.start_face + p.n_faces; ++f)
+                ++n_internal[mesh.owner[f]];
     std::vector<Index> one, two;
     for (Index cell = 0; cell < mesh.n_cells; ++cell)
     {

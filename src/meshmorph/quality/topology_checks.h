@@ -48,7 +48,7 @@ CheckResult check_cells_zip_up(const CellEdgeUsage& usage);
 //! Statistics "baffleFaces", "duplicateFaces", "nonConsecutiveFaces".
 CheckResult check_face_faces(const FaceFaceConnectivity& connectivity);
 
-//! \brief -allTopology: cells with zero or one, and with two, internal faces (sets
+//! \brief -allTopology: cells with zero or one, and with two, internal or coupled faces (sets
 //! oneInternalFaceCells, twoInternalFacesCells). Never fails.
 CheckResult check_internal_face_cells(const PolyMesh& mesh);
 

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# A tutorial mesh with translational cyclic patches, made by blockMesh, e.g.
+# DNS/dnsFoam/boxTurb16 (4096 cells, cyclic in all three directions) or
+# incompressible/boundaryFoam/boundaryWallFunctions (80 cells in a column, cyclic front and
+# back, empty sides: its cells' determinants need the cyclic faces).
+# Usage: cyclic-tutorial.sh DIR TUTORIAL (the path under the tutorials directory)
+#
+# Steps: blockMesh, checkMesh (must say "Mesh OK"). controlDict's writePrecision is raised
+# to 15 so that checkMesh prints 15 digits.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+
+[[ $# -eq 2 ]] || { echo "usage: $foam_script_name DIR TUTORIAL" >&2; exit 2; }
+case_dir=$1
+need_tool blockMesh checkMesh
+copy_tutorial "$2" "$case_dir"
+rm -f "$case_dir/Allrun" "$case_dir/Allclean"
+set_control "$case_dir" writePrecision 15
+
+run_step "$case_dir" blockMesh
+run_step "$case_dir" checkMesh
+grep -q "Mesh OK" "$case_dir/log.checkMesh" || die "checkMesh did not report 'Mesh OK' (see $case_dir/log.checkMesh)"
+echo "$foam_script_name: wrote $case_dir/constant/polyMesh"
