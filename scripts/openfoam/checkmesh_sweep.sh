@@ -137,6 +137,23 @@ m4_source() {
         head -n 1
 }
 
+#! missing_include <system dir>: the first file its blockMeshDict #includes that is not
+#! shipped (written by the Allrun), if any.
+missing_include() {
+    local f=$1/blockMeshDict
+    [[ -f $f ]] || f=$f.gz
+    # (not the C++ #include lines of #codeStream code, between #{ and #})
+    zcat -f "$f" | awk '/#\{/ { code = 1 } !code { print } /#\}/ { code = 0 }' |
+        sed -nE 's/^[[:space:]]*#include[[:space:]]+"([^"$]+)".*/\1/p' |
+    while IFS= read -r inc; do
+        [[ $inc == /* ]] || inc=$1/$inc
+        if [[ ! -e $inc && ! -e $inc.gz ]]; then
+            echo "${inc##*/}"
+            break
+        fi
+    done
+}
+
 #! mesh_parent <relative path>: "<ancestor>\t<tool>" when an ancestor directory's own
 #! scripts run a slow mesh tool (the mesh of this sub-case is made there).
 mesh_parent() {
@@ -166,7 +183,7 @@ case_id() {
 }
 
 discover() {
-    local rel dir reason tool regions r found m4_input parent
+    local rel dir reason tool regions r found m4_input parent missing
     local -a scripts
     local -a allrun_units=()
     # directories with a system/ (not through symbolic links: they repeat other tutorials)
@@ -174,7 +191,14 @@ discover() {
         [[ -z $cases_regex ]] || [[ $rel =~ $cases_regex ]] || continue
         dir=$tutorials/$rel
         found=0
-        if [[ -f $dir/system/blockMeshDict || -f $dir/system/blockMeshDict.gz ||
+        if [[ -f $dir/system/blockMeshDict || -f $dir/system/blockMeshDict.gz ]] &&
+           missing=$(missing_include "$dir/system") && [[ -n $missing ]] &&
+           tool=$(mesh_script_uses "$dir" blockMesh) && [[ -n $tool ]]; then
+            # its Allrun writes the #include'd file first
+            printf 'run\t%s\t%s\tallrun\t%s (%s)\n' "$(case_id "$rel" allrun)" "$rel" \
+                "$(driver_script "$dir")" "blockMesh, #include $missing"
+            found=1
+        elif [[ -f $dir/system/blockMeshDict || -f $dir/system/blockMeshDict.gz ||
               -f $dir/constant/polyMesh/blockMeshDict || -f $dir/constant/polyMesh/blockMeshDict.gz ]]; then
             printf 'run\t%s\t%s\tblockMesh\t\n' "$(case_id "$rel" blockMesh)" "$rel"
             found=1
@@ -244,15 +268,23 @@ discover() {
     # -all units: the topmost directories whose own scripts run a slow mesh tool
     local unit covered
     while IFS= read -r rel; do
+        tool=$(mesh_script_uses "$tutorials/$rel" "$mesh_tools_re" || true)
+        # a sub-case made by its parent's script ((cd cylinderMesh && ./Allrun.pre)): the parent
+        # (not a collection's Allrun that only runs its tutorials: it has no RunFunctions)
+        while [[ $rel == */* ]] && mapfile -t scripts < <(mesh_scripts "$tutorials/${rel%/*}") &&
+              [[ ${#scripts[@]} -gt 0 ]] &&
+              grep -qwF -- "${rel##*/}" "${scripts[@]}" &&
+              grep -qF RunFunctions "${scripts[@]}"; do
+            rel=${rel%/*}
+        done
         covered=0
         for unit in "${allrun_units[@]}"; do
-            [[ $rel == "$unit"/* ]] && covered=1
+            [[ $rel == "$unit" || $rel == "$unit"/* ]] && covered=1
         done
         [[ $covered == 0 ]] || continue
         allrun_units+=("$rel")
         [[ -z $cases_regex ]] || [[ $rel =~ $cases_regex ]] || continue
         dir=$tutorials/$rel
-        tool=$(mesh_script_uses "$dir" "$mesh_tools_re" || true)
         printf 'run\t%s\t%s\tallrun\t%s (%s)\n' "$(case_id "$rel" allrun)" "$rel" \
             "$(driver_script "$dir")" "$tool"
     done < <(cd "$tutorials" && grep -lE "\\b($mesh_tools_re)\\b" --include='Allrun*' \
@@ -380,6 +412,12 @@ run_case() {
     mesh_case "$work" "$copy" "$method" "$detail" || rc=$?
     if [[ $rc == 124 || $rc == 137 ]]; then
         echo "mesh timeout after ${mesh_timeout} s" >"$work/mesh_error"
+    elif [[ $method == allrun ]]; then
+        # a tutorial script's own exit status says little (a missing gnuplot at its end, ...):
+        # a failed mesh step is one that sweep_run_functions.sh logged as FAILED
+        if grep -q '^FAILED' "$work/steps.log" 2>/dev/null; then
+            echo "mesh step failed" >"$work/mesh_error"
+        fi
     elif [[ $rc != 0 ]]; then
         echo "mesh step failed (exit $rc)" >"$work/mesh_error"
     fi

@@ -10,6 +10,8 @@ Usage:
   compare_checkmesh.py case WORK_DIR                 one status line for a swept case
   compare_checkmesh.py summary OUT_DIR               OUT_DIR/summary.{md,csv,json}; prints the
                                                      Markdown
+  compare_checkmesh.py recompare OUT_DIR             every result.json again from the logs
+                                                     (after a change of the rule), then summary
 
 Comparison rule:
 - Compared: the lines from the first "Time = " line on (before it: start-up, kept in the
@@ -26,8 +28,8 @@ Comparison rule:
 - Every number of checkMesh's report is compared with the number at the same place of the
   aligned line of ours: it agrees when |a - b| <= 1e-6 max(|a|, |b|) (equal when both are 0).
   A number in a line that ours lacks does not agree. Disagreeing numbers are classed as
-  "print" (one unit of the last printed digit apart: rounding at checkMesh's printed
-  precision), "noise" (both below 1e-12 in magnitude: cancellation noise) or "value".
+  "print" (at most one unit of the 6th significant digit apart, or of the last digit
+  printed when more are: rounding at checkMesh's printed precision), "noise" (both below 1e-12 in magnitude: cancellation noise) or "value".
 - The verdict is the last "Mesh OK." / "Failed N mesh checks." line.
 Standard library only.
 """
@@ -35,6 +37,7 @@ Standard library only.
 import csv
 import difflib
 import json
+import math
 import re
 import sys
 from collections import Counter, OrderedDict, defaultdict
@@ -125,11 +128,17 @@ def verdicts(text):
     return [line.strip() for line in text.splitlines() if VERDICT.match(line.strip())]
 
 
-def last_digit_unit(token):
-    """One unit of the last printed digit of a number token."""
-    mantissa, _, exponent = token.lower().partition("e")
-    decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
-    return 10.0 ** (-decimals + (int(exponent) if exponent else 0))
+def significant_digits(token):
+    mantissa = token.lower().partition("e")[0].lstrip("+-").replace(".", "").lstrip("0")
+    return len(mantissa)
+
+
+def print_unit(a_tok, b_tok, scale):
+    """One unit of the last digit checkMesh prints for a value of magnitude scale: it prints
+    6 significant digits (more when the case's writePrecision is higher; the longer token
+    tells), trailing zeros dropped."""
+    digits = max(6, significant_digits(a_tok), significant_digits(b_tok))
+    return 10.0 ** (math.floor(math.log10(scale)) - digits + 1)
 
 
 def compare_numbers(a_tok, b_tok):
@@ -140,7 +149,7 @@ def compare_numbers(a_tok, b_tok):
         return None
     if scale < NOISE:
         return "noise"
-    if abs(a - b) <= 1.000001 * max(last_digit_unit(a_tok), last_digit_unit(b_tok)):
+    if abs(a - b) <= 1.000001 * print_unit(a_tok, b_tok, scale):
         return "print"
     return "value"
 
@@ -288,10 +297,47 @@ def compare_mode(mesh_dir, mode):
     return result
 
 
+PLAIN_PATCH_TYPES = {"patch", "wall", "empty", "symmetry", "symmetryPlane"}
+
+
+def patch_types(case_dir, region):
+    """The patch types of a mesh's boundary file (the latest time's when a time directory
+    has one), or [] when it cannot be read."""
+    sub = Path(region) / "polyMesh" if region else Path("polyMesh")
+    candidates = [case_dir / "constant" / sub]
+    times = []
+    for t in case_dir.iterdir() if case_dir.is_dir() else []:
+        try:
+            times.append((float(t.name), t))
+        except ValueError:
+            pass
+    candidates = [t / sub for _, t in sorted(times, key=lambda x: x[0], reverse=True)] + candidates
+    for d in candidates:
+        for name in ("boundary", "boundary.gz"):
+            f = d / name
+            if f.is_file():
+                try:
+                    if name.endswith(".gz"):
+                        import gzip
+                        text = gzip.open(f, "rt", errors="replace").read()
+                    else:
+                        text = f.read_text(errors="replace")
+                except OSError:
+                    return []
+                return sorted(set(re.findall(r"^\s*type\s+(\w+)\s*;", text, re.M)))
+    return []
+
+
 def compare_mesh(mesh_dir):
     mesh_dir = Path(mesh_dir)
     case_rel, _, region = (mesh_dir / "mesh.tsv").read_text().rstrip("\n").partition("\t")
     result = OrderedDict([("mesh", case_rel), ("region", region), ("modes", OrderedDict())])
+    copy = mesh_dir.parent.parent / "case"
+    old = mesh_dir / "result.json"
+    if copy.is_dir():
+        result["patchTypes"] = patch_types(copy / case_rel, region)
+    elif old.exists():  # the copy was removed: keep what was read when it was there
+        result["patchTypes"] = json.loads(old.read_text()).get("patchTypes", [])
     for mode in MODES:
         r = compare_mode(mesh_dir, mode)
         if r is not None:
@@ -309,13 +355,14 @@ def agrees(r):
 # a swept case and the summary
 
 def load_case(work):
-    work = Path(work)
+    work = Path(work).resolve()
     case_id, rel, method, detail = (work / "case.tsv").read_text().rstrip("\n").split("\t")
     mesh_error = read_text(work / "mesh_error")
     meshes = []
     for rj in sorted((work / "meshes").glob("*/result.json")):
         meshes.append(json.loads(rj.read_text()))
     case = OrderedDict([("id", case_id), ("tutorial", rel), ("method", method),
+                        ("copy", str(work / "case")),
                         ("detail", detail), ("meshError", mesh_error.strip() if mesh_error else None),
                         ("meshes", meshes)])
     if mesh_error:
@@ -324,14 +371,25 @@ def load_case(work):
 
 
 def mesh_log_excerpt(work):
-    """The reason a mesh step failed: the failed step of steps.log, or a log's error."""
+    """The reason a mesh step failed: the failed step of steps.log, or a log's error (the
+    path of the case copy shortened to <case>)."""
+    text = _mesh_log_excerpt(work)
+    return text.replace(str(work / "case"), "<case>") if text else text
+
+
+def _mesh_log_excerpt(work):
     steps = read_text(work / "steps.log")
     if steps:
         failed = [l for l in steps.splitlines() if l.startswith("FAILED")]
         if failed:
             return failed[0]
-    for log in sorted(work.glob("log.*"), key=lambda p: p.stat().st_mtime, reverse=True):
+    logs = sorted(work.glob("log.*"), key=lambda p: p.stat().st_mtime, reverse=True)
+    logs += sorted(work.glob("case/**/log.*"), key=lambda p: p.stat().st_mtime, reverse=True)
+    for log in logs:
         text = read_text(log)
+        if text and "administrator rights" in text:
+            return (f"{log.name}: dynamic code (#codeStream/#calc) refused: the sweep runs as "
+                    "root, and Debian's openfoam has no wmake to compile it anyway")
         excerpt = error_excerpt(text)
         if excerpt:
             return f"{log.name}: {excerpt}"
@@ -359,6 +417,8 @@ def case_line(case):
 
 
 def diff_text(d):
+    if d["kind"] == "failed":
+        return f"ours failed: `{d['ours'].strip()}`"
     if d["kind"] == "missing":
         return f"checkMesh: `{d['checkMesh'].strip()}` / ours: (missing)"
     if d["kind"] == "extra":
@@ -436,8 +496,15 @@ def summary(out_dir):
                                      + ("; ours: " + (r.get("verdictOurs") or r.get("errorOurs") or "?"))))
                     continue
                 if r["status"] in ("oursFailed", "timeout"):
-                    failures.append((case, name, mode, r["status"] + ": "
-                                     + (r.get("errorOurs") or f"exit {r['rcOurs']}")))
+                    error = r.get("errorOurs") or f"exit {r['rcOurs']}"
+                    failures.append((case, name, mode, r["status"] + ": " + error))
+                    mismatches.append((case, name, mode, r))
+                    # one group for the failure, not one per line it did not print
+                    sig = r["status"] + ": " + skeleton(error.replace(case["copy"], "<case>"))
+                    groups[sig].append((case, name, mode, {"kind": "failed", "checkMesh": None,
+                                                           "ours": error.replace(case["copy"], "<case>"),
+                                                           "patchTypes": mesh.get("patchTypes", [])}))
+                    continue
                 if not agrees(r):
                     mismatches.append((case, name, mode, r))
                     seen = set()
@@ -445,7 +512,8 @@ def summary(out_dir):
                         sig = diff_signature(d)
                         if sig not in seen:
                             seen.add(sig)
-                            groups[sig].append((case, name, mode, d))
+                            groups[sig].append((case, name, mode,
+                                                dict(d, patchTypes=mesh.get("patchTypes", []))))
 
     n_meshes = sum(len(c["meshes"]) for c in cases)
     mesh_failed = [c for c in cases if c["meshError"]]
@@ -479,19 +547,25 @@ def summary(out_dir):
     md.append("Verdicts, text and numbers are counted over the comparisons where checkMesh gave a "
               "verdict. Numbers agree within 1e-6 relative; the disagreeing ones: "
               + (", ".join(f"{k} {v}" for k, v in sorted(number_classes.items())) or "none")
-              + " (print: one unit of the last printed digit; noise: both below 1e-12; "
-                "unpaired: in a line ours lacks or words differently).\n")
+              + " (print: at most one unit of the last digit printed, the 6th significant one: "
+                "rounding; noise: both below 1e-12: cancellation noise; unpaired: in a line ours "
+                "lacks or words differently).\n")
 
     md.append("## Mismatches grouped by differing line\n")
     if not groups:
         md.append("None.\n")
     else:
-        md.append("| comparisons | differing line (numbers as #) | example |")
-        md.append("|---|---|---|")
+        md.append("Patch types: how many of the group's comparisons are on a mesh with a patch "
+                  "of that type (patch, wall, empty and symmetry types not counted); a hint of the cause.\n")
+        md.append("| comparisons | differing line (numbers as #) | patch types | example |")
+        md.append("|---|---|---|---|")
         for sig, items in sorted(groups.items(), key=lambda kv: (-len(kv[1]), kv[0])):
             case, name, mode, d = items[0]
             ex = f"{case['tutorial']} [{case['method']}] {name} ({mode}): {diff_text(d)}"
-            md.append(f"| {len(items)} | {md_escape(sig)} | {md_escape(ex)} |")
+            types = Counter(t for _, _, _, dd in items for t in set(dd.get("patchTypes", []))
+                            if t not in PLAIN_PATCH_TYPES)
+            types_text = ", ".join(f"{t} {n}" for t, n in types.most_common(4)) or "-"
+            md.append(f"| {len(items)} | {md_escape(sig)} | {types_text} | {md_escape(ex)} |")
         md.append("")
 
     md.append("## Mismatching meshes (first differing lines)\n")
@@ -501,14 +575,19 @@ def summary(out_dir):
         md.append(f"- **{case['tutorial']}** [{case['method']}] `{name}` ({mode}): "
                   f"verdict {r['verdictCheckMesh']} / ours {r['verdictOurs']}; "
                   f"{r['textDiffs']} differing lines, numbers {r['numbersAgree']}/{r['numbersTotal']}")
+        if r["status"] != "ok":
+            md.append(f"  - {r['status']}: "
+                      + md_escape((r.get("errorOurs") or "").replace(case["copy"], "<case>")))
+            continue
         for d in r["diffs"][:3]:
-            md.append(f"  - {diff_text(d)}")
+            md.append(f"  - {md_escape(diff_text(d))}")
     md.append("")
 
-    md.append("## Failed runs\n")
+    md.append("## Failures (a tool gave no verdict, or the mesh step failed)\n")
     if not failures and not mesh_failed:
         md.append("None.\n")
     for case, name, mode, text in failures:
+        text = text.replace(case["copy"], "<case>")
         md.append(f"- {case['tutorial']} [{case['method']}] `{name}` ({mode}): {md_escape(text)}")
     for case in mesh_failed:
         md.append(f"- mesh step: {case['tutorial']} [{case['method']}]: {case['meshError']}"
@@ -564,6 +643,11 @@ def main(argv):
         print(case_line(load_case(argv[2])))
         return 0
     if len(argv) == 3 and argv[1] == "summary":
+        summary(argv[2])
+        return 0
+    if len(argv) == 3 and argv[1] == "recompare":
+        for tsv in sorted(Path(argv[2]).glob("cases/*/meshes/*/mesh.tsv")):
+            compare_mesh(tsv.parent)
         summary(argv[2])
         return 0
     sys.stderr.write(__doc__)

@@ -33,7 +33,7 @@ sweep_step_kind() {
     gmshToFoam | plot3dToFoam | netgenNeutralToFoam | cfx4ToFoam | mshToFoam | \
     tetgenToFoam | vtkUnstructuredToFoam | ccmToFoam) echo run ;;
     decomposePar | reconstructPar | reconstructParMesh | redistributePar | setFields | \
-    setAlphaField | setExprFields | setExprBoundaryFields | potentialFoam | mapFields | \
+    setAlphaField | setExprFields | setExprBoundaryFields | PDRsetFields | potentialFoam | mapFields | \
     mapFieldsPar | createZeroDirectory | foamToVTK | foamToEnsight | postProcess | \
     foamFormatConvert | checkMesh | makeFaMesh | paraFoam | foamListTimes | \
     surfaceRedistributePar | cumulativeDisplacement | writeActiveDesignVariables | \
