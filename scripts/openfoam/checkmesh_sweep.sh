@@ -106,6 +106,7 @@ fi
 # "<relative path>\t<reason>" for the skipped ones.
 
 mesh_tools_re='snappyHexMesh|extrudeMesh|extrudeToRegionMesh|extrude2DMesh|splitMeshRegions'
+foamy_re='foamyHexMesh|foamyQuadMesh'
 convert_re='fluentMeshToFoam|fluent3DMeshToFoam|star4ToFoam|kivaToFoam|ansysToFoam|datToFoam|gambitToFoam|ideasUnvToFoam|gmshToFoam|plot3dToFoam|PDRblockMesh'
 
 #! mesh_scripts <dir>: the tutorial's own scripts that may make its mesh.
@@ -240,7 +241,9 @@ discover() {
         fi
         [[ $found == 1 ]] && continue
         # skipped: say why
-        if tool=$(mesh_script_uses "$dir" "$mesh_tools_re") && [[ -n $tool ]]; then
+        if tool=$(mesh_script_uses "$dir" "$foamy_re") && [[ -n $tool ]] && ! command -v "$tool" >/dev/null; then
+            reason="$tool in its Allrun, not installed (Debian's openfoam does not package it)"
+        elif tool=$(mesh_script_uses "$dir" "$mesh_tools_re") && [[ -n $tool ]]; then
             if [[ $all == 1 ]]; then continue; fi  # an -all unit below
             reason="$tool in its Allrun (slow: only with -all)"
         elif parent=$(mesh_parent "$rel") && [[ -n $parent ]]; then
@@ -248,8 +251,8 @@ discover() {
             reason="mesh made by the Allrun of ${parent%%$'\t'*} (${parent#*$'\t'}: only with -all)"
         elif grep -qsE '^[[:space:]]*application[[:space:]]+chemFoam;' "$dir/system/controlDict"; then
             reason="chemFoam: a single-cell chemistry case, no mesh"
-        elif tool=$(mesh_script_uses "$dir" 'foamyHexMesh|foamyQuadMesh') && [[ -n $tool ]]; then
-            reason="$tool in its Allrun (not swept: slow, and not a checkMesh test)"
+        elif tool=$(mesh_script_uses "$dir" "$foamy_re") && [[ -n $tool ]]; then
+            reason="$tool in its Allrun (not swept: slow)"
         elif [[ -f $dir/system/blockMeshDict.template ]]; then
             reason="blockMeshDict.template only (its Allrun writes the blockMeshDict)"
         elif compgen -G "$dir/system/blockMeshDict.*" >/dev/null; then
@@ -266,7 +269,7 @@ discover() {
 
     [[ $all == 1 ]] || return 0
     # -all units: the topmost directories whose own scripts run a slow mesh tool
-    local unit covered
+    local unit covered foamy
     while IFS= read -r rel; do
         tool=$(mesh_script_uses "$tutorials/$rel" "$mesh_tools_re" || true)
         # a sub-case made by its parent's script ((cd cylinderMesh && ./Allrun.pre)): the parent
@@ -285,6 +288,10 @@ discover() {
         allrun_units+=("$rel")
         [[ -z $cases_regex ]] || [[ $rel =~ $cases_regex ]] || continue
         dir=$tutorials/$rel
+        if foamy=$(mesh_script_uses "$dir" "$foamy_re") && [[ -n $foamy ]] &&
+           ! command -v "$foamy" >/dev/null; then
+            continue  # listed as skipped above
+        fi
         printf 'run\t%s\t%s\tallrun\t%s (%s)\n' "$(case_id "$rel" allrun)" "$rel" \
             "$(driver_script "$dir")" "$tool"
     done < <(cd "$tutorials" && grep -lE "\\b($mesh_tools_re)\\b" --include='Allrun*' \
@@ -307,7 +314,11 @@ prepare_copy() {
     chmod -R u+w "$2"
     # OpenFOAM reads X.gz for X, m4 and the mesh converters do not: unpack all but the meshes
     local f sys
-    while IFS= read -r f; do gunzip -f "$f"; done < <(find "$2" -name '*.gz' -type f ! -path '*/polyMesh/*')
+    # (a script Debian compressed, e.g. patchifyObstacles.gz, must be executable again)
+    while IFS= read -r f; do
+        gunzip -f "$f"
+        [[ $(head -c 2 "${f%.gz}") != '#!' ]] || chmod u+x "${f%.gz}"
+    done < <(find "$2" -name '*.gz' -type f ! -path '*/polyMesh/*')
     while IFS= read -r sys; do
         [[ -f $sys/controlDict ]] && continue
         for f in "$sys"/controlDict.template "$sys"/controlDict.orig "$sys"/controlDict.org; do

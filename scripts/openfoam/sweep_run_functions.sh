@@ -101,7 +101,12 @@ sweep_run() {
     fi
     _sweep_status=$?
     if [ "$_sweep_status" -ne 0 ]; then
-        sweep_step_log "FAILED (exit $_sweep_status): $_sweep_app $* (in $PWD, log $_sweep_log)"
+        case "$_sweep_status" in
+        126) _sweep_why=", not executable" ;;
+        127) _sweep_why=", not found" ;;
+        *) _sweep_why= ;;
+        esac
+        sweep_step_log "FAILED (exit $_sweep_status$_sweep_why): $_sweep_app $* (in $PWD, log $_sweep_log)"
     fi
     return "$_sweep_status"
 }
