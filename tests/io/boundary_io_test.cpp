@@ -95,6 +95,22 @@ std::vector<Patch> sample_patches()
     return p;
 }
 
+TEST(BoundaryIo, patch_list_without_its_size_reads_as_in_openfoam)
+{
+    // driftFluxFoam/RAS/tank3D ships a boundary list with no count before '('.
+    const std::string body =
+        "// a comment\n(\n    SYMP3 { type patch; startFace 10; nFaces 3; }\n"
+        "    walls { type wall; inGroups 1(wall); startFace 13; nFaces 2; }\n)\n";
+    const std::vector<Patch> p = parse_boundary(body, "boundary");
+    ASSERT_EQ(p.size(), 2u);
+    EXPECT_EQ(p[0].name, "SYMP3");
+    EXPECT_EQ(p[0].start_face, 10);
+    EXPECT_EQ(p[1].type, "wall");
+    EXPECT_EQ(p[1].n_faces, 2);
+    EXPECT_THROW(parse_boundary("(\n a { type patch; startFace 0; nFaces 1; }\n", "boundary"),
+                 ParseError);
+}
+
 } // namespace
 
 TEST(BoundaryIo, reads_openfoam_boundary_and_writes_it_back_identically)

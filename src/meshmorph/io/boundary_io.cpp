@@ -162,53 +162,77 @@ void write_zone_list(std::string& out, const std::string& key, const std::string
 
 } // namespace
 
+namespace
+{
+
+//! One patch entry of a boundary file, after its name: `{ type ..; nFaces ..; startFace ..; }`.
+Patch read_patch(FoamTokenizer& tok, std::string name)
+{
+    Patch p;
+    p.name = std::move(name);
+    const FoamDictionary d = parse_dictionary_block(tok, p.name);
+    bool has_type = false, has_n = false, has_start = false;
+    for (const FoamEntry& e : d.entries())
+    {
+        const std::string& k = e.keyword();
+        if (k == "type")
+        {
+            p.type = e.get<std::string>();
+            has_type = true;
+        }
+        else if (k == "nFaces")
+        {
+            p.n_faces = to_index(e, e.get<std::int64_t>(), "nFaces");
+            has_n = true;
+        }
+        else if (k == "startFace")
+        {
+            p.start_face = to_index(e, e.get<std::int64_t>(), "startFace");
+            has_start = true;
+        }
+        else
+        {
+            if (k == "inGroups")
+                p.in_groups = e.get<std::vector<std::string>>();
+            p.entries.emplace_back(k, e.source_text());
+        }
+    }
+    const auto missing = [&](const char* key)
+    { return tok.error_at(d.line(), "patch '" + p.name + "' has no '" + key + "' entry"); };
+    if (!has_type)
+        throw missing("type");
+    if (!has_n)
+        throw missing("nFaces");
+    if (!has_start)
+        throw missing("startFace");
+    return p;
+}
+
+} // namespace
+
 std::vector<Patch> parse_boundary(FoamTokenizer& tok)
 {
+    std::vector<Patch> patches;
+    if (tok.peek_char() == '(')
+    {
+        // A list without its size, as OpenFOAM also reads (driftFluxFoam's tank3D ships one).
+        tok.expect('(');
+        for (FoamToken name = tok.next(); !name.is_punct(')'); name = tok.next())
+        {
+            if (name.is_end())
+                throw tok.error_at(name.line, "boundary list is not closed by ')'");
+            if (!name.is_word() && !name.is_string())
+                throw tok.error_at(name.line,
+                                   "expected a boundary entry name but found " + name.describe());
+            patches.push_back(read_patch(tok, std::move(name.text)));
+        }
+        return patches;
+    }
     const std::int64_t n = tok.expect_size("the number of patches");
     tok.expect('(');
-    std::vector<Patch> patches;
     patches.reserve(static_cast<std::size_t>(std::min<std::int64_t>(n, 1 << 16)));
     for (std::int64_t i = 0; i < n; ++i)
-    {
-        Patch p;
-        p.name = read_list_name(tok, "boundary", n, i);
-        const FoamDictionary d = parse_dictionary_block(tok, p.name);
-        bool has_type = false, has_n = false, has_start = false;
-        for (const FoamEntry& e : d.entries())
-        {
-            const std::string& k = e.keyword();
-            if (k == "type")
-            {
-                p.type = e.get<std::string>();
-                has_type = true;
-            }
-            else if (k == "nFaces")
-            {
-                p.n_faces = to_index(e, e.get<std::int64_t>(), "nFaces");
-                has_n = true;
-            }
-            else if (k == "startFace")
-            {
-                p.start_face = to_index(e, e.get<std::int64_t>(), "startFace");
-                has_start = true;
-            }
-            else
-            {
-                if (k == "inGroups")
-                    p.in_groups = e.get<std::vector<std::string>>();
-                p.entries.emplace_back(k, e.source_text());
-            }
-        }
-        const auto missing = [&](const char* key)
-        { return tok.error_at(d.line(), "patch '" + p.name + "' has no '" + key + "' entry"); };
-        if (!has_type)
-            throw missing("type");
-        if (!has_n)
-            throw missing("nFaces");
-        if (!has_start)
-            throw missing("startFace");
-        patches.push_back(std::move(p));
-    }
+        patches.push_back(read_patch(tok, read_list_name(tok, "boundary", n, i)));
     close_list(tok, "boundary", n);
     return patches;
 }
