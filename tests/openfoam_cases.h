@@ -137,12 +137,12 @@ inline const std::map<std::string, std::string>& openfoam_case_scripts()
         {"wedge-block", "wedge-block.sh {dir}"},           // 50 cells, wedges about z
         {"wedge-twisted", "wedge-block.sh {dir} twisted"}, // the same, edges across leaning
         // Wedge tutorials: 1900 cells about x; 3466 cells about z.
-        {"wedge-cone", "wedge-tutorial.sh {dir} incompressible/pimpleFoam/laminar/movingCone"},
-        {"wedge-dlr", "wedge-tutorial.sh {dir} combustion/reactingFoam/RAS/DLR_A_LTS"},
+        {"wedge-cone", "blockmesh-tutorial.sh {dir} incompressible/pimpleFoam/laminar/movingCone"},
+        {"wedge-dlr", "blockmesh-tutorial.sh {dir} combustion/reactingFoam/RAS/DLR_A_LTS"},
         // Cyclic tutorials: 4096 cells periodic in x, y, z; an 80-cell periodic column.
-        {"cyclic-box", "cyclic-tutorial.sh {dir} DNS/dnsFoam/boxTurb16"},
+        {"cyclic-box", "blockmesh-tutorial.sh {dir} DNS/dnsFoam/boxTurb16"},
         {"cyclic-column",
-         "cyclic-tutorial.sh {dir} incompressible/boundaryFoam/boundaryWallFunctions"},
+         "blockmesh-tutorial.sh {dir} incompressible/boundaryFoam/boundaryWallFunctions"},
     };
     return scripts;
 }

@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# An axisymmetric (wedge) tutorial mesh made by blockMesh, e.g.
-# incompressible/pimpleFoam/laminar/movingCone (1900 cells, wedges normal to z, axis x) or
-# combustion/reactingFoam/RAS/DLR_A_LTS (3466 cells, wedges normal to y, axis z). Both have
-# an empty axis patch that blockMesh collapses to no faces, and prisms along the axis.
-# Usage: wedge-tutorial.sh DIR TUTORIAL (the path under the tutorials directory)
+# A tutorial mesh made by blockMesh alone, as shipped, e.g.
+#   incompressible/pimpleFoam/laminar/movingCone (1900 cells; wedges normal to z, axis x)
+#   combustion/reactingFoam/RAS/DLR_A_LTS (3466 cells; wedges normal to y, axis z; both
+#     wedge cases have an empty axis patch that blockMesh collapses to no faces)
+#   DNS/dnsFoam/boxTurb16 (4096 cells, translational cyclics in all three directions)
+#   incompressible/boundaryFoam/boundaryWallFunctions (80 cells in a column, cyclic front
+#     and back, empty sides: its cells' determinants need the cyclic faces)
+# Usage: blockmesh-tutorial.sh DIR TUTORIAL (the path under the tutorials directory)
 #
 # Steps: blockMesh, checkMesh (must say "Mesh OK"). controlDict's writePrecision is raised
 # to 15 so that checkMesh prints 15 digits.
