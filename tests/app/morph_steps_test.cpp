@@ -3,7 +3,7 @@
 // along their arc), `steps` in morphDict, and a motion that inverts cells in one step but
 // is valid in several, through the morphMesh application.
 #include "meshmorph/app/morph_mesh.h"
-#include "meshmorph/app/morph_steps.h"
+#include "meshmorph/morph/morph_steps.h"
 
 #include <algorithm>
 #include <fstream>
@@ -27,6 +27,7 @@ namespace
 {
 
 namespace fs = std::filesystem;
+using namespace meshmorph::morph;
 
 using test::write_text;
 

@@ -8,6 +8,7 @@
 #include "meshmorph/app/options.h"
 
 using namespace meshmorph::app;
+using meshmorph::format_seconds;
 
 namespace
 {

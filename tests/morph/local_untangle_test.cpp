@@ -9,7 +9,7 @@
 #include "helpers.h"
 #include "meshmorph/quality/cell_validity.h"
 
-namespace meshmorph
+namespace meshmorph::morph
 {
 namespace
 {
@@ -147,4 +147,4 @@ TEST(LocalUntangle, reports_what_it_cannot_repair_when_only_boundary_points_coul
 }
 
 } // namespace
-} // namespace meshmorph
+} // namespace meshmorph::morph

@@ -14,6 +14,7 @@
 #endif
 
 #include "meshmorph/core/config.h"
+#include "meshmorph/core/stopwatch.h"
 
 namespace meshmorph::app
 {
@@ -84,18 +85,6 @@ double StageTimer::total() const
 double StageTimer::elapsed() const
 {
     return std::chrono::duration<double>(Clock::now() - lap_start_).count();
-}
-
-std::string format_seconds(double seconds)
-{
-    std::array<char, 32> buffer{};
-    if (seconds < 0.01)
-        std::snprintf(buffer.data(), buffer.size(), "%.3f", seconds);
-    else if (seconds >= 100)
-        std::snprintf(buffer.data(), buffer.size(), "%.0f", seconds);
-    else
-        std::snprintf(buffer.data(), buffer.size(), "%.3g", seconds);
-    return std::string(buffer.data());
 }
 
 } // namespace meshmorph::app

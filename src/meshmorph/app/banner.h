@@ -6,6 +6,8 @@
 #include <iosfwd>
 #include <string>
 
+#include "meshmorph/core/stopwatch.h"
+
 namespace meshmorph::app
 {
 
@@ -53,9 +55,5 @@ private:
     Clock::time_point start_;
     Clock::time_point lap_start_;
 };
-
-//! Format seconds for the stage lines: 3 significant digits, at least ms resolution
-//! ("0.042", "1.23", "125").
-std::string format_seconds(double seconds);
 
 } // namespace meshmorph::app

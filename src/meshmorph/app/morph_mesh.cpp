@@ -17,7 +17,6 @@
 
 #include "meshmorph/app/banner.h"
 #include "meshmorph/app/deformation_factory.h"
-#include "meshmorph/app/morph_steps.h"
 #include "meshmorph/app/options.h"
 #include "meshmorph/core/config.h"
 #include "meshmorph/core/exceptions.h"
@@ -132,9 +131,9 @@ MorphResult morph_case(const MorphOptions& options)
     // Everything that can fail on user input happens before anything is written.
     Stopwatch stage;
     const io::FoamDictionary dict = io::read_dictionary(dict_path);
-    MorphSetup setup = read_morph_setup(dict);
+    morph::MorphSetup setup = morph::read_morph_setup(dict);
     const DeformationSettings settings = read_deformation_settings(dict, options.method);
-    const StepSettings step_settings = read_step_settings(dict);
+    const morph::StepSettings step_settings = morph::read_step_settings(dict);
     result.method = to_string(settings.method);
 
     io::PolyMeshReadOptions read_options;
@@ -147,17 +146,17 @@ MorphResult morph_case(const MorphOptions& options)
     log::info() << "Read mesh from " << foam.points_dir.string() << ": " << mesh.n_points()
                 << " points, " << mesh.n_cells << " cells, " << mesh.patches.size() << " patches";
 
-    ConstraintInputs inputs;
+    morph::ConstraintInputs inputs;
     auto projector = std::make_shared<SurfaceProjector>(case_dir);
     inputs.project_to_surface = [projector](const std::string& file, const Points& query)
     { return (*projector)(file, query); };
     Points point_displacement;
     std::vector<std::optional<Points>> patch_point_displacement;
-    const std::vector<PatchAssignment> assignment = assign_patches(mesh, setup);
+    const std::vector<morph::PatchAssignment> assignment = morph::assign_patches(mesh, setup);
     inputs.patches = &assignment;
     if (std::any_of(assignment.begin(), assignment.end(),
-                    [](const PatchAssignment& a)
-                    { return a.motion == MotionType::point_displacement; }))
+                    [](const morph::PatchAssignment& a)
+                    { return a.motion == morph::MotionType::point_displacement; }))
     {
         // <time>[/<region>]/pointDisplacement of the time read (0/ when the mesh came from
         // constant/).
@@ -174,8 +173,8 @@ MorphResult morph_case(const MorphOptions& options)
         inputs.patch_point_displacement = &patch_point_displacement;
         log::info() << "Read " << field.path.string();
     }
-    result.constraints = build_constraints(mesh, setup, inputs);
-    const Constraints& c = result.constraints;
+    result.constraints = morph::build_constraints(mesh, setup, inputs);
+    const morph::Constraints& c = result.constraints;
 
     if (options.overwrite)
         result.output_instance = foam.points_instance;
@@ -194,7 +193,7 @@ MorphResult morph_case(const MorphOptions& options)
                 << format_seconds(result.timings.read) << " s";
 
     // The set-up, as the user should see it.
-    for (const PatchAssignment& a : c.patches)
+    for (const morph::PatchAssignment& a : c.patches)
         log::info() << "    " << a.patch << " (" << a.patch_type << ", " << a.n_points
                     << " points): " << to_string(a.motion) << "  [" << a.matched_by << "]";
     log::info() << "Constraints: " << c.points.size() << " prescribed points, "
@@ -203,9 +202,9 @@ MorphResult morph_case(const MorphOptions& options)
                 << (c.n_handle_overrides > 0 ? " (" + std::to_string(c.n_handle_overrides) +
                                                    " boundary points overridden by handles)"
                                              : std::string());
-    if (c.empty_normal)
+    if (c.empty_planes)
         log::info() << "2D case: no motion normal to the empty planes (normal "
-                    << c.empty_normal->transpose() << ")";
+                    << c.empty_planes->normal.transpose() << ")";
     if (c.n_conflicts > 0)
     {
         auto w = log::warning();
@@ -240,14 +239,14 @@ MorphResult morph_case(const MorphOptions& options)
     log::info() << "Steps: "
                 << (needs_fit(settings) ? describe(step_settings)
                                         : "1 (ffd moves its control points once)");
-    const DeformationMaker make = [&](const Points& points)
+    const morph::DeformationMaker make = [&](const Points& points)
     { return make_deformation(settings, points, n_fit); };
     const InvalidCells invalid_before{result.before.negative_volume_cells,
                                       result.before.incorrectly_oriented_face_pyramids};
-    SteppedMorph stepped =
-        morph_in_steps(mesh, cf, c, step_settings, make, needs_fit(settings), invalid_before);
+    morph::SteppedMorph stepped = morph::morph_in_steps(mesh, cf, c, step_settings, make,
+                                                        needs_fit(settings), invalid_before);
     result.steps = stepped.steps;
-    for (const StepRecord& s : stepped.steps)
+    for (const morph::StepRecord& s : stepped.steps)
     {
         result.timings.fit += s.fit_seconds;
         result.timings.evaluate += s.evaluate_seconds;
@@ -256,7 +255,7 @@ MorphResult morph_case(const MorphOptions& options)
     }
     result.morph = std::move(stepped.last);
     result.morph.displacement = std::move(stepped.displacement);
-    measure_constraint_error(c, mesh.points, result.morph);
+    morph::measure_constraint_error(c, mesh.points, result.morph);
     const FitReport& r = result.morph.report;
     log::info() << "Fitted " << result.morph.n_constraints << " constraints with " << r.num_centres
                 << (settings.method == DeformationMethod::rbf ? " centres" : " control points")
@@ -393,7 +392,7 @@ std::string morph_json(const MorphResult& result, int exit_status)
     j["validFraction"] = result.valid_fraction;
     j["maxDisplacement"] = result.max_displacement;
     j["steps"] = nlohmann::json::array();
-    for (const StepRecord& s : result.steps)
+    for (const morph::StepRecord& s : result.steps)
         j["steps"].push_back({{"from", s.from},
                               {"to", s.to},
                               {"centres", s.centres},

@@ -1,29 +1,29 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-//! \file The morphMesh pipeline as library functions: fit a space deformation to the
-//! constraints of morph_setup.h and move every mesh point (morph_points), and the whole
-//! case-level run — read, set up, fit, evaluate, check, write (morph_case).
+//! \file The morphMesh application as library functions: the case-level run (read, set up,
+//! fit, evaluate, check, write: morph_case), its JSON document and the entry point. The morph
+//! itself is the morph/ module (constraints.h, point_morph.h, morph_steps.h).
 //!
 //! Decisions (documented for users in `morphMesh -help` and tutorials/README.md):
-//! - Exactness: rbf and idw interpolate every constraint (point_morph.h); nothing is
+//! - Exactness: rbf and idw interpolate every constraint (morph/point_morph.h); nothing is
 //!   snapped after the evaluation.
 //! - Steps: the motion is applied in refitted fractions, halved on new invalid cells
-//!   (morph_steps.h).
+//!   (morph/morph_steps.h).
 //! - Safety. A morph that creates negative-volume cells or wrongly oriented face pyramids
 //!   (more than before) is refused: nothing is written unless `force`.
 #pragma once
 
-#include "meshmorph/app/exit_status.h"
 #include <filesystem>
 #include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
 
-#include "meshmorph/app/morph_setup.h"
-#include "meshmorph/app/morph_steps.h"
+#include "meshmorph/app/exit_status.h"
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/deform/space_deformation.h"
 #include "meshmorph/io/case_instance.h"
+#include "meshmorph/morph/constraints.h"
+#include "meshmorph/morph/morph_steps.h"
 #include "meshmorph/quality/check_mesh.h"
 
 namespace meshmorph::app
@@ -57,15 +57,15 @@ struct MorphTimings
 struct MorphResult
 {
     std::string method;
-    std::string instance;        //!< instance the mesh was read from
-    std::string region;          //!< -region ("" for the default region)
-    std::string output_instance; //!< instance written (or that would have been)
-    Constraints constraints;     //!< the resolved constraint set (counts, conflicts)
-    PointMorph morph;
+    std::string instance;           //!< instance the mesh was read from
+    std::string region;             //!< -region ("" for the default region)
+    std::string output_instance;    //!< instance written (or that would have been)
+    morph::Constraints constraints; //!< the resolved constraint set (counts, conflicts)
+    morph::PointMorph morph;
     QualityReport before, after;
-    std::vector<StepRecord> steps; //!< every step tried (morph_steps.h)
-    double valid_fraction = 1.0;   //!< of the motion reached without new invalid cells
-    double max_displacement = 0.0; //!< the largest displacement of any point
+    std::vector<morph::StepRecord> steps; //!< every step tried (morph_steps.h)
+    double valid_fraction = 1.0;          //!< of the motion reached without new invalid cells
+    double max_displacement = 0.0;        //!< the largest displacement of any point
     MorphTimings timings;
     bool refused = false; //!< new invalid cells, nothing written (no force)
     std::string refusal;  //!< why

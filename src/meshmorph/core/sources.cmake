@@ -4,6 +4,7 @@ meshmorph_add_component(core
         meshmorph/core/poly_mesh.cpp
         meshmorph/core/log.cpp
         meshmorph/core/progress.cpp
+        meshmorph/core/stopwatch.cpp
         meshmorph/core/cell_shapes.cpp
         meshmorph/core/triangle_surface.cpp
         # (one file per line)

@@ -9,7 +9,7 @@
 
 #include "meshmorph/core/types.h"
 
-namespace meshmorph
+namespace meshmorph::morph
 {
 
 namespace
@@ -386,4 +386,4 @@ UntangleReport untangle_cells(PolyMesh& mesh, const CompactList& cell_faces, Mes
     return report;
 }
 
-} // namespace meshmorph
+} // namespace meshmorph::morph

@@ -27,7 +27,7 @@
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/quality/mesh_geometry.h"
 
-namespace meshmorph
+namespace meshmorph::morph
 {
 
 struct UntangleSettings
@@ -60,4 +60,4 @@ UntangleReport untangle_cells(PolyMesh& mesh, const CompactList& cell_faces, Mes
                               const Points& original_points, const std::vector<char>& was_invalid,
                               const std::vector<char>& movable, const UntangleSettings& settings);
 
-} // namespace meshmorph
+} // namespace meshmorph::morph

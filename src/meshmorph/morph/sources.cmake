@@ -1,8 +1,24 @@
-# morph: what turns a deformation of space into a valid mesh motion (local untangling of
-# the cells a morph inverts). Depends on core and quality.
+# morph: the morph domain between deform and app. morphDict prescriptions (motion,
+# morph_setup) -> which entry moves each patch (patch_assignment) -> claims per point
+# (claims, handle_selection) -> one prescription per point (conflict_resolution) -> the
+# constraint set (constraints); one fit and evaluation (point_morph), the step loop
+# (morph_steps) and the repair of cells a step inverts (local_untangle). 2D cases keep
+# their empty planes (empty_planes); slip and wedge patches their plane (patch_plane).
+# Depends on core, io (morphDict), quality (geometry, validity) and deform.
 set(MESHMORPH_MORPH_SOURCES
+    meshmorph/morph/motion.cpp
+    meshmorph/morph/morph_setup.cpp
+    meshmorph/morph/patch_assignment.cpp
+    meshmorph/morph/empty_planes.cpp
+    meshmorph/morph/patch_plane.cpp
+    meshmorph/morph/claims.cpp
+    meshmorph/morph/conflict_resolution.cpp
+    meshmorph/morph/handle_selection.cpp
+    meshmorph/morph/constraints.cpp
+    meshmorph/morph/point_morph.cpp
+    meshmorph/morph/morph_steps.cpp
     meshmorph/morph/local_untangle.cpp
 )
 meshmorph_add_component(morph
     SOURCES ${MESHMORPH_MORPH_SOURCES}
-    DEPENDS meshmorph::core meshmorph::quality)
+    DEPENDS meshmorph::core meshmorph::io meshmorph::quality meshmorph::deform)

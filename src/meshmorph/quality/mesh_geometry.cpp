@@ -3,6 +3,9 @@
 // primitiveMeshCellCentresAndVols of v1912).
 #include "meshmorph/quality/mesh_geometry.h"
 
+#include <span>
+#include <utility>
+
 #include "meshmorph/quality/foam_vector.h"
 
 namespace meshmorph
@@ -12,24 +15,20 @@ using detail::FoamVector;
 using detail::row;
 using detail::set_row;
 
-void face_centre_and_area(const PolyMesh& mesh, Index f, Points& centres, Points& areas)
+namespace
 {
-    const Points& p = mesh.points;
-    const std::span<const Index> face = mesh.faces[f];
+
+//! Centre and area vector of one face (primitiveMeshFaceCentresAndAreas).
+std::pair<FoamVector, FoamVector> centre_and_area(const Points& p, std::span<const Index> face)
+{
     const std::size_t n = face.size();
     if (n == 3)
     {
         const FoamVector p0 = row(p, face[0]), p1 = row(p, face[1]), p2 = row(p, face[2]);
-        set_row(centres, f, (1.0 / 3.0) * (p0 + p1 + p2));
-        set_row(areas, f, 0.5 * detail::cross(p1 - p0, p2 - p0));
-        return;
+        return {(1.0 / 3.0) * (p0 + p1 + p2), 0.5 * detail::cross(p1 - p0, p2 - p0)};
     }
     if (n == 0)
-    {
-        set_row(centres, f, {});
-        set_row(areas, f, {});
-        return;
-    }
+        return {};
     FoamVector mean = row(p, face[0]);
     for (std::size_t i = 1; i < n; ++i)
         mean += row(p, face[i]);
@@ -48,15 +47,23 @@ void face_centre_and_area(const PolyMesh& mesh, Index f, Points& centres, Points
         sum_ac += a * c;
     }
     if (sum_a < constants::rootvsmall)
-    {
-        set_row(centres, f, mean);
-        set_row(areas, f, {});
-    }
-    else
-    {
-        set_row(centres, f, ((1.0 / 3.0) * sum_ac) / sum_a);
-        set_row(areas, f, 0.5 * sum_n);
-    }
+        return {mean, {}};
+    return {((1.0 / 3.0) * sum_ac) / sum_a, 0.5 * sum_n};
+}
+
+} // namespace
+
+void face_centre_and_area(const PolyMesh& mesh, Index f, Points& centres, Points& areas)
+{
+    const auto [centre, area] = centre_and_area(mesh.points, mesh.faces[f]);
+    set_row(centres, f, centre);
+    set_row(areas, f, area);
+}
+
+Vector3 face_area_vector(const PolyMesh& mesh, Index f)
+{
+    const FoamVector area = centre_and_area(mesh.points, mesh.faces[f]).second;
+    return {area.x, area.y, area.z};
 }
 
 void face_centres_and_areas(const PolyMesh& mesh, Points& centres, Points& areas)

@@ -35,6 +35,9 @@ void face_centres_and_areas(const PolyMesh& mesh, Points& centres, Points& areas
 //! repair that moves a few points updates the geometry of their faces with it).
 void face_centre_and_area(const PolyMesh& mesh, Index f, Points& centres, Points& areas);
 
+//! \brief The area vector of face f alone, as face_centres_and_areas computes it.
+Vector3 face_area_vector(const PolyMesh& mesh, Index f);
+
 //! \brief Cell centres and signed volumes (spec §2.2) from g's face geometry, into g.
 //! \param cell_faces from meshmorph::cell_faces(mesh) (owned faces first, each part in face
 //!        order: the accumulation order of OpenFOAM's owner and neighbour passes).

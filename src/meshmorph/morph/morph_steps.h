@@ -23,11 +23,16 @@
 #include <string>
 #include <vector>
 
-#include "meshmorph/app/point_morph.h"
 #include "meshmorph/morph/local_untangle.h"
+#include "meshmorph/morph/point_morph.h"
 #include "meshmorph/quality/cell_validity.h"
 
-namespace meshmorph::app
+namespace meshmorph::io
+{
+class FoamDictionary;
+}
+
+namespace meshmorph::morph
 {
 
 struct StepSettings
@@ -86,4 +91,4 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
 //! "auto" or the number.
 std::string describe(const StepSettings& settings);
 
-} // namespace meshmorph::app
+} // namespace meshmorph::morph

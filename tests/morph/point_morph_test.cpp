@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Tests of morph_points() (src/meshmorph/app/morph_mesh.*): exactness at constraints, fixed
+// Tests of morph_points() (src/meshmorph/morph/point_morph.*): exactness at constraints, fixed
 // points, slip planes, 2D cases.
 #include <cmath>
 #include <numbers>
@@ -7,12 +7,12 @@
 #include <gtest/gtest.h>
 
 #include "helpers.h"
-#include "meshmorph/app/morph_mesh.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/deform/greedy_rbf_deformation.h"
 #include "meshmorph/deform/rbf_deformation.h"
+#include "meshmorph/morph/point_morph.h"
 
-namespace meshmorph::app
+namespace meshmorph::morph
 {
 namespace
 {
@@ -170,6 +170,38 @@ TEST(MorphPoints, two_d_cases_stay_two_d)
     EXPECT_GT(m.displacement.cwiseAbs().maxCoeff(), 1e-3);
 }
 
+TEST(MorphPoints, near_duplicate_pairs_in_two_d_are_fitted_once)
+{
+    // pitzDaily's merged block corners leave two point pairs 1e-14 apart whose prescriptions
+    // differ by round-off: the fit must see one handle there, not two that coincide.
+    PolyMesh mesh = test::make_block_mesh(
+        4, 4, 1, [](double u, double v, double w) { return Vector3(u, v, 0.1 * w); },
+        {"patch", "patch", "patch", "patch", "empty", "empty"});
+    MorphSetup setup;
+    BoundaryEntry top = make_entry("yMax", MotionType::translate);
+    top.motion.vector = Vector3(0.01, 0.02, 0);
+    setup.boundary.push_back(top);
+    Constraints c = build_constraints(mesh, setup);
+    // Two extra points (front and back) a round-off away from the pair of constrained
+    // point 0 (position (0, 0, z)), with a value a round-off away from its value (zero).
+    const Index n = mesh.n_points();
+    mesh.points.conservativeResize(n + 2, 3);
+    mesh.points.row(n) = Vector3(1.4e-14, 0, 0).transpose();
+    mesh.points.row(n + 1) = Vector3(1.4e-14, 0, 0.1).transpose();
+    ASSERT_EQ(c.points.front(), 0);
+    c.points.push_back(n);
+    c.points.push_back(n + 1);
+    c.rotation_of.resize(c.points.size(), -1);
+    c.displacements.conservativeResize(c.displacements.rows() + 2, 3);
+    c.displacements.bottomRows(2).setConstant(2e-16);
+
+    RbfDeformation rbf;
+    const PointMorph m = morph_points(mesh, c, rbf);
+    EXPECT_LE(m.max_constraint_error, 1e-12);
+    EXPECT_LE((m.displacement.row(0) - m.displacement.row(n)).norm(), 1e-14);
+    EXPECT_GT(m.displacement.cwiseAbs().maxCoeff(), 1e-3);
+}
+
 TEST(MorphPoints, zero_prescriptions_are_the_identity)
 {
     const PolyMesh mesh = test::make_box_mesh(3, 4, 5);
@@ -190,4 +222,4 @@ TEST(MorphPoints, nothing_prescribed_is_an_error)
 }
 
 } // namespace
-} // namespace meshmorph::app
+} // namespace meshmorph::morph

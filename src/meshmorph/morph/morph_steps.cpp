@@ -1,19 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The step loop: fractional prescriptions, refit on the moved mesh, check, halve on failure.
-#include "meshmorph/app/morph_steps.h"
+#include "meshmorph/morph/morph_steps.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
-#include "meshmorph/app/banner.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/core/stopwatch.h"
 #include "meshmorph/io/foam_dictionary.h"
 
-namespace meshmorph::app
+namespace meshmorph::morph
 {
 
 namespace
@@ -153,13 +152,10 @@ Points prescribed_at(const Constraints& c, const Points& x0, double t)
             continue;
         Motion partial = c.rotations[static_cast<std::size_t>(r)];
         partial.angle_degrees *= t;
-        Vector3 x = x0.row(c.points[i]).transpose();
-        if (c.empty_normal) // as build_constraints: the reference empty plane
-            x -= (c.empty_normal->dot(x) - c.empty_offset) * *c.empty_normal;
-        Vector3 v = partial.displacement(x);
-        if (c.empty_normal)
-            v -= v.dot(*c.empty_normal) * *c.empty_normal;
-        d.row(static_cast<Eigen::Index>(i)) = v.transpose();
+        // As collect_claims: evaluated on the reference empty plane.
+        const Vector3 x = evaluation_position(c.empty_planes, x0.row(c.points[i]).transpose());
+        d.row(static_cast<Eigen::Index>(i)) =
+            in_plane(c.empty_planes, partial.displacement(x)).transpose();
     }
     return d;
 }
@@ -246,4 +242,4 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
     return out;
 }
 
-} // namespace meshmorph::app
+} // namespace meshmorph::morph

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-//! \file One fit of a space deformation to the constraints of morph_setup.h and its
+//! \file One fit of a space deformation to the constraints of constraints.h and its
 //! evaluation at every mesh point (one step of a morph; see morph_steps.h for the steps).
 //!
 //! - Exactness. rbf and idw interpolate: the constrained points end at their prescriptions
@@ -11,11 +11,11 @@
 //!   identically and stay planar.
 #pragma once
 
-#include "meshmorph/app/morph_setup.h"
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/deform/space_deformation.h"
+#include "meshmorph/morph/constraints.h"
 
-namespace meshmorph::app
+namespace meshmorph::morph
 {
 
 //! Result of morph_points().
@@ -50,4 +50,4 @@ struct PointMorph
 PointMorph morph_points(const PolyMesh& mesh, const Constraints& constraints,
                         SpaceDeformation& deformation, bool fit = true, bool snap = false);
 
-} // namespace meshmorph::app
+} // namespace meshmorph::morph

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Tests of src/meshmorph/app/morph_setup.*: patch matching, conflicts, handles, 2D rules.
-#include "meshmorph/app/morph_setup.h"
+// Tests of src/meshmorph/morph/: patch matching, conflicts, handles, 2D rules.
+#include "meshmorph/morph/constraints.h"
 
 #include <cmath>
 #include <numbers>
@@ -10,7 +10,7 @@
 #include "helpers.h"
 #include "meshmorph/core/exceptions.h"
 
-namespace meshmorph::app
+namespace meshmorph::morph
 {
 namespace
 {
@@ -210,8 +210,8 @@ TEST(MorphSetup, empty_planes_remove_normal_motion_and_refuse_explicit_entries)
     MorphSetup setup;
     setup.boundary.push_back(translate("yMax", Vector3(0.1, 0.2, 0.3)));
     const Constraints c = build_constraints(mesh, setup);
-    ASSERT_TRUE(c.empty_normal.has_value());
-    EXPECT_NEAR(std::abs(c.empty_normal->z()), 1.0, 1e-15);
+    ASSERT_TRUE(c.empty_planes.has_value());
+    EXPECT_NEAR(std::abs(c.empty_planes->normal.z()), 1.0, 1e-15);
     EXPECT_EQ(c.displacements.col(2).cwiseAbs().maxCoeff(), 0.0);
     EXPECT_NEAR(c.displacements.col(1).maxCoeff(), 0.2, 1e-15);
 
@@ -441,4 +441,4 @@ TEST(MorphSetup, motion_asked_for_but_resolved_to_nothing_is_an_error)
 }
 
 } // namespace
-} // namespace meshmorph::app
+} // namespace meshmorph::morph

@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file morphDict boundary and handle prescriptions, resolved into point constraints.
+//!
+//! build_constraints() composes the steps: the patches' entries (patch_assignment.h), the
+//! empty planes of 2D cases (empty_planes.h), the claims of every boundary point
+//! (claims.h), one prescription per point (conflict_resolution.h), the handles' claims
+//! (handle_selection.h) resolved by the same rule, and the merge: handles override boundary
+//! prescriptions, since they are the explicit, local request (the number of overridden
+//! boundary points is reported). A dictionary that asks for motion but resolves to none is
+//! an error. The rules are documented for users in tutorials/README.md and `morphMesh -help`.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/core/types.h"
+#include "meshmorph/morph/claims.h"
+#include "meshmorph/morph/empty_planes.h"
+#include "meshmorph/morph/morph_setup.h"
+#include "meshmorph/morph/patch_assignment.h"
+
+namespace meshmorph::morph
+{
+
+//! The resolved constraint set.
+struct Constraints
+{
+    //! Points with a prescribed displacement (sorted mesh point indices) and their values
+    //! (already without the component normal to the empty planes in 2D cases).
+    std::vector<Index> points;
+    Points displacements;
+    //! Per entry of points: index into rotations when a rotate entry prescribes it (-1 for
+    //! every other prescription), so that a morph in steps turns such points along their arc.
+    std::vector<Index> rotation_of;
+    std::vector<Motion> rotations;
+    //! Points that slide: their displacement is P d(x) with the projector P (removes the
+    //! normals of the slip/wedge planes they lie on), decided after a first fit.
+    std::vector<Index> slip_points;
+    std::vector<Eigen::Matrix3d> slip_projectors;
+    //! 2D cases: the empty planes.
+    std::optional<EmptyPlanes> empty_planes;
+
+    std::vector<PatchAssignment> patches;
+    Index n_free_points = 0; //!< boundary points left unconstrained (type free)
+    Index n_handle_points = 0;
+    Index n_handle_overrides = 0; //!< boundary points whose prescription a handle replaced
+    Index n_conflicts = 0;        //!< points with disagreeing prescriptions
+    //! Points whose prescriptions differ by at most 10% of their shortest boundary edge
+    //! (snapped patch edges), not counted or warned about as conflicts (see
+    //! conflict_resolution.h).
+    Index n_near_agreements = 0;
+    double max_near_agreement = 0.0; //!< their largest difference / shortest edge
+    ConflictRule conflict_rule = ConflictRule::fixed;
+    //! Patch pairs involved in conflicts, e.g. "frontWheel/lowerWall: 120 points".
+    std::vector<std::string> conflict_summary;
+};
+
+//! Resolve boundary and handle prescriptions into point constraints.
+//! \throw ParseError/InvalidInput on dictionary errors (unknown patch/zone, conflicts under
+//! rule `error`, non-planar slip patch, missing inputs for data-driven types, motion asked
+//! for but none left).
+Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
+                              const ConstraintInputs& inputs = {});
+
+} // namespace meshmorph::morph

@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Handle selections (pointZone, box, nearest points) and their claims.
+#include "meshmorph/morph/handle_selection.h"
+
+#include <algorithm>
+
+#include "meshmorph/core/exceptions.h"
+
+namespace meshmorph::morph
+{
+
+namespace
+{
+
+std::vector<Index> zone_points(const PolyMesh& mesh, const HandleEntry& handle,
+                               const std::string& dict_path)
+{
+    auto it = std::find_if(mesh.point_zones.begin(), mesh.point_zones.end(),
+                           [&](const Zone& z) { return z.name == handle.zone; });
+    if (it != mesh.point_zones.end())
+        return it->labels;
+    std::string zones;
+    for (const Zone& z : mesh.point_zones)
+        zones += (zones.empty() ? "" : " ") + z.name;
+    throw ParseError(dict_path, handle.line,
+                     "handles entry '" + handle.name + "': no pointZone '" + handle.zone +
+                         "' in the mesh (pointZones: " + (zones.empty() ? "none" : zones) + ")");
+}
+
+std::vector<Index> box_points(const PolyMesh& mesh, const HandleEntry& handle)
+{
+    std::vector<Index> selected;
+    for (Index p = 0; p < mesh.n_points(); ++p)
+    {
+        const Vector3 x = mesh.points.row(p).transpose();
+        if ((x.array() >= handle.box_min.array()).all() &&
+            (x.array() <= handle.box_max.array()).all())
+            selected.push_back(p);
+    }
+    return selected;
+}
+
+//! The mesh point nearest to x; in a 2D case every point within `tolerance` of the nearest
+//! distance in the plane of the case (one per empty plane).
+std::vector<Index> nearest_points(const PolyMesh& mesh, const Vector3& x,
+                                  const std::optional<EmptyPlanes>& planes, double tolerance)
+{
+    Points d = mesh.points.rowwise() - x.transpose();
+    if (planes)
+        planes->remove_normal(d);
+    const Eigen::VectorXd dist = d.rowwise().norm();
+    Eigen::Index nearest = 0;
+    const double closest = dist.minCoeff(&nearest);
+    if (!planes)
+        return {static_cast<Index>(nearest)};
+    std::vector<Index> out;
+    for (Index p = 0; p < mesh.n_points(); ++p)
+        if (dist[p] <= closest + tolerance)
+            out.push_back(p);
+    return out;
+}
+
+std::vector<Index> nearest_to_positions(const PolyMesh& mesh, const HandleEntry& handle,
+                                        const std::optional<EmptyPlanes>& planes, double tolerance)
+{
+    std::vector<Index> selected;
+    for (Eigen::Index k = 0; k < handle.points.rows(); ++k)
+        for (Index p : nearest_points(mesh, handle.points.row(k).transpose(), planes, tolerance))
+            selected.push_back(p);
+    return selected;
+}
+
+} // namespace
+
+std::vector<Index> select_handle_points(const PolyMesh& mesh, const HandleEntry& handle,
+                                        const std::optional<EmptyPlanes>& planes, double tolerance,
+                                        const std::string& dict_path)
+{
+    std::vector<Index> selected;
+    switch (handle.selection)
+    {
+    case HandleEntry::Selection::point_zone:
+        selected = zone_points(mesh, handle, dict_path);
+        break;
+    case HandleEntry::Selection::box:
+        selected = box_points(mesh, handle);
+        break;
+    case HandleEntry::Selection::points:
+        selected = nearest_to_positions(mesh, handle, planes, tolerance);
+        break;
+    }
+    if (selected.empty())
+        throw ParseError(dict_path, handle.line,
+                         "handles entry '" + handle.name + "' selects no mesh point");
+    for (Index p : selected)
+        if (p < 0 || p >= mesh.n_points())
+            throw InvalidInput("pointZone '" + handle.zone + "' has point label " +
+                               std::to_string(p) + " out of range");
+    return selected;
+}
+
+std::vector<Claim> collect_handle_claims(const PolyMesh& mesh, const MorphSetup& setup,
+                                         const std::optional<EmptyPlanes>& planes, double tolerance)
+{
+    std::vector<Claim> claims;
+    for (std::size_t h = 0; h < setup.handles.size(); ++h)
+    {
+        const HandleEntry& handle = setup.handles[h];
+        const Index source = static_cast<Index>(h);
+        for (Index p : select_handle_points(mesh, handle, planes, tolerance, setup.dict_path))
+            claims.push_back({p, source, source, Claim::Kind::value, handle.displacement});
+    }
+    std::stable_sort(claims.begin(), claims.end(),
+                     [](const Claim& a, const Claim& b) { return a.point < b.point; });
+    const auto same = [](const Claim& a, const Claim& b)
+    { return a.point == b.point && a.source == b.source; };
+    claims.erase(std::unique(claims.begin(), claims.end(), same), claims.end());
+    return claims;
+}
+
+} // namespace meshmorph::morph

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file The morphDict prescriptions as plain data (MorphSetup): the `boundary` entries,
+//! the `handles` and the `conflicts` rule, read by read_morph_setup() or filled directly by
+//! tests. constraints.h turns them into point constraints; the rules are documented there
+//! and for users in tutorials/README.md and `morphMesh -help`.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "meshmorph/core/types.h"
+#include "meshmorph/morph/motion.h"
+
+namespace meshmorph::io
+{
+class FoamDictionary;
+}
+
+namespace meshmorph::morph
+{
+
+//! One entry of the `boundary` sub-dictionary.
+struct BoundaryEntry
+{
+    std::string key;       //!< patch name, group name or regex as written
+    bool is_regex = false; //!< key was quoted (OpenFOAM: a quoted key is a regex)
+    Motion motion;
+    std::size_t line = 0; //!< line in the dictionary (0 if unknown), for messages
+};
+
+//! One entry of the optional `handles` sub-dictionary (the paper's handle interface).
+struct HandleEntry
+{
+    enum class Selection
+    {
+        point_zone, //!< the points of a pointZone
+        box,        //!< every mesh point inside an axis-aligned box (inclusive)
+        points,     //!< the mesh point nearest to each listed position
+    };
+    std::string name;
+    Selection selection = Selection::box;
+    std::string zone;                  //!< point_zone
+    Vector3 box_min = Vector3::Zero(); //!< box
+    Vector3 box_max = Vector3::Zero(); //!< box
+    Points points;                     //!< points: k x 3 positions
+    Vector3 displacement = Vector3::Zero();
+    std::size_t line = 0;
+};
+
+//! The morphDict contents that decide the constraints (deformation settings live in
+//! app/deformation_factory.h, steps in morph_steps.h).
+struct MorphSetup
+{
+    std::string dict_path = "system/morphDict"; //!< for messages
+    //! In dictionary order; the literal key `default` is the entry for unlisted patches
+    //! (fixed if absent). Order matters for the conflict rules `first` and `last`.
+    std::vector<BoundaryEntry> boundary;
+    std::vector<HandleEntry> handles;
+    ConflictRule conflicts = ConflictRule::fixed;
+};
+
+//! \brief Read `conflicts`, `boundary` and `handles` of a parsed morphDict.
+//! Every entry is checked: an unknown top-level keyword, an entry that is not a
+//! sub-dictionary, an unknown `type`, a missing or extra parameter keyword, a bad value, a
+//! handle with zero or several selections. \throw ParseError naming the file, line and entry.
+MorphSetup read_morph_setup(const io::FoamDictionary& dict);
+
+} // namespace meshmorph::morph
