@@ -117,6 +117,22 @@ TEST(MorphMesh, writes_only_points_in_the_next_time_and_constraints_are_exact)
     EXPECT_NE(r.log.find("Step 1: motion 0 -> 1"), std::string::npos) << r.log;
 }
 
+TEST(MorphMesh, a_decomposed_case_is_told_its_processor_directories_keep_the_old_mesh)
+{
+    const PolyMesh mesh = test::make_box_mesh(3, 3, 3);
+    const fs::path dir = make_case("decomposed", mesh, lift_top);
+    const RunResult plain = run({"-case", dir.string()});
+    ASSERT_EQ(plain.code, 0) << plain.err << plain.log;
+    EXPECT_EQ(plain.log.find("the case is decomposed"), std::string::npos) << plain.log;
+    fs::create_directories(dir / "processor0/constant/polyMesh");
+    fs::create_directories(dir / "processor1/constant/polyMesh");
+    const RunResult r = run({"-case", dir.string()});
+    ASSERT_EQ(r.code, 0) << r.err << r.log;
+    EXPECT_NE(r.log.find("the case is decomposed (processor0 ... processor1)"), std::string::npos)
+        << r.log;
+    EXPECT_NE(r.log.find("still hold the old mesh"), std::string::npos) << r.log;
+}
+
 TEST(MorphMesh, region_option_morphs_that_region_and_writes_its_time_directory)
 {
     // chtMultiRegion layout: constant/solid/polyMesh, system/solid/morphDict; the morphed

@@ -115,6 +115,32 @@ void warn_if_replacing(const fs::path& case_dir, const std::string& instance,
                               "keep it)";
 }
 
+//! processor0, processor1, ... (decomposePar's uncollated layout) and processors<N> (the
+//! collated one) in the case.
+std::vector<std::string> processor_directories(const fs::path& case_dir)
+{
+    std::vector<std::string> dirs;
+    for (const fs::directory_entry& e : fs::directory_iterator(case_dir))
+        if (e.is_directory() && e.path().filename().string().starts_with("processor"))
+            dirs.push_back(e.path().filename().string());
+    std::sort(dirs.begin(), dirs.end());
+    return dirs;
+}
+
+//! A decomposed case keeps its own copy of the mesh in every processor directory: a serial
+//! morph changes only the undecomposed mesh, and a parallel run would use the old one.
+void warn_if_decomposed(const fs::path& case_dir)
+{
+    const std::vector<std::string> dirs = processor_directories(case_dir);
+    if (dirs.empty())
+        return;
+    log::warning() << "the case is decomposed (" << dirs.front()
+                   << (dirs.size() > 1 ? " ... " + dirs.back() : std::string())
+                   << "): this morph changes only the undecomposed mesh; the processor "
+                      "directories still hold the old mesh (decompose again, e.g. "
+                      "decomposePar -force, before a parallel run)";
+}
+
 } // namespace
 
 MorphResult morph_case(const MorphOptions& options)
@@ -336,6 +362,7 @@ MorphResult morph_case(const MorphOptions& options)
         keep_original_points(foam.points.path);
     else
         warn_if_replacing(case_dir, result.output_instance, foam.region);
+    warn_if_decomposed(case_dir);
     io::FoamFileInfo like = foam.points;
     result.points_file =
         io::write_points(moved.points, like, case_dir, result.output_instance, foam.region);
