@@ -26,10 +26,11 @@ for arg in "$@"; do
     esac
 done
 
-# Build: compiler, CMake, Eigen, VTK, BLAS/LAPACK, JSON, zlib; tests and benchmarks;
-# clang-format for the format check of scripts/run-tests.sh.
+# Build: compiler, CMake, Eigen, VTK, BLAS/LAPACK, JSON, zlib, OpenMPI (-parallel); tests
+# and benchmarks; clang-format for the format check of scripts/run-tests.sh.
 required=(build-essential cmake g++ git libeigen3-dev libvtk9-dev libopenblas-dev liblapack-dev
-          nlohmann-json3-dev zlib1g-dev libgtest-dev libgmock-dev libbenchmark-dev clang-format)
+          nlohmann-json3-dev zlib1g-dev libgtest-dev libgmock-dev libbenchmark-dev clang-format
+          libopenmpi-dev openmpi-bin)
 # Oracle tests compare with OpenFOAM v1912 (Debian) and use its tutorials and gmsh.
 if [[ $with_openfoam == 1 ]]; then
     required+=(openfoam openfoam-examples gmsh)

@@ -3,6 +3,7 @@
 #include "meshmorph/deform/corrected_deformation.h"
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/deform/field_stream.h"
 
 namespace meshmorph
 {
@@ -30,6 +31,13 @@ void CorrectedDeformation::fit(const Eigen::Ref<const Points>& handles,
     report_.max_displacement = displacements.rowwise().norm().maxCoeff();
     report_.max_residual = residual.rowwise().norm().maxCoeff();
     report_.rms_residual = std::sqrt(residual.rowwise().squaredNorm().mean());
+}
+
+void CorrectedDeformation::write_field(FieldWriter& out) const
+{
+    out.put(FieldKind::sum);
+    global_->write_field(out);
+    correction_.write_field(out);
 }
 
 void CorrectedDeformation::evaluate(const Eigen::Ref<const Points>& points,

@@ -31,6 +31,7 @@ public:
     //! (what the correction takes up), max_displacement the prescriptions'.
     const FitReport& report() const override;
     bool is_fitted() const override;
+    void write_field(FieldWriter& out) const override;
     const SpaceDeformation& global() const { return *global_; }
 
 private:

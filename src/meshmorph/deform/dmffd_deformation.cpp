@@ -9,6 +9,7 @@
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
+#include "meshmorph/deform/field_stream.h"
 #include "meshmorph/deform/lapack.h"
 
 namespace meshmorph
@@ -207,6 +208,13 @@ void DmffdDeformation::refit(const Eigen::Ref<const Points>& displacements)
     const Points C = Vt_.transpose() * t;
     ffd_->set_control_displacements(C);
     detail::residual_report(*this, handles_, displacements, report_);
+}
+
+void DmffdDeformation::write_field(FieldWriter& out) const
+{
+    if (!ffd_)
+        throw InvalidInput("DM-FFD: write_field before fit");
+    ffd_->write_field(out);
 }
 
 void DmffdDeformation::evaluate(const Eigen::Ref<const Points>& points,

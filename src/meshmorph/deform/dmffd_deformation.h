@@ -91,6 +91,7 @@ public:
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     const FitReport& report() const override { return report_; }
     bool is_fitted() const override { return ffd_.has_value(); }
+    void write_field(FieldWriter& out) const override;
     const DmffdSettings& settings() const { return settings_; }
 
     //! The fitted FFD (lattice and control displacements). \pre is_fitted().

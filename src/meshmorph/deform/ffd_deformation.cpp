@@ -6,6 +6,7 @@
 #include <string>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/deform/field_stream.h"
 
 namespace meshmorph
 {
@@ -20,6 +21,19 @@ FfdLattice make_lattice(const FfdSettings& settings, const Eigen::Ref<const Poin
 FfdDeformation::FfdDeformation(const FfdLattice& lattice, FfdOutside outside)
     : lattice_(lattice), outside_(outside)
 {
+}
+
+void FfdDeformation::write_field(FieldWriter& out) const
+{
+    if (!fitted_)
+        throw InvalidInput("FFD: write_field before the control displacements are set");
+    out.put(FieldKind::ffd);
+    out.put_matrix(lattice_.box().origin);
+    out.put_matrix(lattice_.box().axes);
+    for (int a = 0; a < 3; ++a)
+        out.put_vector(lattice_.knots(a));
+    out.put(outside_);
+    out.put_matrix(control_displacements_);
 }
 
 void FfdDeformation::set_control_displacements(const Eigen::Ref<const Points>& displacements)

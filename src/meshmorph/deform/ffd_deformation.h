@@ -50,6 +50,7 @@ public:
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     const FitReport& report() const override { return report_; }
     bool is_fitted() const override { return fitted_; }
+    void write_field(FieldWriter& out) const override;
 
     const FfdLattice& lattice() const { return lattice_; }
     FfdOutside outside() const { return outside_; }

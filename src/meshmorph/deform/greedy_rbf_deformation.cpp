@@ -14,6 +14,7 @@
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/core/stopwatch.h"
+#include "meshmorph/deform/field_stream.h"
 #include "meshmorph/deform/lapack.h"
 #include "meshmorph/deform/rbf_evaluator.h"
 #include "meshmorph/deform/rbf_setup.h"
@@ -448,6 +449,14 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
         log::info() << "    greedy RBF: the budget of " << budget << " centres (maxCentres) "
                     << "ends the refinement at max residual " << d.report.max_residual * rel
                     << " (relative; tolerance " << s.tolerance << ")";
+}
+
+void GreedyRbfDeformation::write_field(FieldWriter& out) const
+{
+    if (!impl_->fitted)
+        throw InvalidInput("greedy RBF: write_field before fit");
+    out.put(FieldKind::rbf);
+    impl_->model.write(out);
 }
 
 void GreedyRbfDeformation::evaluate(const Eigen::Ref<const Points>& points,

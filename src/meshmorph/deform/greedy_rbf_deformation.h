@@ -64,6 +64,7 @@ public:
     //! constraints; condition_estimate: (max L_ii / min L_ii)^2, a lower bound.
     const FitReport& report() const override;
     bool is_fitted() const override;
+    void write_field(FieldWriter& out) const override;
     //! True when both tolerances were met (false when the budget stopped the refinement).
     bool converged() const;
     //! Indices (into the constraints given to fit) of the selected centres.

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/deform/field_stream.h"
 #include "meshmorph/deform/idw_tree.h"
 
 namespace meshmorph
@@ -18,6 +19,7 @@ struct IdwDeformation::Impl
     Vector3 centre = Vector3::Zero();
     double scale = 1.0; //!< L: the handles' bounding-box diagonal
     std::optional<detail::IdwTree> tree;
+    Points handles, displacements; //!< as fitted, for write_field()
 };
 
 IdwDeformation::IdwDeformation(const IdwSettings& settings) : impl_(std::make_unique<Impl>())
@@ -53,12 +55,24 @@ void IdwDeformation::fit(const Eigen::Ref<const Points>& handles,
     const detail::IdwWeight weight{s.far_exponent, s.near_exponent,
                                    std::pow(s.alpha, s.near_exponent)};
     d.tree.emplace(normalised, Points(displacements), weight, s.theta);
+    d.handles = handles;
+    d.displacements = displacements;
     d.report = FitReport{};
     d.report.method = "idw";
     d.report.solver = s.theta > 0.0 ? "tree (second-order far field)" : "direct sum";
     d.report.num_handles = static_cast<Index>(handles.rows());
     d.report.num_centres = d.report.num_handles;
     d.report.max_displacement = displacements.rowwise().norm().maxCoeff();
+}
+
+void IdwDeformation::write_field(FieldWriter& out) const
+{
+    if (!impl_->tree)
+        throw InvalidInput("IDW: write_field before fit");
+    out.put(FieldKind::idw);
+    out.put(impl_->settings);
+    out.put_matrix(impl_->handles);
+    out.put_matrix(impl_->displacements);
 }
 
 void IdwDeformation::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const

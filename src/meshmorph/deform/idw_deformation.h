@@ -52,6 +52,7 @@ public:
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     const FitReport& report() const override;
     bool is_fitted() const override;
+    void write_field(FieldWriter& out) const override;
 
 private:
     struct Impl;

@@ -16,6 +16,7 @@
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
+#include "meshmorph/deform/field_stream.h"
 #include "meshmorph/deform/lapack.h"
 #include "meshmorph/deform/rbf_evaluator.h"
 #include "meshmorph/deform/rbf_setup.h"
@@ -567,6 +568,14 @@ void RbfDeformation::refit(const Eigen::Ref<const Points>& displacements)
     d.merged.displacements = H;
     d.set_displacements(H);
     detail::residual_report(*this, d.handles, displacements, d.report);
+}
+
+void RbfDeformation::write_field(FieldWriter& out) const
+{
+    if (!impl_->fitted)
+        throw InvalidInput("RBF: write_field before fit");
+    out.put(FieldKind::rbf);
+    impl_->model.write(out);
 }
 
 void RbfDeformation::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const

@@ -96,6 +96,7 @@ public:
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     const FitReport& report() const override;
     bool is_fitted() const override;
+    void write_field(FieldWriter& out) const override;
     const RbfSettings& settings() const;
 
     //! Centres after merging duplicates (physical coordinates, num_centres x 3).

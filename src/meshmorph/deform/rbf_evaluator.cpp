@@ -178,6 +178,48 @@ void RbfModel::set_centres(const Eigen::Ref<const Points>& c)
         grid = UniformGrid(c, kernel.support);
 }
 
+void RbfModel::write(FieldWriter& out) const
+{
+    out.put(kernel);
+    out.put_matrix(centre);
+    out.put(scale);
+    out.put_matrix(rotation);
+    out.put_vector(exponents);
+    out.put(num_centres);
+    for (const std::vector<double>* v : {&cx, &cy, &cz, &wx, &wy, &wz})
+        out.put_vector(*v);
+    out.put_matrix(q);
+}
+
+RbfModel RbfModel::read(FieldReader& in)
+{
+    RbfModel m;
+    m.kernel = in.get<KernelParams>();
+    m.centre = in.get_matrix<Vector3>();
+    m.scale = in.get<double>();
+    m.rotation = in.get_matrix<Eigen::Matrix3d>();
+    m.exponents = in.get_vector<std::array<int, 3>>();
+    m.num_centres = in.get<Index>();
+    for (std::vector<double>* v : {&m.cx, &m.cy, &m.cz, &m.wx, &m.wy, &m.wz})
+        *v = in.get_vector<double>();
+    m.q = in.get_matrix<Eigen::Matrix<double, Eigen::Dynamic, 3>>();
+    const std::size_t padded = m.cx.size();
+    bool consistent = m.num_centres >= 0 && static_cast<std::size_t>(m.num_centres) <= padded &&
+                      padded % centre_pad == 0 && m.q.rows() == Eigen::Index(m.exponents.size());
+    for (const std::vector<double>* v : {&m.cy, &m.cz, &m.wx, &m.wy, &m.wz})
+        consistent = consistent && v->size() == padded;
+    if (!consistent)
+        throw IoError("fitted field: inconsistent RBF centres");
+    if (m.kernel.type == KernelType::wendland_c2)
+    {
+        Points c(m.num_centres, 3);
+        for (Index j = 0; j < m.num_centres; ++j)
+            c.row(j) << m.cx[std::size_t(j)], m.cy[std::size_t(j)], m.cz[std::size_t(j)];
+        m.grid = UniformGrid(c, m.kernel.support);
+    }
+    return m;
+}
+
 void RbfModel::set_coefficients(const Eigen::Ref<const Eigen::MatrixXd>& w,
                                 const Eigen::Ref<const Eigen::MatrixXd>& coefficients)
 {

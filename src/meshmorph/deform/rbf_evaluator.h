@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "meshmorph/core/types.h"
+#include "meshmorph/deform/field_stream.h"
 #include "meshmorph/deform/uniform_grid.h"
 
 namespace meshmorph::detail
@@ -59,6 +60,10 @@ struct RbfModel
     Eigen::MatrixXd kernel_matrix(const Eigen::Ref<const Points>& normalised) const;
     //! d at physical points into out (n x 3). OpenMP over point blocks; deterministic.
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const;
+
+    //! The expansion as bytes (field_io.h), and back (the Wendland grid is rebuilt).
+    void write(FieldWriter& out) const;
+    static RbfModel read(FieldReader& in);
 };
 
 //! Monomials of total degree <= degree in 3 variables (1, x, y, z, x^2, xy, ...).

@@ -2,6 +2,7 @@
 # Sees Eigen arrays only: no mesh, no files.
 set(MESHMORPH_DEFORM_SOURCES
     meshmorph/deform/space_deformation.cpp
+    meshmorph/deform/field_io.cpp
     meshmorph/deform/rbf_evaluator.cpp
     meshmorph/deform/rbf_deformation.cpp
     meshmorph/deform/bspline_basis.cpp

@@ -13,6 +13,12 @@
 namespace meshmorph
 {
 
+void SpaceDeformation::write_field(FieldWriter& /*out*/) const
+{
+    throw InvalidInput("this kind of deformation (" + report().method +
+                       ") cannot be sent to other ranks");
+}
+
 Points displacements(const SpaceDeformation& deformation, const Eigen::Ref<const Points>& points)
 {
     Points out(points.rows(), 3);

@@ -10,6 +10,8 @@
 namespace meshmorph
 {
 
+class FieldWriter;
+
 //! What a fit did; retrievable with SpaceDeformation::report() after fit().
 struct FitReport
 {
@@ -50,6 +52,9 @@ public:
     virtual const FitReport& report() const = 0;
     //! True once fit() succeeded.
     virtual bool is_fitted() const = 0;
+    //! \brief Append what evaluate() needs to `out` (FieldKind first; read back by
+    //! read_field() of field_io.h). \throw InvalidInput for a kind that cannot be written.
+    virtual void write_field(FieldWriter& out) const;
 };
 
 //! \brief d(x) for every row of points (n x 3), returned by value.

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Fitted fields written and read back (src/meshmorph/deform/field_io.*): every kind of
+// deformation evaluates bit-identically after the round trip, as a -parallel run needs.
+#include "meshmorph/deform/field_io.h"
+
+#include <gtest/gtest.h>
+
+#include "deform_test_helpers.h"
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/deform/corrected_deformation.h"
+#include "meshmorph/deform/dmffd_deformation.h"
+#include "meshmorph/deform/ffd_deformation.h"
+#include "meshmorph/deform/greedy_rbf_deformation.h"
+#include "meshmorph/deform/idw_deformation.h"
+#include "meshmorph/deform/rbf_deformation.h"
+
+namespace meshmorph
+{
+namespace
+{
+
+//! Fits `d` to a smooth field on sphere points, writes and reads it, and compares the two at
+//! other points: equal to the last bit, and the same report.
+void expect_round_trip(SpaceDeformation& d)
+{
+    const Points handles = test::sphere_points(400, Vector3(0.5, 0.5, 0.5), 0.5);
+    d.fit(handles, test::smooth_field(handles));
+    const std::string bytes = write_field(d);
+    const std::unique_ptr<SpaceDeformation> restored = read_field(bytes);
+    const Points query = test::sphere_points(1000, Vector3(0.4, 0.5, 0.6), 0.7);
+    Points want(query.rows(), 3), got(query.rows(), 3);
+    d.evaluate(query, want);
+    restored->evaluate(query, got);
+    EXPECT_EQ(want, got) << d.report().method;
+    EXPECT_EQ(restored->report().method, d.report().method);
+    EXPECT_EQ(restored->report().num_centres, d.report().num_centres);
+    EXPECT_EQ(restored->report().max_residual, d.report().max_residual);
+    EXPECT_TRUE(restored->is_fitted());
+    EXPECT_THROW(restored->fit(handles, handles), InvalidInput);
+    EXPECT_EQ(write_field(*restored), bytes) << "a restored field writes the same bytes";
+}
+
+TEST(FieldIo, direct_rbf)
+{
+    RbfDeformation rbf;
+    expect_round_trip(rbf);
+}
+
+TEST(FieldIo, wendland_rbf_rebuilds_its_grid)
+{
+    RbfSettings s;
+    s.kernel = RbfKernel::wendland_c2;
+    s.support_radius = 0.6;
+    RbfDeformation rbf(s);
+    expect_round_trip(rbf);
+}
+
+TEST(FieldIo, greedy_rbf_with_its_local_correction)
+{
+    GreedySettings coarse;
+    coarse.tolerance = 0.05;
+    coarse.rms_tolerance = 0.05;
+    CorrectedDeformation corrected(std::make_unique<GreedyRbfDeformation>(coarse));
+    expect_round_trip(corrected);
+}
+
+TEST(FieldIo, idw)
+{
+    IdwDeformation idw;
+    expect_round_trip(idw);
+}
+
+TEST(FieldIo, dmffd)
+{
+    DmffdSettings s;
+    s.lattice.control_points = {6, 5, 7};
+    DmffdDeformation dm(s);
+    expect_round_trip(dm);
+}
+
+TEST(FieldIo, truncated_or_foreign_bytes_are_errors_and_unfitted_fields_cannot_be_written)
+{
+    RbfDeformation rbf;
+    EXPECT_THROW(write_field(rbf), InvalidInput);
+    const Points h = test::sphere_points(50, Vector3::Zero(), 1.0);
+    rbf.fit(h, test::smooth_field(h));
+    const std::string bytes = write_field(rbf);
+    for (std::size_t n : {std::size_t(0), std::size_t(3), bytes.size() / 2, bytes.size() - 1})
+        EXPECT_THROW(read_field(bytes.substr(0, n)), IoError) << n << " bytes";
+    EXPECT_THROW(read_field(bytes + "x"), IoError);
+    std::string foreign = bytes;
+    foreign[0] = 9;
+    EXPECT_THROW(read_field(foreign), IoError);
+}
+
+} // namespace
+} // namespace meshmorph
