@@ -186,7 +186,7 @@ TEST(MorphSetup, unknown_patch_and_empty_regex_name_file_and_line)
     }
 }
 
-TEST(MorphSetup, processor_patches_are_refused)
+TEST(MorphSetup, processor_patches_outside_a_parallel_run_are_refused)
 {
     PolyMesh mesh = test::make_box_mesh(2, 2, 2);
     mesh.patches[0].type = "processor";
@@ -197,8 +197,8 @@ TEST(MorphSetup, processor_patches_are_refused)
     }
     catch (const InvalidInput& e)
     {
-        EXPECT_NE(std::string(e.what()).find("decomposed/processor patches not supported yet"),
-                  std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("run morphMesh -parallel"), std::string::npos)
+            << e.what();
     }
 }
 

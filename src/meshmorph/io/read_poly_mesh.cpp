@@ -379,4 +379,20 @@ FoamPolyMesh read_poly_mesh(const fs::path& case_dir, const PolyMeshReadOptions&
     return result;
 }
 
+std::vector<Index> read_label_list_file(const fs::path& path, const std::string& object)
+{
+    OpenFile file = open_file(path, {"labelList"}, object);
+    FoamTokenizer tok = start_body(file);
+    ListReadOptions options;
+    options.what = object;
+    std::vector<Index> labels = read_label_list(tok, file.info.header, options);
+    expect_end_of_file(tok, object);
+    for (std::size_t i = 0; i < labels.size(); ++i)
+        if (labels[i] < 0)
+            throw file.element_error(ListKind::label, i,
+                                     object + " entry " + std::to_string(i) + " is negative (" +
+                                         std::to_string(labels[i]) + ")");
+    return labels;
+}
+
 } // namespace meshmorph::io

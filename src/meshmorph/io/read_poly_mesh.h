@@ -89,6 +89,12 @@ FoamPolyMesh read_poly_mesh_dir(const std::filesystem::path& poly_mesh_dir,
 
 //! \brief Read only `points` (plain or .gz) as a vectorField.
 //! \param info when not null, receives the file's metadata.
+//! \brief A labelList file whose labels are all >= 0, e.g. decomposePar's
+//! processor<N>/constant/polyMesh/pointProcAddressing (the undecomposed mesh's label of each
+//! processor point). \throw IoError, ParseError naming the file and line.
+std::vector<Index> read_label_list_file(const std::filesystem::path& path,
+                                        const std::string& object);
+
 //! \throw IoError, ParseError as read_poly_mesh.
 Points read_points_file(const std::filesystem::path& path, FoamFileInfo* info = nullptr,
                         bool parallel = true);

@@ -112,6 +112,18 @@ void add_surface_claims(const MorphSetup& setup, const ConstraintInputs& inputs,
     }
 }
 
+//! The index of `m` in rotations, appended on first use. Registered per boundary entry in
+//! collect_claims (entry order), so that every rank of a -parallel run numbers them alike.
+Index rotation_index(std::vector<Motion>& rotations, const Motion& m)
+{
+    for (std::size_t r = 0; r < rotations.size(); ++r)
+        if (rotations[r].origin == m.origin && rotations[r].axis == m.axis &&
+            rotations[r].angle_degrees == m.angle_degrees)
+            return static_cast<Index>(r);
+    rotations.push_back(m);
+    return static_cast<Index>(rotations.size() - 1);
+}
+
 //! fixed, translate, rotate, scale. 2D: evaluated at the projection onto the reference
 //! empty plane, so both planes get the same prescription (a rotation about a tilted axis
 //! would otherwise differ between them).
@@ -121,10 +133,7 @@ void add_closed_form_claims(const PolyMesh& mesh, const std::optional<EmptyPlane
 {
     Index rotation = -1;
     if (pc.motion.type == MotionType::rotate)
-    {
-        rotation = static_cast<Index>(rotations.size());
-        rotations.push_back(pc.motion);
-    }
+        rotation = rotation_index(rotations, pc.motion);
     for (Index p : pc.points)
     {
         const Vector3 x = evaluation_position(planes, mesh.points.row(p).transpose());
@@ -190,10 +199,13 @@ std::vector<Claim> collect_claims(const PolyMesh& mesh, const MorphSetup& setup,
 {
     std::vector<Claim> claims;
     SurfaceQueue surfaces;
+    for (const BoundaryEntry& e : setup.boundary)
+        if (e.motion.type == MotionType::rotate)
+            rotation_index(rotations, e.motion);
     for (std::size_t pi = 0; pi < mesh.patches.size(); ++pi)
     {
         const Patch& patch = mesh.patches[pi];
-        if (patch.type == "empty" || patch.n_faces == 0)
+        if (patch.type == "empty" || is_processor_patch(patch) || patch.n_faces == 0)
             continue;
         const PatchClaim pc = patch_claim(mesh, setup, pi, patches[pi]);
         if (patch.type == "wedge" || pc.motion.type == MotionType::slip)

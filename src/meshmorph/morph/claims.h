@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/morph/decomposition.h"
 #include "meshmorph/morph/empty_planes.h"
 #include "meshmorph/morph/morph_setup.h"
 #include "meshmorph/morph/patch_assignment.h"
@@ -51,6 +52,8 @@ struct ConstraintInputs
     std::function<Points(const std::string& file, const Points& query)> project_to_surface;
     //! assign_patches(mesh, setup) if the caller already computed it (else it is computed).
     const std::vector<PatchAssignment>* patches = nullptr;
+    //! -parallel: this rank's part of the decomposed mesh (null: the whole mesh).
+    const Decomposition* decomposition = nullptr;
 };
 
 //! \brief The claims of every boundary point, sorted by point (patch order within a point).

@@ -2,12 +2,8 @@
 // Boundary claims and handle claims, each resolved, then merged into one constraint set.
 #include "meshmorph/morph/constraints.h"
 
-#include <algorithm>
-#include <limits>
-#include <set>
-
-#include "meshmorph/core/exceptions.h"
-#include "meshmorph/morph/conflict_resolution.h"
+#include "meshmorph/morph/constraint_steps.h"
+#include "meshmorph/morph/distributed_constraints.h"
 #include "meshmorph/morph/handle_selection.h"
 
 namespace meshmorph::morph
@@ -16,187 +12,16 @@ namespace meshmorph::morph
 namespace
 {
 
-// Prescriptions of a point that differ by at most this fraction of its shortest boundary
-// edge agree "to the mesh's resolution" (conflict_resolution.h).
-constexpr double near_agreement_fraction = 0.1;
-// A value stays in a slip plane when its normal part is below this, relative to the value:
-// 10x patch_plane's planarity tolerance.
-constexpr double in_plane_tolerance = 1e-5;
-
-//! Two prescriptions agree when they differ by less than this: far below any motion
-//! meaningful for a mesh, far above round-off of the closed-form motions.
-double agreement_tolerance(const PolyMesh& mesh)
+Vector3 lower_corner(const PolyMesh& mesh)
 {
-    double diag = 1.0;
-    if (mesh.n_points() > 0)
-    {
-        const Vector3 lo = mesh.points.colwise().minCoeff().transpose();
-        const Vector3 hi = mesh.points.colwise().maxCoeff().transpose();
-        diag = std::max((hi - lo).norm(), constants::vsmall);
-    }
-    return 1e-12 * diag;
+    return mesh.n_points() > 0 ? Vector3(mesh.points.colwise().minCoeff().transpose())
+                               : Vector3::Zero();
 }
 
-//! Per point, the length of its shortest edge on a boundary face (infinity off the
-//! boundary).
-std::vector<double> shortest_boundary_edges(const PolyMesh& mesh)
+Vector3 upper_corner(const PolyMesh& mesh)
 {
-    std::vector<double> shortest(static_cast<std::size_t>(mesh.n_points()),
-                                 std::numeric_limits<double>::infinity());
-    for (Index f = mesh.n_internal_faces(); f < mesh.n_faces(); ++f)
-    {
-        const std::span<const Index> face = mesh.faces[f];
-        for (std::size_t i = 0; i < face.size(); ++i)
-        {
-            const Index a = face[i], b = face[(i + 1) % face.size()];
-            const double l = (mesh.points.row(a) - mesh.points.row(b)).norm();
-            for (Index p : {a, b})
-                shortest[static_cast<std::size_t>(p)] =
-                    std::min(shortest[static_cast<std::size_t>(p)], l);
-        }
-    }
-    return shortest;
-}
-
-//! "inlet/wall": the patches of the claims, sorted and joined.
-std::string patch_conflict_name(const PolyMesh& mesh, const std::vector<const Claim*>& claims)
-{
-    std::set<std::string> names;
-    for (const Claim* c : claims)
-        names.insert(mesh.patches[c->source].name);
-    std::string key;
-    for (const std::string& n : names)
-        key += (key.empty() ? "" : "/") + n;
-    return key;
-}
-
-//! "handles lift push": the handles of the claims, in dictionary order.
-std::string handle_conflict_name(const MorphSetup& setup, const std::vector<const Claim*>& claims)
-{
-    std::string key = "handles";
-    for (const Claim* c : claims)
-        key += " " + setup.handles[c->source].name;
-    return key;
-}
-
-std::string indented(const std::vector<std::string>& lines)
-{
-    std::string list;
-    for (const std::string& line : lines)
-        list += "\n    " + line;
-    return list;
-}
-
-//! The boundary claims resolved; counts and summary recorded in out.
-Resolution resolve_boundary(const PolyMesh& mesh, const MorphSetup& setup,
-                            const std::vector<Claim>& claims, double agree_tol, Constraints& out)
-{
-    const std::vector<double> edges = shortest_boundary_edges(mesh);
-    ResolveSettings s;
-    s.rule = setup.conflicts;
-    s.agree_tolerance = agree_tol;
-    s.in_plane_tolerance = in_plane_tolerance;
-    s.shortest_edges = &edges;
-    s.near_agreement = near_agreement_fraction;
-    s.conflict_name = [&](const std::vector<const Claim*>& c)
-    { return patch_conflict_name(mesh, c); };
-    Resolution r = resolve(claims, s);
-    out.n_free_points = r.n_free;
-    out.n_conflicts = r.n_conflicts;
-    out.n_near_agreements = r.n_near_agreements;
-    out.max_near_agreement = r.max_near_agreement;
-    out.conflict_summary = r.conflict_summary();
-    if (out.n_conflicts > 0 && setup.conflicts == ConflictRule::error)
-        throw InvalidInput(setup.dict_path + ": " + std::to_string(out.n_conflicts) +
-                           " points lie on patches with different prescriptions (conflicts "
-                           "error):" +
-                           indented(out.conflict_summary) +
-                           "\n  set 'conflicts' to fixed, first, last or average to resolve them");
-    return r;
-}
-
-//! The handle claims resolved by the same rule (no near agreements: handles are explicit).
-Resolution resolve_handles(const MorphSetup& setup, const std::vector<Claim>& claims,
-                           double agree_tol, Constraints& out)
-{
-    ResolveSettings s;
-    s.rule = setup.conflicts;
-    s.agree_tolerance = agree_tol;
-    s.conflict_name = [&](const std::vector<const Claim*>& c)
-    { return handle_conflict_name(setup, c); };
-    Resolution r = resolve(claims, s);
-    out.n_conflicts += r.n_conflicts;
-    const std::vector<std::string> summary = r.conflict_summary();
-    out.conflict_summary.insert(out.conflict_summary.end(), summary.begin(), summary.end());
-    if (!r.conflicts.empty() && setup.conflicts == ConflictRule::error)
-        throw InvalidInput(
-            setup.dict_path + ": overlapping handles prescribe different displacements (" +
-            r.conflicts.begin()->first + "); set 'conflicts' to fixed, first, last or average");
-    out.n_handle_points = static_cast<Index>(r.points.size());
-    return r;
-}
-
-void append_value(const Resolved& r, std::vector<Vector3>& values, Constraints& out)
-{
-    out.points.push_back(r.point);
-    values.push_back(r.value);
-    out.rotation_of.push_back(r.rotation);
-}
-
-//! Handles override boundary prescriptions; both lists are sorted by point. Returns the
-//! values of out.points (slip points go to out.slip_points).
-std::vector<Vector3> merge(const std::vector<Resolved>& boundary,
-                           const std::vector<Resolved>& handles, Constraints& out)
-{
-    std::vector<Vector3> values;
-    auto h = handles.begin();
-    for (const Resolved& r : boundary)
-    {
-        for (; h != handles.end() && h->point < r.point; ++h)
-            append_value(*h, values, out);
-        if (h != handles.end() && h->point == r.point)
-        {
-            ++out.n_handle_overrides;
-            append_value(*h++, values, out);
-        }
-        else if (r.is_slip)
-        {
-            out.slip_points.push_back(r.point);
-            out.slip_projectors.push_back(r.projector);
-        }
-        else
-            append_value(r, values, out);
-    }
-    for (; h != handles.end(); ++h)
-        append_value(*h, values, out);
-    return values;
-}
-
-bool any_motion(const std::vector<Claim>& claims, double tolerance)
-{
-    return std::any_of(claims.begin(), claims.end(),
-                       [&](const Claim& c)
-                       { return c.kind == Claim::Kind::value && c.value.norm() > tolerance; });
-}
-
-//! A dictionary that asks for motion (a non-zero prescription or handle) but resolves to
-//! none (every moving point also held by a conflict rule, say) is an error: a quiet success
-//! that writes unchanged points would mislead.
-void require_some_motion(const MorphSetup& setup, bool asked, const std::vector<Vector3>& values,
-                         const Constraints& out, double tolerance)
-{
-    const bool moves = std::any_of(values.begin(), values.end(),
-                                   [&](const Vector3& v) { return v.norm() > tolerance; });
-    if (!asked || moves)
-        return;
-    const std::string list = indented(out.conflict_summary);
-    throw InvalidInput(setup.dict_path +
-                       ": the dictionary asks for motion but every prescribed displacement "
-                       "resolves to zero, so nothing would move" +
-                       (list.empty()
-                            ? std::string(".")
-                            : " (conflicts resolved by rule '" + to_string(setup.conflicts) +
-                                  "':" + list + "\n  set 'conflicts' to first, last or average)"));
+    return mesh.n_points() > 0 ? Vector3(mesh.points.colwise().maxCoeff().transpose())
+                               : Vector3::Zero();
 }
 
 } // namespace
@@ -204,27 +29,28 @@ void require_some_motion(const MorphSetup& setup, bool asked, const std::vector<
 Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
                               const ConstraintInputs& inputs)
 {
+    if (inputs.decomposition != nullptr && inputs.decomposition->is_distributed())
+        return build_distributed_constraints(mesh, setup, inputs, *inputs.decomposition);
     Constraints out;
     out.conflict_rule = setup.conflicts;
     out.patches = inputs.patches != nullptr ? *inputs.patches : assign_patches(mesh, setup);
     out.empty_planes = find_empty_planes(mesh);
-    const double agree_tol = agreement_tolerance(mesh);
+    const double agree_tol = detail::agreement_tolerance(lower_corner(mesh), upper_corner(mesh));
 
     const std::vector<Claim> claims =
         collect_claims(mesh, setup, out.patches, inputs, out.empty_planes, out.rotations);
-    const Resolution boundary = resolve_boundary(mesh, setup, claims, agree_tol, out);
+    const Resolution boundary = detail::resolve_boundary(
+        mesh, setup, claims, detail::shortest_boundary_edges(mesh), agree_tol, out);
     const std::vector<Claim> handle_claims =
         collect_handle_claims(mesh, setup, out.empty_planes, agree_tol);
-    const Resolution handles = resolve_handles(setup, handle_claims, agree_tol, out);
+    const Resolution handles = detail::resolve_handles(setup, handle_claims, agree_tol, out);
 
-    const std::vector<Vector3> values = merge(boundary.points, handles.points, out);
-    require_some_motion(setup,
-                        any_motion(claims, agree_tol) || any_motion(handle_claims, agree_tol),
-                        values, out, agree_tol);
-    out.displacements.resize(static_cast<Eigen::Index>(values.size()), 3);
-    for (std::size_t i = 0; i < values.size(); ++i)
-        out.displacements.row(static_cast<Eigen::Index>(i)) =
-            in_plane(out.empty_planes, values[i]).transpose();
+    const std::vector<Vector3> values = detail::merge(boundary.points, handles.points, out);
+    detail::require_some_motion(setup,
+                                detail::any_motion(claims, agree_tol) ||
+                                    detail::any_motion(handle_claims, agree_tol),
+                                values, out, agree_tol);
+    detail::fill_displacements(values, out);
     return out;
 }
 

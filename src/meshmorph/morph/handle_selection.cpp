@@ -3,6 +3,7 @@
 #include "meshmorph/morph/handle_selection.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "meshmorph/core/exceptions.h"
 
@@ -40,17 +41,41 @@ std::vector<Index> box_points(const PolyMesh& mesh, const HandleEntry& handle)
     return selected;
 }
 
-//! The mesh point nearest to x; in a 2D case every point within `tolerance` of the nearest
-//! distance in the plane of the case (one per empty plane).
+bool distributed(const Decomposition* d)
+{
+    return d != nullptr && d->is_distributed();
+}
+
+//! The mesh point nearest to x (the lowest label among equally near ones); in a 2D case every
+//! point within `tolerance` of the nearest distance in the plane of the case (one per empty
+//! plane). Decomposed: the nearest over every rank, found where it lies.
 std::vector<Index> nearest_points(const PolyMesh& mesh, const Vector3& x,
-                                  const std::optional<EmptyPlanes>& planes, double tolerance)
+                                  const std::optional<EmptyPlanes>& planes, double tolerance,
+                                  const Decomposition* decomposition)
 {
     Points d = mesh.points.rowwise() - x.transpose();
     if (planes)
         planes->remove_normal(d);
     const Eigen::VectorXd dist = d.rowwise().norm();
     Eigen::Index nearest = 0;
-    const double closest = dist.minCoeff(&nearest);
+    double closest =
+        dist.size() > 0 ? dist.minCoeff(&nearest) : std::numeric_limits<double>::infinity();
+    if (distributed(decomposition))
+    {
+        const parallel::Communicator& comm = *decomposition->comm;
+        const double global = comm.min(closest);
+        const std::int64_t mine = closest == global && dist.size() > 0
+                                      ? decomposition->global_point[std::size_t(nearest)]
+                                      : std::numeric_limits<std::int64_t>::max();
+        const std::int64_t label = -comm.max(-mine);
+        closest = global;
+        nearest = -1;
+        for (Index p = 0; p < mesh.n_points() && !planes; ++p)
+            if (decomposition->global_point[std::size_t(p)] == label)
+                nearest = p;
+        if (!planes)
+            return nearest < 0 ? std::vector<Index>{} : std::vector<Index>{Index(nearest)};
+    }
     if (!planes)
         return {static_cast<Index>(nearest)};
     std::vector<Index> out;
@@ -61,11 +86,13 @@ std::vector<Index> nearest_points(const PolyMesh& mesh, const Vector3& x,
 }
 
 std::vector<Index> nearest_to_positions(const PolyMesh& mesh, const HandleEntry& handle,
-                                        const std::optional<EmptyPlanes>& planes, double tolerance)
+                                        const std::optional<EmptyPlanes>& planes, double tolerance,
+                                        const Decomposition* decomposition)
 {
     std::vector<Index> selected;
     for (Eigen::Index k = 0; k < handle.points.rows(); ++k)
-        for (Index p : nearest_points(mesh, handle.points.row(k).transpose(), planes, tolerance))
+        for (Index p : nearest_points(mesh, handle.points.row(k).transpose(), planes, tolerance,
+                                      decomposition))
             selected.push_back(p);
     return selected;
 }
@@ -74,7 +101,8 @@ std::vector<Index> nearest_to_positions(const PolyMesh& mesh, const HandleEntry&
 
 std::vector<Index> select_handle_points(const PolyMesh& mesh, const HandleEntry& handle,
                                         const std::optional<EmptyPlanes>& planes, double tolerance,
-                                        const std::string& dict_path)
+                                        const std::string& dict_path,
+                                        const Decomposition* decomposition)
 {
     std::vector<Index> selected;
     switch (handle.selection)
@@ -86,10 +114,13 @@ std::vector<Index> select_handle_points(const PolyMesh& mesh, const HandleEntry&
         selected = box_points(mesh, handle);
         break;
     case HandleEntry::Selection::points:
-        selected = nearest_to_positions(mesh, handle, planes, tolerance);
+        selected = nearest_to_positions(mesh, handle, planes, tolerance, decomposition);
         break;
     }
-    if (selected.empty())
+    const bool none = distributed(decomposition)
+                          ? decomposition->comm->sum(std::int64_t(selected.size())) == 0
+                          : selected.empty();
+    if (none)
         throw ParseError(dict_path, handle.line,
                          "handles entry '" + handle.name + "' selects no mesh point");
     for (Index p : selected)
@@ -100,14 +131,16 @@ std::vector<Index> select_handle_points(const PolyMesh& mesh, const HandleEntry&
 }
 
 std::vector<Claim> collect_handle_claims(const PolyMesh& mesh, const MorphSetup& setup,
-                                         const std::optional<EmptyPlanes>& planes, double tolerance)
+                                         const std::optional<EmptyPlanes>& planes, double tolerance,
+                                         const Decomposition* decomposition)
 {
     std::vector<Claim> claims;
     for (std::size_t h = 0; h < setup.handles.size(); ++h)
     {
         const HandleEntry& handle = setup.handles[h];
         const Index source = static_cast<Index>(h);
-        for (Index p : select_handle_points(mesh, handle, planes, tolerance, setup.dict_path))
+        for (Index p :
+             select_handle_points(mesh, handle, planes, tolerance, setup.dict_path, decomposition))
             claims.push_back({p, source, source, Claim::Kind::value, handle.displacement});
     }
     std::stable_sort(claims.begin(), claims.end(),

@@ -11,6 +11,7 @@
 
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/morph/claims.h"
+#include "meshmorph/morph/decomposition.h"
 #include "meshmorph/morph/empty_planes.h"
 #include "meshmorph/morph/morph_setup.h"
 
@@ -28,7 +29,7 @@ std::vector<Index> select_handle_points(const PolyMesh& mesh, const HandleEntry&
 //! \brief One value claim per handle and selected point (source and order: the handle's
 //! index), sorted by point; a handle listing a point twice claims it once.
 std::vector<Claim> collect_handle_claims(const PolyMesh& mesh, const MorphSetup& setup,
-                                         const std::optional<EmptyPlanes>& planes,
-                                         double tolerance);
+                                         const std::optional<EmptyPlanes>& planes, double tolerance,
+                                         const Decomposition* decomposition = nullptr);
 
 } // namespace meshmorph::morph

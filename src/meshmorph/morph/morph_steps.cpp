@@ -96,6 +96,8 @@ public:
             invalid_ = invalid_cell_flags(mesh_, cell_faces_, compute_geometry(mesh_, cell_faces_));
         return invalid_;
     }
+    //! Interior points (in a -parallel run also not on processor patches: a point shared
+    //! with another rank must move alike on both, so the repair leaves it).
     const std::vector<char>& movable_points()
     {
         if (movable_.empty())
@@ -113,15 +115,50 @@ private:
     std::vector<char> invalid_, movable_;
 };
 
+//! The ranks of the run (one rank without a decomposition).
+const parallel::Communicator& communicator(const Decomposition* decomposition)
+{
+    static const parallel::Communicator& serial = parallel::Communicator::world();
+    return decomposition != nullptr && decomposition->is_distributed() ? *decomposition->comm
+                                                                       : serial;
+}
+
+//! Invalid cells counted over every rank (a cell lives on one rank only).
+InvalidCells global_invalid_cells(const PolyMesh& mesh, const MeshGeometry& geometry,
+                                  const parallel::Communicator& comm)
+{
+    InvalidCells local = count_invalid_cells(mesh, geometry);
+    return {Index(comm.sum(std::int64_t(local.negative_volume_cells))),
+            Index(comm.sum(std::int64_t(local.wrong_pyramids)))};
+}
+
+//! The corners of the bounding box of every rank's points (2 x 3): what a deformation's
+//! lattice is sized from, alike on every rank.
+Points bounding_corners(const Points& x, const parallel::Communicator& comm)
+{
+    Points corners(2, 3);
+    for (int k = 0; k < 3; ++k)
+    {
+        corners(0, k) = comm.min(x.rows() > 0 ? x.col(k).minCoeff() : constants::vgreat);
+        corners(1, k) = comm.max(x.rows() > 0 ? x.col(k).maxCoeff() : -constants::vgreat);
+    }
+    return corners;
+}
+
 //! Untangle the step's new invalid cells in place and recount them.
 void repair(PolyMesh& current, const CompactList& cell_faces, MeshGeometry& geometry,
-            OriginalState& original, StepRecord& record)
+            OriginalState& original, StepRecord& record, const parallel::Communicator& comm)
 {
     const Stopwatch clock;
     record.untangle = untangle_cells(current, cell_faces, geometry, original.points(),
                                      original.invalid_cells(), original.movable_points(), {});
-    record.invalid = count_invalid_cells(current, geometry);
-    record.untangle_seconds = clock.seconds();
+    record.untangle.invalid_before = comm.sum(std::int64_t(record.untangle.invalid_before));
+    record.untangle.invalid_after = comm.sum(std::int64_t(record.untangle.invalid_after));
+    record.untangle.points_moved = comm.sum(std::int64_t(record.untangle.points_moved));
+    record.untangle.max_move = comm.max(record.untangle.max_move);
+    record.untangle.layers = int(comm.max(std::int64_t(record.untangle.layers)));
+    record.invalid = global_invalid_cells(current, geometry, comm);
+    record.untangle_seconds = comm.max(clock.seconds());
 }
 
 } // namespace
@@ -160,12 +197,13 @@ Points prescribed_at(const Constraints& c, const Points& x0, double t)
     return d;
 }
 
-void measure_constraint_error(const Constraints& c, const Points& x0, PointMorph& m)
+void measure_constraint_error(const Constraints& c, const Points& x0, PointMorph& m,
+                              const Decomposition* decomposition)
 {
+    const parallel::Communicator& comm = communicator(decomposition);
     const Points prescribed = prescribed_at(c, x0, 1.0);
-    double diag = 1.0;
-    if (x0.rows() > 0)
-        diag = (x0.colwise().maxCoeff() - x0.colwise().minCoeff()).norm();
+    const Points corners = bounding_corners(x0, comm);
+    const double diag = x0.rows() > 0 ? (corners.row(1) - corners.row(0)).norm() : 1.0;
     m.max_prescribed = 0.0;
     m.max_constraint_error = 0.0;
     for (std::size_t i = 0; i < c.points.size(); ++i)
@@ -175,13 +213,17 @@ void measure_constraint_error(const Constraints& c, const Points& x0, PointMorph
         m.max_constraint_error = std::max(
             m.max_constraint_error, (m.displacement.row(c.points[i]) - prescribed.row(r)).norm());
     }
+    m.max_prescribed = comm.max(m.max_prescribed);
+    m.max_constraint_error = comm.max(m.max_constraint_error);
     m.relative_constraint_error = m.max_constraint_error / std::max(m.max_prescribed, 1e-12 * diag);
 }
 
 SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
                             const Constraints& c, const StepSettings& settings,
-                            const DeformationMaker& make, bool fit, const InvalidCells& before)
+                            const DeformationMaker& make, bool fit, const InvalidCells& before,
+                            const Decomposition* decomposition)
 {
+    const parallel::Communicator& comm = communicator(decomposition);
     SteppedMorph out;
     OriginalState original(mesh, cell_faces);
     // One working mesh: its points are the accepted state, or a trial swapped in and out.
@@ -203,8 +245,9 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         else
             record.to = stuck ? 1.0 : std::min(1.0, done + length);
         const Constraints step = step_constraints(c, mesh.points, current.points, record.to);
-        std::unique_ptr<SpaceDeformation> deformation = make(current.points);
-        PointMorph m = morph_points(current, step, *deformation, fit);
+        std::unique_ptr<SpaceDeformation> deformation =
+            make(bounding_corners(current.points, comm));
+        PointMorph m = morph_points(current, step, *deformation, fit, false, decomposition);
         record.centres = m.report.num_centres;
         record.max_global_residual =
             m.report.max_residual / std::max(m.report.max_displacement, 1e-300);
@@ -214,10 +257,10 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         std::swap(current.points, other); // current: the trial; other: the accepted state
         const Stopwatch check_clock;
         MeshGeometry geometry = compute_geometry(current, cell_faces);
-        record.invalid = count_invalid_cells(current, geometry);
-        record.check_seconds = check_clock.seconds();
+        record.invalid = global_invalid_cells(current, geometry, comm);
+        record.check_seconds = comm.max(check_clock.seconds());
         if (settings.untangle && record.invalid.worse_than(before))
-            repair(current, cell_faces, geometry, original, record);
+            repair(current, cell_faces, geometry, original, record, comm);
         const bool failed = record.invalid.worse_than(before);
         const bool redo = failed && is_auto && !stuck && length > shortest * 1.5;
         record.accepted = !redo;

@@ -72,7 +72,8 @@ struct SteppedMorph
     double valid_fraction = 1.0;
 };
 
-//! Builds a fresh deformation for a step, given the current mesh points.
+//! Builds a fresh deformation for a step, given the corners of the current points' bounding
+//! box (2 x 3; over every rank in a -parallel run).
 using DeformationMaker = std::function<std::unique_ptr<SpaceDeformation>(const Points&)>;
 
 //! \brief Displacements of the constrained points (rows of c.points) from x0 at fraction t.
@@ -80,13 +81,17 @@ Points prescribed_at(const Constraints& c, const Points& x0, double t);
 
 //! \brief Set m.max_prescribed and the constraint errors of m.displacement (from the
 //! original points x0) against the whole prescribed motion of c.
-void measure_constraint_error(const Constraints& c, const Points& x0, PointMorph& m);
+void measure_constraint_error(const Constraints& c, const Points& x0, PointMorph& m,
+                              const Decomposition* decomposition = nullptr);
 
 //! \brief Morph `mesh` in steps. \param fit false: one step with the deformation as made
-//! (FFD). \param before the original mesh's invalid counts. \throw as morph_points().
+//! (FFD). \param before the original mesh's invalid counts (over every rank).
+//! \param decomposition -parallel: this rank's part (every decision is global: counts are
+//! summed over the ranks, the master fits). \throw as morph_points().
 SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
                             const Constraints& c, const StepSettings& settings,
-                            const DeformationMaker& make, bool fit, const InvalidCells& before);
+                            const DeformationMaker& make, bool fit, const InvalidCells& before,
+                            const Decomposition* decomposition = nullptr);
 
 //! "auto" or the number.
 std::string describe(const StepSettings& settings);

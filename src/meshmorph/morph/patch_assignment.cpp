@@ -19,11 +19,6 @@ bool is_constraint_type(const std::string& type)
     return type == "empty" || type == "wedge";
 }
 
-bool is_processor_type(const std::string& type)
-{
-    return type == "processor" || type == "processorCyclic";
-}
-
 //! Patch groups a key may name: inGroups plus the patch type for constraint-like types
 //! (OpenFOAM adds wall, empty, wedge, symmetryPlane, ... automatically).
 std::vector<std::string> patch_groups(const Patch& patch)
@@ -199,7 +194,13 @@ void require_every_entry_used(const PolyMesh& mesh, const MorphSetup& setup, con
 
 } // namespace
 
-std::vector<PatchAssignment> assign_patches(const PolyMesh& mesh, const MorphSetup& setup)
+bool is_processor_patch(const Patch& patch)
+{
+    return patch.type == "processor" || patch.type == "processorCyclic";
+}
+
+std::vector<PatchAssignment> assign_patches(const PolyMesh& mesh, const MorphSetup& setup,
+                                            bool decomposed)
 {
     const Regexes regexes = compile_regexes(setup);
     const Index default_entry = find_default_entry(setup);
@@ -208,10 +209,15 @@ std::vector<PatchAssignment> assign_patches(const PolyMesh& mesh, const MorphSet
     result.reserve(mesh.patches.size());
     for (const Patch& patch : mesh.patches)
     {
-        if (is_processor_type(patch.type))
+        if (is_processor_patch(patch) && !decomposed)
             throw InvalidInput("patch '" + patch.name + "' is of type " + patch.type +
-                               ": decomposed/processor patches not supported yet "
-                               "(run morphMesh on the reconstructed case)");
+                               ": a processor directory is part of a decomposed case (run "
+                               "morphMesh -parallel on the case, or on the reconstructed case)");
+        if (is_processor_patch(patch))
+        {
+            result.push_back({patch.name, patch.type, MotionType::free, "processor", -1, 0});
+            continue;
+        }
         const Matches m = match_entries(patch, setup, regexes, entry_used);
         PatchAssignment a;
         a.patch = patch.name;

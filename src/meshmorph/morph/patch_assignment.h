@@ -30,9 +30,15 @@ struct PatchAssignment
     Index n_points = 0;
 };
 
+//! processor and processorCyclic patches: the faces a decomposed mesh shares with another
+//! rank (internal faces of the undecomposed mesh).
+bool is_processor_patch(const Patch& patch);
+
 //! Decide the prescription of every patch (in mesh patch order).
 //! \throw ParseError (dict path + entry line) for a key matching nothing, a constraint patch
 //! (empty/wedge) given another type; InvalidInput for processor patches.
-std::vector<PatchAssignment> assign_patches(const PolyMesh& mesh, const MorphSetup& setup);
+//! \param decomposed processor patches are internal (matched_by "processor"), not an error.
+std::vector<PatchAssignment> assign_patches(const PolyMesh& mesh, const MorphSetup& setup,
+                                            bool decomposed = false);
 
 } // namespace meshmorph::morph

@@ -5,11 +5,14 @@
 #include <algorithm>
 #include <limits>
 #include <numeric>
+#include <tuple>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/progress.h"
 #include "meshmorph/core/stopwatch.h"
+#include "meshmorph/deform/field_io.h"
 #include "meshmorph/deform/uniform_grid.h"
+#include "meshmorph/parallel/collective.h"
 
 namespace meshmorph::morph
 {
@@ -122,11 +125,10 @@ FitHandles merge_coincident(const FitHandles& h, double same)
 
 //! The handles to fit: the constrained points at their evaluation positions; in 2D,
 //! coincident ones merged.
-FitHandles fit_handles(const Points& x_eval, const std::vector<Index>& points,
-                       const Points& prescribed, const Constraints& c)
+FitHandles fit_handles(const Points& positions, const Points& prescribed, const Constraints& c)
 {
-    FitHandles h{gather(x_eval, points), prescribed};
-    if (!c.empty_planes || points.size() < 2)
+    FitHandles h{positions, prescribed};
+    if (!c.empty_planes || positions.rows() < 2)
         return h;
     const double diag =
         (h.positions.colwise().maxCoeff() - h.positions.colwise().minCoeff()).norm();
@@ -136,52 +138,144 @@ FitHandles fit_handles(const Points& x_eval, const std::vector<Index>& points,
     return merge_coincident(h, 1e-10 * diag);
 }
 
-//! Constrained points and their prescriptions, sorted by point.
+//! What the fit needs: the constrained points (by label: the mesh point, or in a -parallel
+//! run its label in the undecomposed mesh), where they are evaluated and their
+//! prescriptions, sorted by label; the slip points likewise with their projectors.
+struct FitInput
+{
+    std::vector<Index> labels;
+    Points positions, values;
+    std::vector<Index> slip_labels;
+    Points slip_positions;
+    std::vector<Eigen::Matrix3d> slip_projectors;
+};
+
+FitInput local_fit_input(const Points& x_eval, const Constraints& c)
+{
+    return {c.points,      gather(x_eval, c.points),      c.displacements,
+            c.slip_points, gather(x_eval, c.slip_points), c.slip_projectors};
+}
+
+//! One point as it travels to the master: label, position, value or projector.
+struct WirePoint
+{
+    Index label = 0;
+    double position[3] = {0, 0, 0};
+    double data[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+};
+
+std::vector<WirePoint> to_wire(const std::vector<Index>& points, const Points& x_eval,
+                               const Decomposition& d, const auto& data_of)
+{
+    std::vector<WirePoint> out(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+        out[i].label = d.global_point[std::size_t(points[i])];
+        for (int k = 0; k < 3; ++k)
+            out[i].position[k] = x_eval(points[i], k);
+        data_of(i, out[i].data);
+    }
+    return out;
+}
+
+//! Every rank's points on the master, sorted by label, a shared point once.
+std::vector<WirePoint> sorted_unique(const std::vector<std::vector<WirePoint>>& all)
+{
+    std::vector<WirePoint> out;
+    for (const std::vector<WirePoint>& rank : all)
+        out.insert(out.end(), rank.begin(), rank.end());
+    std::stable_sort(out.begin(), out.end(),
+                     [](const WirePoint& a, const WirePoint& b) { return a.label < b.label; });
+    out.erase(std::unique(out.begin(), out.end(),
+                          [](const WirePoint& a, const WirePoint& b)
+                          { return a.label == b.label; }),
+              out.end());
+    return out;
+}
+
+//! -parallel: the fit input of every rank, on the master (empty elsewhere).
+FitInput gathered_fit_input(const Points& x_eval, const Constraints& c, const Decomposition& d)
+{
+    const auto values = [&](std::size_t i, double* data)
+    {
+        for (int k = 0; k < 3; ++k)
+            data[k] = c.displacements(Eigen::Index(i), k);
+    };
+    const auto projectors = [&](std::size_t i, double* data)
+    { std::copy(c.slip_projectors[i].data(), c.slip_projectors[i].data() + 9, data); };
+    const auto fixed = d.comm->gather_values(to_wire(c.points, x_eval, d, values));
+    const auto slip = d.comm->gather_values(to_wire(c.slip_points, x_eval, d, projectors));
+    FitInput in;
+    if (!d.comm->master())
+        return in;
+    const std::vector<WirePoint> f = sorted_unique(fixed), s = sorted_unique(slip);
+    in.positions.resize(Eigen::Index(f.size()), 3);
+    in.values.resize(Eigen::Index(f.size()), 3);
+    for (std::size_t i = 0; i < f.size(); ++i)
+    {
+        in.labels.push_back(f[i].label);
+        in.positions.row(Eigen::Index(i)) << f[i].position[0], f[i].position[1], f[i].position[2];
+        in.values.row(Eigen::Index(i)) << f[i].data[0], f[i].data[1], f[i].data[2];
+    }
+    in.slip_positions.resize(Eigen::Index(s.size()), 3);
+    for (std::size_t i = 0; i < s.size(); ++i)
+    {
+        in.slip_labels.push_back(s[i].label);
+        in.slip_positions.row(Eigen::Index(i)) << s[i].position[0], s[i].position[1],
+            s[i].position[2];
+        in.slip_projectors.push_back(Eigen::Map<const Eigen::Matrix3d>(s[i].data));
+    }
+    return in;
+}
+
+//! Constrained points (labels) and their prescriptions, sorted by label.
 struct Prescription
 {
     std::vector<Index> points;
+    Points positions;
     Points values;
 };
 
 //! The slip points' prescriptions: the tangential part of a first fit without them (zero if
 //! nothing else is prescribed).
-Points slip_prescriptions(const Points& x_eval, const Prescription& fixed, const Constraints& c,
-                          SpaceDeformation& deformation)
+Points slip_prescriptions(const FitInput& in, const Constraints& c, SpaceDeformation& deformation)
 {
-    Points slip_values = Points::Zero(static_cast<Eigen::Index>(c.slip_points.size()), 3);
-    if (fixed.points.empty())
+    Points slip_values = Points::Zero(static_cast<Eigen::Index>(in.slip_labels.size()), 3);
+    if (in.labels.empty())
         return slip_values;
-    const FitHandles first = fit_handles(x_eval, fixed.points, fixed.values, c);
+    const FitHandles first = fit_handles(in.positions, in.values, c);
     deformation.fit(first.positions, first.values);
     Points d_slip(slip_values.rows(), 3);
-    deformation.evaluate(gather(x_eval, c.slip_points), d_slip);
+    deformation.evaluate(in.slip_positions, d_slip);
     for (Eigen::Index i = 0; i < d_slip.rows(); ++i)
         slip_values.row(i) =
-            (c.slip_projectors[static_cast<std::size_t>(i)] * d_slip.row(i).transpose())
+            (in.slip_projectors[static_cast<std::size_t>(i)] * d_slip.row(i).transpose())
                 .transpose();
     remove_empty_normal(slip_values, c);
     return slip_values;
 }
 
-//! Both prescriptions in one, sorted by point (the handle order does not matter to the fit,
-//! but sorted order keeps runs reproducible).
-Prescription merged(const Prescription& a, const std::vector<Index>& b_points,
-                    const Points& b_values)
+//! The constrained and the slip points in one prescription, sorted by label (the handle
+//! order does not matter to the fit, but sorted order keeps runs reproducible).
+Prescription merged(const FitInput& in, const Points& slip_values)
 {
-    std::vector<std::pair<Index, Vector3>> all;
-    all.reserve(a.points.size() + b_points.size());
-    for (std::size_t i = 0; i < a.points.size(); ++i)
-        all.emplace_back(a.points[i], a.values.row(static_cast<Eigen::Index>(i)).transpose());
-    for (std::size_t i = 0; i < b_points.size(); ++i)
-        all.emplace_back(b_points[i], b_values.row(static_cast<Eigen::Index>(i)).transpose());
+    std::vector<std::tuple<Index, Vector3, Vector3>> all;
+    all.reserve(in.labels.size() + in.slip_labels.size());
+    for (std::size_t i = 0; i < in.labels.size(); ++i)
+        all.emplace_back(in.labels[i], in.positions.row(Eigen::Index(i)).transpose(),
+                         in.values.row(Eigen::Index(i)).transpose());
+    for (std::size_t i = 0; i < in.slip_labels.size(); ++i)
+        all.emplace_back(in.slip_labels[i], in.slip_positions.row(Eigen::Index(i)).transpose(),
+                         slip_values.row(Eigen::Index(i)).transpose());
     std::sort(all.begin(), all.end(),
-              [](const auto& x, const auto& y) { return x.first < y.first; });
-    Prescription out{std::vector<Index>(all.size()),
-                     Points(static_cast<Eigen::Index>(all.size()), 3)};
+              [](const auto& x, const auto& y) { return std::get<0>(x) < std::get<0>(y); });
+    const Eigen::Index n = static_cast<Eigen::Index>(all.size());
+    Prescription out{std::vector<Index>(all.size()), Points(n, 3), Points(n, 3)};
     for (std::size_t i = 0; i < all.size(); ++i)
     {
-        out.points[i] = all[i].first;
-        out.values.row(static_cast<Eigen::Index>(i)) = all[i].second.transpose();
+        out.points[i] = std::get<0>(all[i]);
+        out.positions.row(Eigen::Index(i)) = std::get<1>(all[i]).transpose();
+        out.values.row(Eigen::Index(i)) = std::get<2>(all[i]).transpose();
     }
     return out;
 }
@@ -189,19 +283,16 @@ Prescription merged(const Prescription& a, const std::vector<Index>& b_points,
 //! Fit to the constraints, slip points included (their prescriptions from a first fit).
 //! Fitted where the field is evaluated (2D: on the reference empty plane), so an
 //! interpolating field meets the constrained points exactly.
-Prescription fit_constraints(const Points& x_eval, const Constraints& c,
-                             SpaceDeformation& deformation, PointMorph& result)
+Prescription fit_constraints(const FitInput& in, const Constraints& c,
+                             SpaceDeformation& deformation)
 {
-    Prescription p{c.points, c.displacements};
-    if (p.points.empty() && c.slip_points.empty())
+    if (in.labels.empty() && in.slip_labels.empty())
         throw InvalidInput("nothing to fit: no point has a prescribed displacement (every "
                            "patch is free or slip and there are no handles)");
-    if (!c.slip_points.empty())
-    {
-        p = merged(p, c.slip_points, slip_prescriptions(x_eval, p, c, deformation));
-        result.n_slip = static_cast<Index>(c.slip_points.size());
-    }
-    const FitHandles handles = fit_handles(x_eval, p.points, p.values, c);
+    Prescription p{in.labels, in.positions, in.values};
+    if (!in.slip_labels.empty())
+        p = merged(in, slip_prescriptions(in, c, deformation));
+    const FitHandles handles = fit_handles(p.positions, p.values, c);
     deformation.fit(handles.positions, handles.values);
     return p;
 }
@@ -227,16 +318,80 @@ double diagonal(const Points& x)
     return x.rows() > 0 ? (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm() : 1.0;
 }
 
-} // namespace
-
-PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeformation& deformation,
-                        bool fit, bool snap)
+//! -parallel: the master fits (the gathered constraints are those of a serial run, in its
+//! order) and sends the field; every rank evaluates it at its own points. The residual is
+//! measured on the master at the fit's own points. No snapping (not used in steps).
+PointMorph morph_points_distributed(const PolyMesh& mesh, const Constraints& c,
+                                    SpaceDeformation& deformation, bool fit, const Decomposition& d)
 {
+    const parallel::Communicator& comm = *d.comm;
     PointMorph result;
     const Points x_eval = evaluation_positions(mesh.points, c);
     const Stopwatch fit_clock;
-    const Prescription p = fit ? fit_constraints(x_eval, c, deformation, result)
-                               : Prescription{c.points, c.displacements};
+    std::unique_ptr<SpaceDeformation> received;
+    const SpaceDeformation* field = &deformation;
+    std::vector<double> counts(4, 0.0); // constraints, slip points, max prescribed, residual
+    if (fit)
+    {
+        const FitInput in = gathered_fit_input(x_eval, c, d);
+        std::string bytes;
+        parallel::on_master(comm,
+                            [&]
+                            {
+                                const Prescription p = fit_constraints(in, c, deformation);
+                                Points at_handles(p.positions.rows(), 3);
+                                deformation.evaluate(p.positions, at_handles);
+                                remove_empty_normal(at_handles, c);
+                                counts = {double(p.points.size()), double(in.slip_labels.size()),
+                                          max_norm(p.values), max_norm(at_handles - p.values)};
+                                bytes = write_field(deformation);
+                            });
+        bytes = comm.broadcast(bytes);
+        counts = comm.broadcast_values(counts);
+        if (!comm.master())
+        {
+            received = read_field(bytes);
+            field = received.get();
+        }
+    }
+    result.report = field->report();
+    result.fit_seconds = fit_clock.seconds();
+    result.n_constraints = static_cast<Index>(counts[0]);
+    result.n_slip = static_cast<Index>(counts[1]);
+
+    const Stopwatch eval_clock;
+    evaluate_with_progress(*field, x_eval, result.displacement, "evaluate");
+    remove_empty_normal(result.displacement, c);
+    result.evaluate_seconds = eval_clock.seconds();
+
+    Vector3 lo = Vector3::Zero(), hi = Vector3::Zero();
+    for (int k = 0; k < 3 && mesh.n_points() > 0; ++k)
+    {
+        lo[k] = comm.min(mesh.points.col(k).minCoeff());
+        hi[k] = comm.max(mesh.points.col(k).maxCoeff());
+    }
+    result.max_prescribed = counts[2];
+    result.max_fit_residual = counts[3];
+    result.max_constraint_error = counts[3];
+    const double scale = std::max(result.max_prescribed, 1e-12 * (hi - lo).norm());
+    result.relative_fit_residual = result.max_fit_residual / scale;
+    result.relative_constraint_error = result.max_constraint_error / scale;
+    return result;
+}
+
+} // namespace
+
+PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeformation& deformation,
+                        bool fit, bool snap, const Decomposition* decomposition)
+{
+    if (decomposition != nullptr && decomposition->is_distributed())
+        return morph_points_distributed(mesh, c, deformation, fit, *decomposition);
+    PointMorph result;
+    const Points x_eval = evaluation_positions(mesh.points, c);
+    const Stopwatch fit_clock;
+    const Prescription p = fit ? fit_constraints(local_fit_input(x_eval, c), c, deformation)
+                               : Prescription{c.points, gather(x_eval, c.points), c.displacements};
+    result.n_slip = fit ? static_cast<Index>(c.slip_points.size()) : 0;
     result.report = deformation.report();
     result.fit_seconds = fit_clock.seconds();
     result.n_constraints = static_cast<Index>(p.points.size());

@@ -47,7 +47,10 @@ struct PointMorph
 //! their target while the interior follows the smooth field; the residual is still reported
 //! (max_fit_residual). Not for DM-FFD/FFD, whose residual is the method's least-squares error.
 //! \throw InvalidInput if there are no constraints (and fit is true); SolverError.
+//! \param decomposition -parallel: this rank's part; the master fits, every rank evaluates (a
+//! collective: call on every rank; `deformation` is used on the master only).
 PointMorph morph_points(const PolyMesh& mesh, const Constraints& constraints,
-                        SpaceDeformation& deformation, bool fit = true, bool snap = false);
+                        SpaceDeformation& deformation, bool fit = true, bool snap = false,
+                        const Decomposition* decomposition = nullptr);
 
 } // namespace meshmorph::morph

@@ -4,7 +4,8 @@
 # constraint set (constraints); one fit and evaluation (point_morph), the step loop
 # (morph_steps) and the repair of cells a step inverts (local_untangle). 2D cases keep
 # their empty planes (empty_planes); slip and wedge patches their plane (patch_plane).
-# Depends on core, io (morphDict), quality (geometry, validity) and deform.
+# A -parallel run resolves the constraints on the master (distributed_constraints).
+# Depends on core, parallel, io (morphDict), quality (geometry, validity) and deform.
 set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/motion.cpp
     meshmorph/morph/morph_setup.cpp
@@ -14,11 +15,13 @@ set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/claims.cpp
     meshmorph/morph/conflict_resolution.cpp
     meshmorph/morph/handle_selection.cpp
+    meshmorph/morph/constraint_steps.cpp
     meshmorph/morph/constraints.cpp
+    meshmorph/morph/distributed_constraints.cpp
     meshmorph/morph/point_morph.cpp
     meshmorph/morph/morph_steps.cpp
     meshmorph/morph/local_untangle.cpp
 )
 meshmorph_add_component(morph
     SOURCES ${MESHMORPH_MORPH_SOURCES}
-    DEPENDS meshmorph::core meshmorph::io meshmorph::quality meshmorph::deform)
+    DEPENDS meshmorph::core meshmorph::parallel meshmorph::io meshmorph::quality meshmorph::deform)

@@ -5,5 +5,5 @@ if(MESHMORPH_WITH_MPI)
     list(APPEND meshmorph_parallel_deps MPI::MPI_CXX)
 endif()
 meshmorph_add_component(parallel
-    SOURCES meshmorph/parallel/communicator.cpp
+    SOURCES meshmorph/parallel/communicator.cpp meshmorph/parallel/collective.cpp
     DEPENDS ${meshmorph_parallel_deps})
