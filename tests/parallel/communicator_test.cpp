@@ -3,6 +3,9 @@
 // on several ranks under mpirun (parallel_mpi_tests, main below starts MPI).
 #include "meshmorph/parallel/communicator.h"
 
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/parallel/collective.h"
+
 #include <memory>
 #include <numeric>
 
@@ -59,6 +62,32 @@ TEST(Communicator, gather_broadcast_and_scatter_move_bytes_by_rank)
         for (int k = 0; k < n; ++k)
             parts.push_back(std::vector<int>(std::size_t(k), k));
     EXPECT_EQ(comm().scatter_values(parts), std::vector<int>(std::size_t(r), r));
+}
+
+TEST(Collective, an_error_on_one_rank_is_thrown_on_every_rank)
+{
+    const int last = comm().size() - 1;
+    try
+    {
+        collective(comm(),
+                   [&]
+                   {
+                       if (comm().rank() == last)
+                           throw IoError("disk full");
+                   });
+        FAIL() << "no error";
+    }
+    catch (const IoError& e)
+    {
+        const std::string expected = comm().rank() == last || !comm().is_parallel()
+                                         ? "disk full"
+                                         : "processor" + std::to_string(last) + ": disk full";
+        EXPECT_EQ(std::string(e.what()), expected);
+    }
+    // Nothing thrown anywhere: nothing thrown.
+    EXPECT_NO_THROW(collective(comm(), [] {}));
+    // on_master: the master's error on every rank, with its type.
+    EXPECT_THROW(on_master(comm(), [] { throw SolverError("singular"); }), SolverError);
 }
 
 TEST(Communicator, is_parallel_only_in_a_parallel_session)

@@ -29,6 +29,8 @@
 #include "meshmorph/io/point_field.h"
 #include "meshmorph/io/read_poly_mesh.h"
 #include "meshmorph/io/write_poly_mesh.h"
+#include "meshmorph/parallel/collective.h"
+#include "meshmorph/quality/cell_validity.h"
 #include "meshmorph/quality/quality_json.h"
 #if MESHMORPH_WITH_VTK
 #include "meshmorph/io/vtk_writer.h"
@@ -115,6 +117,112 @@ void warn_if_replacing(const fs::path& case_dir, const std::string& instance,
                               "keep it)";
 }
 
+//! <case>/processor<rank>: this rank's part of a decomposed case. Every rank checks its own;
+//! the master checks that there is one per rank (OpenFOAM's rule for -parallel).
+fs::path processor_case(const fs::path& case_dir, const parallel::Communicator& comm)
+{
+    const fs::path dir = case_dir / ("processor" + std::to_string(comm.rank()));
+    parallel::collective(comm,
+                         [&]
+                         {
+                             if (!fs::is_directory(dir))
+                                 throw IoError(dir.string() +
+                                               " does not exist: -parallel needs a decomposed case "
+                                               "(decomposePar) with one processor directory per "
+                                               "rank");
+                         });
+    parallel::on_master(comm,
+                        [&]
+                        {
+                            std::size_t n = 0;
+                            for (const fs::directory_entry& e : fs::directory_iterator(case_dir))
+                                n += e.is_directory() &&
+                                     e.path().filename().string().rfind("processor", 0) == 0 &&
+                                     e.path().filename().string() != "processors";
+                            if (n != std::size_t(comm.size()))
+                                throw InvalidInput("the case has " + std::to_string(n) +
+                                                   " processor directories but the run has " +
+                                                   std::to_string(comm.size()) +
+                                                   " ranks: run mpirun -np " + std::to_string(n) +
+                                                   " (or "
+                                                   "decompose again for " +
+                                                   std::to_string(comm.size()) + ")");
+                        });
+    return dir;
+}
+
+//! This rank's point labels in the undecomposed mesh (decomposePar's pointProcAddressing).
+morph::Decomposition read_decomposition(const io::FoamPolyMesh& foam,
+                                        const parallel::Communicator& comm)
+{
+    morph::Decomposition d;
+    d.comm = &comm;
+    const fs::path file = foam.faces_dir / "pointProcAddressing";
+    d.global_point = io::read_label_list_file(file, "pointProcAddressing");
+    if (Index(d.global_point.size()) != foam.mesh.n_points())
+        throw InvalidInput(file.string() + " has " + std::to_string(d.global_point.size()) +
+                           " labels for " + std::to_string(foam.mesh.n_points()) +
+                           " points: decompose the case again");
+    return d;
+}
+
+//! A count over the whole mesh: cells are split between the ranks; points are shared, and
+//! the undecomposed mesh has (largest label + 1) of them.
+Index global_count(const morph::Decomposition& d, Index local, bool points)
+{
+    if (!d.is_distributed())
+        return local;
+    if (!points)
+        return Index(d.comm->sum(std::int64_t(local)));
+    std::int64_t largest = -1;
+    for (Index g : d.global_point)
+        largest = std::max<std::int64_t>(largest, g);
+    return Index(d.comm->max(largest) + 1);
+}
+
+//! The patches' point counts over every rank (a shared point once), for the set-up lines.
+void set_global_patch_points(const PolyMesh& mesh, const morph::Decomposition& d,
+                             std::vector<morph::PatchAssignment>& patches)
+{
+    std::vector<std::array<Index, 2>> mine; // (patch, global label)
+    for (std::size_t p = 0; p < mesh.patches.size(); ++p)
+        for (Index point : patch_points(mesh, mesh.patches[p]))
+            mine.push_back({Index(p), d.global_point[std::size_t(point)]});
+    std::vector<Index> counts(patches.size(), 0);
+    if (d.comm->master())
+    {
+        std::vector<std::array<Index, 2>> all;
+        for (const auto& rank : d.comm->gather_values(mine))
+            all.insert(all.end(), rank.begin(), rank.end());
+        std::sort(all.begin(), all.end());
+        all.erase(std::unique(all.begin(), all.end()), all.end());
+        for (const auto& [patch, label] : all)
+            if (std::size_t(patch) < counts.size())
+                ++counts[std::size_t(patch)];
+    }
+    else
+        d.comm->gather_values(mine);
+    for (std::size_t p = 0; p < patches.size(); ++p)
+        patches[p].n_points = counts[p];
+}
+
+//! The two checks a morph is judged by, counted over every rank (the other fields stay 0):
+//! a cell lives on one rank only, so the sums are those of the whole mesh.
+QualityReport invalid_cells_report(const PolyMesh& mesh, const MeshGeometry& geometry,
+                                   const parallel::Communicator& comm)
+{
+    const InvalidCells local = count_invalid_cells(mesh, geometry);
+    QualityReport r;
+    r.negative_volume_cells = Index(comm.sum(std::int64_t(local.negative_volume_cells)));
+    r.incorrectly_oriented_face_pyramids = Index(comm.sum(std::int64_t(local.wrong_pyramids)));
+    return r;
+}
+
+double max_norm(const Points& d)
+{
+    return d.rows() > 0 ? d.rowwise().norm().maxCoeff() : 0.0;
+}
+
 //! processor0, processor1, ... (decomposePar's uncollated layout) and processors<N> (the
 //! collated one) in the case.
 std::vector<std::string> processor_directories(const fs::path& case_dir)
@@ -162,15 +270,29 @@ MorphResult morph_case(const MorphOptions& options)
     const morph::StepSettings step_settings = morph::read_step_settings(dict);
     result.method = to_string(settings.method);
 
+    const parallel::Communicator& comm = parallel::Communicator::world();
+    const fs::path mesh_case = options.parallel ? processor_case(case_dir, comm) : case_dir;
     io::PolyMeshReadOptions read_options;
     read_options.time = options.time;
     read_options.region = options.region;
-    io::FoamPolyMesh foam = io::read_poly_mesh(case_dir, read_options);
+    io::FoamPolyMesh foam;
+    morph::Decomposition decomposition;
+    parallel::collective(comm,
+                         [&]
+                         {
+                             foam = io::read_poly_mesh(mesh_case, read_options);
+                             if (options.parallel)
+                                 decomposition = read_decomposition(foam, comm);
+                         });
     const PolyMesh& mesh = foam.mesh;
     result.instance = foam.points_instance;
     result.region = options.region;
-    log::info() << "Read mesh from " << foam.points_dir.string() << ": " << mesh.n_points()
-                << " points, " << mesh.n_cells << " cells, " << mesh.patches.size() << " patches";
+    result.parallel = options.parallel;
+    log::info() << "Read mesh from " << foam.points_dir.string()
+                << (options.parallel ? " (and the other processors)" : "") << ": "
+                << global_count(decomposition, mesh.n_points(), true) << " points, "
+                << global_count(decomposition, mesh.n_cells, false) << " cells, "
+                << mesh.patches.size() << " patches";
 
     morph::ConstraintInputs inputs;
     auto projector = std::make_shared<SurfaceProjector>(case_dir);
@@ -178,7 +300,9 @@ MorphResult morph_case(const MorphOptions& options)
     { return (*projector)(file, query); };
     Points point_displacement;
     std::vector<std::optional<Points>> patch_point_displacement;
-    const std::vector<morph::PatchAssignment> assignment = morph::assign_patches(mesh, setup);
+    std::vector<morph::PatchAssignment> assignment;
+    parallel::collective(comm, [&]
+                         { assignment = morph::assign_patches(mesh, setup, options.parallel); });
     inputs.patches = &assignment;
     if (std::any_of(assignment.begin(), assignment.end(),
                     [](const morph::PatchAssignment& a)
@@ -187,8 +311,13 @@ MorphResult morph_case(const MorphOptions& options)
         // <time>[/<region>]/pointDisplacement of the time read (0/ when the mesh came from
         // constant/).
         const std::string time = foam.time == "constant" ? "0" : foam.time;
-        const io::PointVectorField field = io::read_point_vector_field(
-            case_dir / time / options.region / "pointDisplacement", mesh);
+        io::PointVectorField field;
+        parallel::collective(comm,
+                             [&]
+                             {
+                                 field = io::read_point_vector_field(
+                                     mesh_case / time / options.region / "pointDisplacement", mesh);
+                             });
         // Patches of type pointDisplacement take their boundaryField values (fixedValue /
         // calculated), else the internalField at their points. Other patches' entries are
         // not used, so their disagreements do not matter here.
@@ -199,17 +328,24 @@ MorphResult morph_case(const MorphOptions& options)
         inputs.patch_point_displacement = &patch_point_displacement;
         log::info() << "Read " << field.path.string();
     }
+    if (options.parallel)
+        inputs.decomposition = &decomposition;
     result.constraints = morph::build_constraints(mesh, setup, inputs);
+    if (options.parallel)
+        set_global_patch_points(mesh, decomposition, result.constraints.patches);
     const morph::Constraints& c = result.constraints;
 
     if (options.overwrite)
         result.output_instance = foam.points_instance;
     else
     {
-        const std::vector<io::TimeDir> times = io::list_times(case_dir);
+        const std::vector<io::TimeDir> times = io::list_times(mesh_case);
         result.output_instance =
             io::next_time_name(times, foam.time, io::read_time_settings(case_dir));
     }
+    if (options.parallel && options.vtk)
+        throw InvalidInput("-vtk is not available with -parallel yet (reconstructPar, then "
+                           "checkMeshQuality -vtk)");
 #if !MESHMORPH_WITH_VTK
     if (options.vtk)
         throw InvalidInput("-vtk: this build has no VTK support (MESHMORPH_WITH_VTK=OFF)");
@@ -220,10 +356,11 @@ MorphResult morph_case(const MorphOptions& options)
 
     // The set-up, as the user should see it.
     for (const morph::PatchAssignment& a : c.patches)
-        log::info() << "    " << a.patch << " (" << a.patch_type << ", " << a.n_points
-                    << " points): " << to_string(a.motion) << "  [" << a.matched_by << "]";
-    log::info() << "Constraints: " << c.points.size() << " prescribed points, "
-                << c.slip_points.size() << " slip points, " << c.n_free_points
+        if (a.matched_by != "processor") // internal faces of the undecomposed mesh
+            log::info() << "    " << a.patch << " (" << a.patch_type << ", " << a.n_points
+                        << " points): " << to_string(a.motion) << "  [" << a.matched_by << "]";
+    log::info() << "Constraints: " << c.n_prescribed_points << " prescribed points, "
+                << c.n_slip_points << " slip points, " << c.n_free_points
                 << " free boundary points, " << c.n_handle_points << " handle points"
                 << (c.n_handle_overrides > 0 ? " (" + std::to_string(c.n_handle_overrides) +
                                                    " boundary points overridden by handles)"
@@ -256,11 +393,13 @@ MorphResult morph_case(const MorphOptions& options)
     check_settings.scaled_jacobian = !options.json.empty() || options.vtk;
     // The topology does not change: one cell->faces addressing serves both checks.
     const CompactList cf = cell_faces(mesh);
-    result.before = check_mesh(mesh, cf, compute_geometry(mesh, cf), check_settings);
+    result.before = options.parallel
+                        ? invalid_cells_report(mesh, compute_geometry(mesh, cf), comm)
+                        : check_mesh(mesh, cf, compute_geometry(mesh, cf), check_settings);
     result.timings.check = stage.seconds();
 
     // Fit and evaluate, in steps.
-    const Index n_fit = static_cast<Index>(c.points.size() + c.slip_points.size());
+    const Index n_fit = c.n_prescribed_points + c.n_slip_points;
     log::info() << "Method: " << describe(settings, n_fit);
     log::info() << "Steps: "
                 << (needs_fit(settings) ? describe(step_settings)
@@ -269,8 +408,9 @@ MorphResult morph_case(const MorphOptions& options)
     { return make_deformation(settings, points, n_fit); };
     const InvalidCells invalid_before{result.before.negative_volume_cells,
                                       result.before.incorrectly_oriented_face_pyramids};
+    const morph::Decomposition* parts = options.parallel ? &decomposition : nullptr;
     morph::SteppedMorph stepped = morph::morph_in_steps(mesh, cf, c, step_settings, make,
-                                                        needs_fit(settings), invalid_before);
+                                                        needs_fit(settings), invalid_before, parts);
     result.steps = stepped.steps;
     for (const morph::StepRecord& s : stepped.steps)
     {
@@ -281,21 +421,21 @@ MorphResult morph_case(const MorphOptions& options)
     }
     result.morph = std::move(stepped.last);
     result.morph.displacement = std::move(stepped.displacement);
-    morph::measure_constraint_error(c, mesh.points, result.morph);
+    morph::measure_constraint_error(c, mesh.points, result.morph, parts);
+    result.max_displacement = comm.max(max_norm(result.morph.displacement));
     const FitReport& r = result.morph.report;
     log::info() << "Fitted " << result.morph.n_constraints << " constraints with " << r.num_centres
                 << (settings.method == DeformationMethod::rbf ? " centres" : " control points")
                 << (r.solver.empty() ? std::string() : " (" + r.solver + ")")
                 << (r.condition_estimate > 0 ? ", condition ~ " + fmt(r.condition_estimate) : "")
                 << " in " << format_seconds(result.timings.fit) << " s";
-    log::info() << "Evaluated " << mesh.n_points() << " points in "
-                << format_seconds(result.timings.evaluate) << " s; max displacement "
-                << fmt(result.morph.displacement.rowwise().norm().maxCoeff());
+    log::info() << "Evaluated " << global_count(decomposition, mesh.n_points(), true)
+                << " points in " << format_seconds(result.timings.evaluate)
+                << " s; max displacement " << fmt(result.max_displacement);
     if (r.method.ends_with("+idw"))
         log::info() << "Global RBF residual " << fmt(r.max_residual) << " ("
                     << fmt(r.max_residual / std::max(r.max_displacement, 1e-300))
                     << " relative), taken up by the local IDW correction";
-    result.max_displacement = result.morph.displacement.rowwise().norm().maxCoeff();
     log::info() << "Largest displacement " << fmt(result.max_displacement)
                 << " (largest prescribed " << fmt(result.morph.max_prescribed) << ")";
     if (result.max_displacement > 1.01 * result.morph.max_prescribed &&
@@ -326,8 +466,18 @@ MorphResult morph_case(const MorphOptions& options)
                                : "a step creates invalid cells (try more steps, or steps auto)");
     PolyMesh moved = mesh;
     moved.points = std::move(stepped.points); // exactly the points stepped.geometry is of
-    result.after = check_mesh(moved, cf, stepped.geometry, check_settings);
+    result.after = options.parallel ? invalid_cells_report(moved, stepped.geometry, comm)
+                                    : check_mesh(moved, cf, stepped.geometry, check_settings);
     result.timings.check += stage.seconds();
+    if (options.parallel)
+        log::info() << "Invalid cells before and after the morph: "
+                    << result.before.negative_volume_cells << " -> "
+                    << result.after.negative_volume_cells << " negative-volume cells, "
+                    << result.before.incorrectly_oriented_face_pyramids << " -> "
+                    << result.after.incorrectly_oriented_face_pyramids
+                    << " wrongly oriented pyramids (the other checks need the reconstructed "
+                       "mesh: reconstructPar, then checkMeshQuality)";
+    else
     {
         std::ostringstream summary;
         print_quality_summary(summary, quality_json(result.before), quality_json(result.after));
@@ -358,14 +508,19 @@ MorphResult morph_case(const MorphOptions& options)
 
     // Write.
     stage.restart();
-    if (options.overwrite)
-        keep_original_points(foam.points.path);
-    else
-        warn_if_replacing(case_dir, result.output_instance, foam.region);
-    warn_if_decomposed(case_dir);
-    io::FoamFileInfo like = foam.points;
-    result.points_file =
-        io::write_points(moved.points, like, case_dir, result.output_instance, foam.region);
+    parallel::collective(comm,
+                         [&]
+                         {
+                             if (options.overwrite)
+                                 keep_original_points(foam.points.path);
+                             else
+                                 warn_if_replacing(mesh_case, result.output_instance, foam.region);
+                             if (!options.parallel)
+                                 warn_if_decomposed(case_dir);
+                             result.points_file =
+                                 io::write_points(moved.points, foam.points, mesh_case,
+                                                  result.output_instance, foam.region);
+                         });
     result.written = true;
 #if MESHMORPH_WITH_VTK
     if (options.vtk)
@@ -440,8 +595,18 @@ std::string morph_json(const MorphResult& result, int exit_status)
     j["timings"] = {{"read", result.timings.read},         {"fit", result.timings.fit},
                     {"evaluate", result.timings.evaluate}, {"check", result.timings.check},
                     {"untangle", result.timings.untangle}, {"write", result.timings.write}};
-    j["before"] = quality_json(result.before);
-    j["after"] = quality_json(result.after);
+    if (result.parallel) // only the invalid cells are counted in a -parallel run
+    {
+        for (const auto& [key, q] : {std::pair{"before", &result.before}, {"after", &result.after}})
+            j[key] = {{"negativeVolumeCells", q->negative_volume_cells},
+                      {"incorrectlyOrientedFacePyramids", q->incorrectly_oriented_face_pyramids}};
+        j["parallel"] = parallel::Communicator::world().size();
+    }
+    else
+    {
+        j["before"] = quality_json(result.before);
+        j["after"] = quality_json(result.after);
+    }
     j["instance"] = result.instance;
     j["region"] = result.region;
     j["outputInstance"] = result.output_instance;
@@ -454,6 +619,18 @@ std::string morph_json(const MorphResult& result, int exit_status)
 
 namespace
 {
+
+//! RAII: the ranks other than the master print nothing (OpenFOAM's convention).
+struct DiscardLog
+{
+    DiscardLog()
+    {
+        log::set_sink([](log::Level, const std::string&) {});
+    }
+    ~DiscardLog() { log::set_sink(log::Sink()); }
+    DiscardLog(const DiscardLog&) = delete;
+    DiscardLog& operator=(const DiscardLog&) = delete;
+};
 
 //! morphMesh after its options are parsed; throws on errors (run_guarded reports them).
 int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostream& out,
@@ -481,10 +658,11 @@ int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostr
     morph.json = json_path;
     morph.vtk = options.found("vtk");
     morph.force = options.found("force");
+    morph.parallel = options.found("parallel");
 
     print_banner(out, {"morphMesh", options.command_line(), morph.case_dir.string()});
     const MorphResult result = morph_case(morph);
-    if (!morph.json.empty())
+    if (!morph.json.empty() && parallel::Communicator::world().master())
     {
         io::write_file_atomic(morph.json,
                               morph_json(result, result.refused ? exit_refused : exit_ok));
@@ -539,7 +717,10 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
           "Write constraints, timings and quality as JSON (relative to the working directory)"},
          {"vtk", "",
           "Also write VTK/morphMesh_[<region>_]<time>.vtu with the displacement and quality"},
-         {"force", "", "Write even if the morph creates invalid cells"}},
+         {"force", "", "Write even if the morph creates invalid cells"},
+         {"parallel", "",
+          "Morph the decomposed case (processor*/) under mpirun, one rank per processor "
+          "directory"}},
         {{exit_ok, "morphed mesh written"},
          {exit_input_error, "bad option, dictionary, mesh or surface file; nothing written"},
          {exit_refused, "the morph creates invalid cells; nothing written (see -force)"},
@@ -547,13 +728,34 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
          {exit_internal_error, "unexpected internal error"}});
     if (const std::optional<int> code = parse_command_line(options, argc, argv, out, err))
         return *code;
+    // -parallel: MPI for the whole run; only the master prints and writes the report.
+    std::optional<parallel::ParallelSession> session;
+    std::optional<DiscardLog> quiet;
+    std::ostringstream discarded;
+    if (options.found("parallel"))
+    {
+        try
+        {
+            session.emplace();
+        }
+        catch (const Error& e)
+        {
+            err << "Error: " << e.what() << "\n";
+            return exit_input_error;
+        }
+        if (!parallel::Communicator::world().master())
+            quiet.emplace();
+    }
+    const bool master = parallel::Communicator::world().master();
+    std::ostream& report_out = master ? out : discarded;
+    std::ostream& report_err = master ? err : discarded;
     fs::path json_path; // set as soon as known: a failure replaces any earlier report
     if (const std::optional<std::string> j = options.get("json"))
         json_path = fs::absolute(*j);
     // With -json, a failure writes {written: false, exitStatus, error}.
     const auto report_failure = [&](int status, const std::string& text)
     {
-        if (json_path.empty())
+        if (json_path.empty() || !master)
             return;
         try
         {
@@ -565,8 +767,8 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
             err << "Error: could not write " << json_path.string() << ": " << e.what() << "\n";
         }
     };
-    return run_guarded([&] { return morph_mesh_main(options, json_path, out, err); }, err, true,
-                       report_failure);
+    return run_guarded([&] { return morph_mesh_main(options, json_path, report_out, report_err); },
+                       report_err, true, report_failure);
 }
 
 } // namespace meshmorph::app

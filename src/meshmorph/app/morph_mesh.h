@@ -45,6 +45,9 @@ struct MorphOptions
     std::filesystem::path json;        //!< empty: no JSON
     bool vtk = false;
     bool force = false;
+    //! -parallel: morph the decomposed case (processor<rank>/), one rank per processor
+    //! directory (the run must have started MPI: parallel::ParallelSession).
+    bool parallel = false;
 };
 
 //! Wall-clock seconds per stage.
@@ -67,8 +70,9 @@ struct MorphResult
     double valid_fraction = 1.0;          //!< of the motion reached without new invalid cells
     double max_displacement = 0.0;        //!< the largest displacement of any point
     MorphTimings timings;
-    bool refused = false; //!< new invalid cells, nothing written (no force)
-    std::string refusal;  //!< why
+    bool parallel = false; //!< a -parallel run: before/after hold only the invalid cells
+    bool refused = false;  //!< new invalid cells, nothing written (no force)
+    std::string refusal;   //!< why
     bool written = false;
     std::filesystem::path points_file; //!< the written points file
     std::filesystem::path vtk_file;    //!< the written .vtu (if vtk)

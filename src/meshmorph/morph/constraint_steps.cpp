@@ -190,6 +190,8 @@ void require_some_motion(const MorphSetup& setup, bool asked, const std::vector<
 
 void fill_displacements(const std::vector<Vector3>& values, Constraints& out)
 {
+    out.n_prescribed_points = static_cast<Index>(out.points.size());
+    out.n_slip_points = static_cast<Index>(out.slip_points.size());
     out.displacements.resize(static_cast<Eigen::Index>(values.size()), 3);
     for (std::size_t i = 0; i < values.size(); ++i)
         out.displacements.row(static_cast<Eigen::Index>(i)) =

@@ -43,6 +43,10 @@ struct Constraints
     std::optional<EmptyPlanes> empty_planes;
 
     std::vector<PatchAssignment> patches;
+    //! points.size() and slip_points.size() over the whole mesh (in a -parallel run the lists
+    //! hold this rank's points; the totals are those of the master).
+    Index n_prescribed_points = 0;
+    Index n_slip_points = 0;
     Index n_free_points = 0; //!< boundary points left unconstrained (type free)
     Index n_handle_points = 0;
     Index n_handle_overrides = 0; //!< boundary points whose prescription a handle replaced

@@ -263,8 +263,16 @@ Constraints build_distributed_constraints(const PolyMesh& mesh, const MorphSetup
                                             detail::any_motion(all_handles, agree_tol),
                                         values, out, agree_tol);
             per_rank = split_by_rank(out, values, g, comm.size());
+            out.n_prescribed_points = static_cast<Index>(out.points.size());
+            out.n_slip_points = static_cast<Index>(out.slip_points.size());
         });
+    const Index prescribed = out.n_prescribed_points, slip = out.n_slip_points;
     set_local(comm.scatter_values(per_rank), out);
+    if (comm.master()) // set_local counted this rank's points
+    {
+        out.n_prescribed_points = prescribed;
+        out.n_slip_points = slip;
+    }
     return out;
 }
 

@@ -318,6 +318,57 @@ double diagonal(const Points& x)
     return x.rows() > 0 ? (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm() : 1.0;
 }
 
+//! Points on processor patches, shared with other ranks.
+std::vector<Index> processor_points(const PolyMesh& mesh)
+{
+    std::vector<char> on(static_cast<std::size_t>(mesh.n_points()), 0);
+    for (const Patch& patch : mesh.patches)
+        if (is_processor_patch(patch))
+            for (Index p : patch_points(mesh, patch))
+                on[std::size_t(p)] = 1;
+    std::vector<Index> out;
+    for (Index p = 0; p < mesh.n_points(); ++p)
+        if (on[std::size_t(p)])
+            out.push_back(p);
+    return out;
+}
+
+//! A point shared by ranks gets one displacement: that of the lowest rank holding it. Its
+//! ranks evaluate the same field at the same position, but a field's evaluation may depend
+//! on the other points evaluated with it (IDW groups nearby queries), so copies could differ
+//! in the last bits, and OpenFOAM needs the two sides of a processor face to coincide.
+void synchronise_shared_points(const PolyMesh& mesh, const Decomposition& d, Points& displacement)
+{
+    const std::vector<Index> shared = processor_points(mesh);
+    const auto data = [&](std::size_t i, double* v)
+    {
+        for (int k = 0; k < 3; ++k)
+            v[k] = displacement(shared[i], k);
+    };
+    std::vector<WirePoint> mine = to_wire(shared, mesh.points, d, data);
+    const std::vector<std::vector<WirePoint>> all = d.comm->gather_values(mine);
+    std::vector<std::vector<WirePoint>> back;
+    if (d.comm->master())
+    {
+        const std::vector<WirePoint> first = sorted_unique(all); // stable: lowest rank first
+        const auto value_of = [&](Index label)
+        {
+            return *std::lower_bound(first.begin(), first.end(), label,
+                                     [](const WirePoint& w, Index l) { return w.label < l; });
+        };
+        for (const std::vector<WirePoint>& rank : all)
+        {
+            back.emplace_back();
+            for (const WirePoint& w : rank)
+                back.back().push_back(value_of(w.label));
+        }
+    }
+    const std::vector<WirePoint> agreed = d.comm->scatter_values(back);
+    for (std::size_t i = 0; i < shared.size(); ++i)
+        for (int k = 0; k < 3; ++k)
+            displacement(shared[i], k) = agreed[i].data[k];
+}
+
 //! -parallel: the master fits (the gathered constraints are those of a serial run, in its
 //! order) and sends the field; every rank evaluates it at its own points. The residual is
 //! measured on the master at the fit's own points. No snapping (not used in steps).
@@ -362,6 +413,7 @@ PointMorph morph_points_distributed(const PolyMesh& mesh, const Constraints& c,
     const Stopwatch eval_clock;
     evaluate_with_progress(*field, x_eval, result.displacement, "evaluate");
     remove_empty_normal(result.displacement, c);
+    synchronise_shared_points(mesh, d, result.displacement);
     result.evaluate_seconds = eval_clock.seconds();
 
     Vector3 lo = Vector3::Zero(), hi = Vector3::Zero();

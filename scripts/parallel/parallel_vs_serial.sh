@@ -1,0 +1,64 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# The -parallel morph against the serial one on the pipe tutorial mesh: morphMesh serially,
+# decomposePar (method simple or scotch), mpirun -np N morphMesh -parallel, and a comparison
+# of every processor's points with the serial points (compare_decomposed.py: 1e-12 of the
+# extent, shared points bit-identical). Needs OpenFOAM (decomposePar) and OpenMPI.
+#
+#   parallel_vs_serial.sh -bin DIR -out DIR [-np N] [-method simple|scotch]
+#
+# -bin: the directory holding morphMesh. Exit 0 when the results agree, 77 when OpenFOAM or
+# mpirun is missing (a skip), 1 otherwise.
+set -u
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+source_dir=$(cd "$here/../.." && pwd)
+bin="" out="" np=2 method=simple
+while [ $# -gt 0 ]; do
+    case "$1" in
+        -bin) bin=$2; shift 2 ;;
+        -out) out=$2; shift 2 ;;
+        -np) np=$2; shift 2 ;;
+        -method) method=$2; shift 2 ;;
+        -help|-h) sed -n '3,11p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        *) echo "parallel_vs_serial.sh: unknown option '$1' (try -help)" >&2; exit 2 ;;
+    esac
+done
+[ -n "$bin" ] && [ -n "$out" ] || { echo "parallel_vs_serial.sh: -bin and -out are required" >&2; exit 2; }
+export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
+command -v decomposePar >/dev/null || { echo "skipped: OpenFOAM's decomposePar is not installed"; exit 77; }
+command -v mpirun >/dev/null || { echo "skipped: mpirun (openmpi-bin) is not installed"; exit 77; }
+# OpenMPI refuses root without consent (CI runs as root); the cores may be fewer than ranks.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
+
+rm -rf "$out" && mkdir -p "$out" || exit 1
+out=$(cd "$out" && pwd)
+make_case() {
+    mkdir -p "$1/system" && cp -r "$source_dir/tutorials/pipe/constant" "$1/" &&
+        cp "$source_dir/tutorials/pipe/system/controlDict" "$1/system/" &&
+        cat > "$1/system/morphDict" <<'DICT'
+FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }
+method rbf;
+boundary
+{
+    wall { type rotate; origin (0 0 1); axis (1 0 0); angle 4; }
+    inlet { type translate; vector (0.02 0 0); }
+    outlet { type slip; }
+}
+conflicts last;
+DICT
+}
+make_case "$out/serial" && make_case "$out/parallel" || exit 1
+"$bin/morphMesh" -case "$out/serial" > "$out/log.serial" 2>&1 ||
+    { echo "serial morphMesh failed (see $out/log.serial)"; exit 1; }
+cat > "$out/parallel/system/decomposeParDict" <<DICT
+FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }
+numberOfSubdomains $np;
+method $method;
+simpleCoeffs { n (1 1 $np); delta 0.001; }
+hierarchicalCoeffs { n ($np 1 1); delta 0.001; order xyz; }
+DICT
+(cd "$out/parallel" && decomposePar > log.decomposePar 2>&1) ||
+    { echo "decomposePar failed (see $out/parallel/log.decomposePar)"; exit 1; }
+mpirun -np "$np" --oversubscribe "$bin/morphMesh" -case "$out/parallel" -parallel \
+    > "$out/log.parallel" 2>&1 || { echo "morphMesh -parallel failed (see $out/log.parallel)"; exit 1; }
+/usr/bin/python3 "$here/compare_decomposed.py" "$out/parallel" 1 "$np" "$out/serial/1/polyMesh/points"
