@@ -28,6 +28,7 @@
 #include "meshmorph/io/foam_file.h"
 #include "meshmorph/io/point_field.h"
 #include "meshmorph/io/read_poly_mesh.h"
+#include "meshmorph/io/surface_io.h"
 #include "meshmorph/io/write_poly_mesh.h"
 #include "meshmorph/quality/quality_json.h"
 #if MESHMORPH_WITH_VTK
@@ -64,7 +65,7 @@ public:
             fs::path path = file;
             if (path.is_relative())
                 path = case_dir_ / path;
-            TriangleSurface surface = read_surface(path);
+            TriangleSurface surface = io::read_surface(path);
             log::info() << "Read target surface " << path.string() << ": " << surface.n_triangles()
                         << " triangles";
             it = trees_.emplace(file, std::make_shared<SurfaceTree>(std::move(surface))).first;
