@@ -371,10 +371,11 @@ MorphResult morph_case(const MorphOptions& options)
 #if MESHMORPH_WITH_VTK
     if (options.vtk)
     {
-        const fs::path dir = case_dir / "VTK";
-        fs::create_directories(dir);
-        const std::string region = options.region.empty() ? "" : options.region + "_";
-        result.vtk_file = dir / ("morphMesh_" + region + result.output_instance + ".vtu");
+        result.vtk_file =
+            options.vtk_file.empty()
+                ? default_vtk_file(case_dir, "morphMesh", options.region, result.output_instance)
+                : options.vtk_file;
+        fs::create_directories(result.vtk_file.parent_path());
         std::vector<io::VtkField> point_data;
         point_data.emplace_back("displacement", result.morph.displacement);
         std::vector<io::VtkField> cell_data;
@@ -457,8 +458,7 @@ namespace
 {
 
 //! morphMesh after its options are parsed; throws on errors (run_guarded reports them).
-int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostream& out,
-                    std::ostream& err)
+int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostream& out)
 {
     if (options.found("time") && options.found("latestTime"))
         throw UsageError("-time and -latestTime are mutually exclusive");
@@ -480,7 +480,8 @@ int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostr
         morph.method = *m;
     }
     morph.json = json_path;
-    morph.vtk = options.found("vtk");
+    morph.vtk = vtk_requested(options);
+    morph.vtk_file = vtk_file_argument(options);
     morph.force = options.found("force");
 
     print_banner(out, {"morphMesh", options.command_line(), morph.case_dir.string()});
@@ -499,8 +500,8 @@ int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostr
         << format_seconds(result.timings.write) << "\n";
     if (result.refused)
     {
-        err << "Error: " << result.refusal
-            << ". Nothing written: reduce the motion, change the method or use -force.\n";
+        log::error() << result.refusal
+                     << ". Nothing written: reduce the motion, change the method or use -force.";
         return exit_refused;
     }
     out << (result.after.mesh_ok()
@@ -515,6 +516,9 @@ int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostr
 
 int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::ostream& err)
 {
+    const log::SinkScope log_to(log::stream_sink(out, err));
+    const std::vector<OptionSpec> vtk =
+        vtk_option_specs("morphMesh", "the displacement and quality");
     Options options(
         "morphMesh",
         "Morphs the polyMesh of an OpenFOAM case with a space deformation (RBF by default,\n"
@@ -538,15 +542,15 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
          {"method", "rbf|dmffd|ffd|idw", "Override the dictionary's method"},
          {"json", "FILE",
           "Write constraints, timings and quality as JSON (relative to the working directory)"},
-         {"vtk", "",
-          "Also write VTK/morphMesh_[<region>_]<time>.vtu with the displacement and quality"},
+         vtk[0],
+         vtk[1],
          {"force", "", "Write even if the morph creates invalid cells"}},
         {{exit_ok, "morphed mesh written"},
          {exit_input_error, "bad option, dictionary, mesh or surface file; nothing written"},
          {exit_refused, "the morph creates invalid cells; nothing written (see -force)"},
          {exit_fit_failed, "the deformation could not be fitted; nothing written"},
          {exit_internal_error, "unexpected internal error"}});
-    if (const std::optional<int> code = parse_command_line(options, argc, argv, out, err))
+    if (const std::optional<int> code = parse_command_line(options, argc, argv, out))
         return *code;
     fs::path json_path; // set as soon as known: a failure replaces any earlier report
     if (const std::optional<std::string> j = options.get("json"))
@@ -563,10 +567,10 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
         }
         catch (const std::exception& e)
         {
-            err << "Error: could not write " << json_path.string() << ": " << e.what() << "\n";
+            log::error() << "could not write " << json_path.string() << ": " << e.what();
         }
     };
-    return run_guarded([&] { return morph_mesh_main(options, json_path, out, err); }, err, true,
+    return run_guarded([&] { return morph_mesh_main(options, json_path, out); }, true,
                        report_failure);
 }
 
