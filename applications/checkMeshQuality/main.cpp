@@ -6,9 +6,11 @@
 //
 // Usage
 //     checkMeshQuality [-case DIR] [-time T | -latestTime] [-allGeometry] [-allTopology]
-//                      [-meshQuality] [-writeSets] [-vtk FILE] [-json FILE] [-help]
+//                      [-meshQuality] [-writeSets] [-vtk | -vtkFile FILE] [-json FILE]
+//                      [-quiet] [-help]
 //
-//     Exit status: 0 mesh OK, 1 checks failed, 2 input error, 3 internal error.
+//     -vtk writes VTK/checkMeshQuality_[<region>_]<time>.vtu in the case.
+//     Exit status: 0 mesh OK, 1 checks failed, 2 input error, 5 internal error.
 #include <iostream>
 
 #include "meshmorph/app/check_mesh_case.h"

@@ -8,7 +8,8 @@
 //
 // Usage
 //     morphMesh [-case DIR] [-dict FILE] [-time T | -latestTime] [-overwrite]
-//               [-method rbf|dmffd|ffd] [-json FILE] [-vtk] [-force] [-help]
+//               [-method rbf|dmffd|ffd|idw] [-json FILE] [-vtk | -vtkFile FILE] [-force]
+//               [-help]
 //
 //     Without -overwrite only <next time>/polyMesh/points is written (like moveMesh);
 //     with it the instance's points are replaced atomically, in the same format.

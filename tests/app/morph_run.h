@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-//! \file Test helpers for the morphMesh application: run it in-process with the log
+//! \file Test helpers for the morphMesh application: run it in-process with its output
 //! captured, and small file utilities.
 #pragma once
 
@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "meshmorph/app/morph_mesh.h"
-#include "meshmorph/core/log.h"
 
 namespace meshmorph::test
 {
@@ -18,10 +17,13 @@ namespace meshmorph::test
 struct MorphRun
 {
     int code = -1;
-    std::string out, err, log;
+    std::string out; //!< stdout: report and info lines
+    std::string err; //!< stderr: "Warning: ..." and "Error: ..." lines
+    std::string log; //!< out then err, for searching a line wherever it went
 };
 
-//! morphMesh with `args` (argv[0] added), its report, errors and log lines captured.
+//! morphMesh with `args` (argv[0] added). The application logs to the streams it is given,
+//! so `out` and `err` hold everything it printed.
 inline MorphRun run_morph_mesh(const std::vector<std::string>& args)
 {
     std::vector<const char*> argv{"morphMesh"};
@@ -29,13 +31,10 @@ inline MorphRun run_morph_mesh(const std::vector<std::string>& args)
         argv.push_back(a.c_str());
     std::ostringstream out, err;
     MorphRun r;
-    {
-        log::CaptureScope capture;
-        r.code = app::run_morph_mesh(static_cast<int>(argv.size()), argv.data(), out, err);
-        r.log = capture.text();
-    }
+    r.code = app::run_morph_mesh(static_cast<int>(argv.size()), argv.data(), out, err);
     r.out = out.str();
     r.err = err.str();
+    r.log = r.out + r.err;
     return r;
 }
 

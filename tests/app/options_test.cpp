@@ -5,8 +5,12 @@
 #include <sstream>
 
 #include "meshmorph/app/banner.h"
+#include "meshmorph/app/exit_status.h"
 #include "meshmorph/app/options.h"
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
 
+using namespace meshmorph;
 using namespace meshmorph::app;
 using meshmorph::format_seconds;
 
@@ -95,23 +99,96 @@ TEST(Options, parse_command_line_returns_exit_codes)
 {
     Options o = make_options();
     std::ostringstream out, err;
+    const log::SinkScope sink(log::stream_sink(out, err));
     const char* help[] = {"checkMeshQuality", "--help"};
-    EXPECT_EQ(parse_command_line(o, 2, help, out, err), 0);
+    EXPECT_EQ(parse_command_line(o, 2, help, out), 0);
     EXPECT_NE(out.str().find("Usage:"), std::string::npos);
     const char* bad[] = {"checkMeshQuality", "-bogus"};
-    EXPECT_EQ(parse_command_line(o, 2, bad, out, err), exit_input_error);
-    EXPECT_NE(err.str().find("Error: unknown option '-bogus'"), std::string::npos);
+    EXPECT_EQ(parse_command_line(o, 2, bad, out), exit_input_error);
+    EXPECT_EQ(err.str(), "Error: unknown option '-bogus' (see checkMeshQuality -help)\n"
+                         "Usage: checkMeshQuality [OPTIONS]; see checkMeshQuality -help\n");
     const char* good[] = {"checkMeshQuality", "-allGeometry"};
-    EXPECT_EQ(parse_command_line(o, 2, good, out, err), std::nullopt);
+    EXPECT_EQ(parse_command_line(o, 2, good, out), std::nullopt);
 }
 
-TEST(StageTimer, prints_stage_line)
+TEST(Options, argument_after_a_flag_names_the_flag_and_its_hint)
 {
-    std::ostringstream out;
-    StageTimer timer(out);
+    Options o = make_options();
+    try
+    {
+        parse(o, {"-allGeometry", "x"});
+        FAIL() << "expected UsageError";
+    }
+    catch (const UsageError& e)
+    {
+        EXPECT_STREQ(e.what(), "unexpected argument 'x' after -allGeometry, which takes no "
+                               "argument (see checkMeshQuality -help)");
+    }
+    std::vector<OptionSpec> specs = vtk_option_specs("checkMeshQuality", "quality fields");
+    specs.push_back({"case", "DIR", "Case directory"});
+    Options v("checkMeshQuality", "", specs);
+    try
+    {
+        parse(v, {"-case", "c", "-vtk", "q.vtu"});
+        FAIL() << "expected UsageError";
+    }
+    catch (const UsageError& e)
+    {
+        EXPECT_STREQ(e.what(), "unexpected argument 'q.vtu' after -vtk, which takes no argument: "
+                               "-vtk writes VTK/checkMeshQuality_[<region>_]<time>.vtu in the "
+                               "case; to choose the file, use -vtkFile q.vtu");
+    }
+}
+
+TEST(Options, vtk_flag_writes_into_the_case_and_vtk_file_anywhere)
+{
+    std::vector<OptionSpec> specs = vtk_option_specs("morphMesh", "the displacement");
+    Options o("morphMesh", "", specs);
+    parse(o, {});
+    EXPECT_FALSE(vtk_requested(o));
+    parse(o, {"-vtk"});
+    EXPECT_TRUE(vtk_requested(o));
+    EXPECT_TRUE(vtk_file_argument(o).empty());
+    EXPECT_EQ(default_vtk_file("/c", "morphMesh", "", "0.5"), "/c/VTK/morphMesh_0.5.vtu");
+    EXPECT_EQ(default_vtk_file("/c", "morphMesh", "fluid", "1"), "/c/VTK/morphMesh_fluid_1.vtu");
+    parse(o, {"-vtkFile", "out/q.vtu"});
+    EXPECT_TRUE(vtk_requested(o));
+    EXPECT_EQ(vtk_file_argument(o), std::filesystem::absolute("out/q.vtu"));
+    parse(o, {"-vtkFile", ""});
+    EXPECT_THROW(vtk_file_argument(o), UsageError);
+    const std::string help = o.help_text();
+    EXPECT_NE(help.find("-vtk "), std::string::npos) << help;
+    EXPECT_NE(help.find("-vtkFile <FILE>"), std::string::npos) << help;
+}
+
+TEST(RunGuarded, errors_are_logged_with_one_prefix_and_mapped_to_exit_codes)
+{
+    std::ostringstream out, err;
+    const log::SinkScope sink(log::stream_sink(out, err));
+    std::string reported;
+    const FailureHook hook = [&](int, const std::string& m) { reported = m; };
+    EXPECT_EQ(run_guarded([]() -> int { throw IoError("cannot read x"); }, true, hook),
+              exit_input_error);
+    EXPECT_EQ(err.str(), "Error: cannot read x\nNothing written.\n");
+    EXPECT_EQ(reported, err.str());
+    err.str("");
+    EXPECT_EQ(run_guarded([]() -> int { throw SolverError("singular"); }, false), exit_fit_failed);
+    EXPECT_EQ(err.str(), "Error: singular\n");
+    err.str("");
+    EXPECT_EQ(run_guarded([]() -> int { throw std::logic_error("bug"); }, true),
+              exit_internal_error);
+    EXPECT_EQ(err.str(), "Error: internal error (please report it): bug\n");
+    EXPECT_EQ(run_guarded([] { return 7; }, true), 7);
+    EXPECT_TRUE(out.str().empty());
+}
+
+TEST(StageTimer, logs_stage_line)
+{
+    const log::CaptureScope capture;
+    StageTimer timer;
     const double s = timer.lap("Read mesh");
     EXPECT_GE(s, 0.0);
-    EXPECT_EQ(out.str().rfind("Read mesh in ", 0), 0u);
+    EXPECT_EQ(capture.text().rfind("Read mesh in ", 0), 0u) << capture.text();
     EXPECT_EQ(format_seconds(1.234), "1.23");
     EXPECT_EQ(format_seconds(0.0042), "0.004");
     EXPECT_EQ(format_seconds(1234.4), "1234");

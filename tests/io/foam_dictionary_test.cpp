@@ -17,6 +17,7 @@
 #include "helpers.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/io/foam_dictionary.h"
+#include "meshmorph/io/foam_lists.h"
 
 using namespace meshmorph;
 using namespace meshmorph::io;
@@ -490,6 +491,48 @@ TEST(FoamDictionary, binary_compound_lists)
     t3 += "a List<label> \n1000\n(" + std::string(12, '\0');
     const std::string m = parse_error_of([&] { parse_dictionary(t3, "field"); });
     EXPECT_TRUE(contains(m, "field:4:") && contains(m, "1000")) << m;
+}
+
+TEST(FoamDictionary, compound_lists_follow_the_list_readers_rules)
+{
+    // An empty binary list is a bare `0` (or `0()`) for every contiguous kind.
+    std::string text = "FoamFile { format binary; class dictionary; }\n";
+    for (const char* kind : {"label", "scalar", "vector", "bool"})
+        text += std::string("a_") + kind + " List<" + kind + "> 0;\nb_" + kind + " List<" + kind +
+                "> 0();\n";
+    text += "w List<word> 0();\n";
+    const FoamDictionary d = parse_dictionary(text, "field");
+    for (const char* kind : {"label", "scalar", "vector", "bool"})
+        for (const char* prefix : {"a_", "b_"})
+        {
+            const FoamEntry& e = d.entry(prefix + std::string(kind));
+            ASSERT_TRUE(e.tokens().at(0).is_compound()) << kind;
+            EXPECT_EQ(e.tokens()[0].compound->size(), 0u) << prefix << kind;
+        }
+    EXPECT_TRUE(d.get<std::vector<std::string>>("w").empty());
+
+    // A malformed compound gives the polyMesh list reader's message, naming the entry.
+    const std::string body = "\n3(1 2)";
+    const std::string from_dict =
+        parse_error_of([&] { parse_dictionary("cellLabels List<label>" + body + ";", "zones"); });
+    const std::string from_list = parse_error_of(
+        [&]
+        {
+            FoamTokenizer tok(body, "zones");
+            ListReadOptions o;
+            o.what = "cellLabels";
+            read_label_list(tok, FoamHeader{}, o);
+        });
+    EXPECT_EQ(from_dict, from_list);
+    EXPECT_TRUE(contains(from_dict, "zones:2:") && contains(from_dict, "'cellLabels'"))
+        << from_dict;
+    // Bools: 0/1 and switch words; other numbers are errors naming file, line and entry.
+    const FoamDictionary b = parse_dictionary("f List<bool> 4(0 1 true off);", "zones");
+    EXPECT_EQ(b.get<std::vector<std::int64_t>>("f"), (std::vector<std::int64_t>{0, 1, 1, 0}));
+    const std::string m =
+        parse_error_of([] { parse_dictionary("\nflipMap List<bool> 2(0 3);", "zones"); });
+    EXPECT_TRUE(contains(m, "zones:2:") && contains(m, "'flipMap'") && contains(m, "not a bool"))
+        << m;
 }
 
 TEST(FoamDictionary, truncated_input_errors_point_at_the_open_construct)

@@ -123,6 +123,63 @@ TEST(FoamLists, reads_vectors_ascii_binary_and_uniform)
     EXPECT_EQ(s(0, 2), 3.0);
 }
 
+TEST(FoamLists, reads_int64_labels_beyond_the_build_label_range)
+{
+    const std::vector<std::int64_t> v{5000000000LL, -3};
+    const std::string block = raw_block(v);
+    FoamTokenizer b(block, "d");
+    EXPECT_EQ(read_int64_list(b, binary_header(8)), v);
+    FoamTokenizer a("2(5000000000 -3)", "d");
+    EXPECT_EQ(read_int64_list(a, ascii_header()), v);
+    FoamTokenizer u("3{-7}", "d");
+    EXPECT_EQ(read_int64_list(u, ascii_header()), (std::vector<std::int64_t>(3, -7)));
+    // 32-bit labels widen.
+    const std::vector<std::int32_t> narrow{-1, 2147483647};
+    const std::string nb = raw_block(narrow);
+    FoamTokenizer n(nb, "d");
+    EXPECT_EQ(read_int64_list(n, binary_header(4)), (std::vector<std::int64_t>{-1, 2147483647}));
+}
+
+TEST(FoamLists, reads_bool_lists_ascii_words_and_binary_bytes)
+{
+    FoamTokenizer a("5(0 1 true off yes)", "flipMap");
+    EXPECT_EQ(read_bool_list(a, ascii_header()), (std::vector<std::uint8_t>{0, 1, 1, 0, 1}));
+    FoamTokenizer u("4{0}", "flipMap");
+    EXPECT_EQ(read_bool_list(u, ascii_header()), std::vector<std::uint8_t>(4, 0));
+    const std::vector<char> bytes{0, 1, 7, 0};
+    const std::string block = raw_block(bytes);
+    FoamTokenizer b(block, "flipMap");
+    EXPECT_EQ(read_bool_list(b, binary_header()), (std::vector<std::uint8_t>{0, 1, 1, 0}));
+    FoamTokenizer empty("\n0\n", "flipMap");
+    EXPECT_TRUE(read_bool_list(empty, binary_header()).empty());
+
+    FoamTokenizer two("\n3(0 2 1)", "test/flipMap");
+    std::string m = test::error_of([&] { read_bool_list(two, ascii_header()); });
+    EXPECT_NE(m.find("test/flipMap:2"), std::string::npos) << m;
+    EXPECT_NE(m.find("not a bool"), std::string::npos) << m;
+    FoamTokenizer word("2(0 maybe)", "test/flipMap");
+    m = test::error_of([&] { read_bool_list(word, ascii_header()); });
+    EXPECT_NE(m.find("test/flipMap:1"), std::string::npos) << m;
+    EXPECT_NE(m.find("'maybe'"), std::string::npos) << m;
+}
+
+TEST(FoamLists, word_lists_are_ascii_tokens_even_in_binary_files)
+{
+    for (const FoamHeader& h : {ascii_header(), binary_header()})
+    {
+        FoamTokenizer a("3(wall \"my patch\" empty)", "inGroups");
+        EXPECT_EQ(read_word_list(a, h), (std::vector<std::string>{"wall", "my patch", "empty"}));
+        FoamTokenizer u("2{wall}", "inGroups");
+        EXPECT_EQ(read_word_list(u, h), (std::vector<std::string>{"wall", "wall"}));
+        FoamTokenizer e("0()", "inGroups");
+        EXPECT_TRUE(read_word_list(e, h).empty());
+    }
+    FoamTokenizer bad("2(wall 3)", "test/boundary");
+    const std::string m = test::error_of([&] { read_word_list(bad, ascii_header()); });
+    EXPECT_NE(m.find("test/boundary:1"), std::string::npos) << m;
+    EXPECT_NE(m.find("expected a word"), std::string::npos) << m;
+}
+
 TEST(FoamLists, reads_face_lists_in_all_four_forms)
 {
     CompactList expected;
@@ -232,6 +289,24 @@ TEST(FoamLists, truncated_and_ascii_under_binary_header_are_errors)
     EXPECT_NE(ascii_body.find("byte offset"), std::string::npos) << ascii_body;
     const std::string wrong_size = test::error_of([&] { labels(raw_block(v), binary_header(8)); });
     EXPECT_NE(wrong_size.find("test/owner"), std::string::npos) << wrong_size;
+}
+
+TEST(FoamLists, chunked_reading_finds_the_end_of_a_list_followed_by_others)
+{
+    // The last ')' of the text closes the second list, not the first: the chunked path must
+    // not take it for the end of the first one.
+    std::string text = "\n2000\n(\n";
+    for (int i = 0; i < 2000; ++i)
+        text += std::to_string(i) + "\n";
+    text += ")\nnext 3(7 8 9)\n";
+    FoamTokenizer tok(text, "test/zones");
+    ListReadOptions chunked;
+    chunked.force_parallel = true;
+    const std::vector<std::int64_t> first = read_int64_list(tok, ascii_header(), chunked);
+    ASSERT_EQ(first.size(), 2000u);
+    EXPECT_EQ(first[1999], 1999);
+    EXPECT_TRUE(tok.next().is_word("next"));
+    EXPECT_EQ(read_label_list(tok, ascii_header(), chunked), (std::vector<Index>{7, 8, 9}));
 }
 
 TEST(FoamLists, parallel_ascii_parsing_matches_serial)

@@ -194,7 +194,7 @@ TEST(CheckMeshQualityApp, usage_and_input_errors_exit_2)
     r = run({"-help"});
     EXPECT_EQ(r.status, 0);
     for (const char* option : {"-case", "-time", "-latestTime", "-allGeometry", "-allTopology",
-                               "-meshQuality", "-writeSets", "-vtk", "-json"})
+                               "-meshQuality", "-writeSets", "-vtk", "-vtkFile", "-json"})
         EXPECT_NE(r.out.find(option), std::string::npos) << option;
     EXPECT_NE(r.out.find("Exit status"), std::string::npos);
 }
@@ -250,7 +250,7 @@ TEST(CheckMeshQualityApp, vtk_file_has_the_quality_fields)
 {
 #if MESHMORPH_WITH_VTK
     const fs::path dir = write_case("app_vtk", damaged_box());
-    const AppRun r = run({"-case", dir.string(), "-vtk", (dir / "quality.vtu").string()});
+    const AppRun r = run({"-case", dir.string(), "-vtkFile", (dir / "quality.vtu").string()});
     ASSERT_EQ(r.status, app::exit_checks_failed) << r.err;
     const std::string vtu = read_text(dir / "quality.vtu");
     for (const char* field :

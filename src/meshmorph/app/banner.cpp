@@ -14,6 +14,7 @@
 #endif
 
 #include "meshmorph/core/config.h"
+#include "meshmorph/core/log.h"
 #include "meshmorph/core/stopwatch.h"
 
 namespace meshmorph::app
@@ -58,6 +59,7 @@ void print_banner(std::ostream& out, const BannerInfo& info)
     if (!info.case_dir.empty())
         out << "Case   : " << info.case_dir << "\n";
     out << "\n";
+    out.flush(); // shown before the first (possibly long) stage of a run redirected to a file
 }
 
 void print_end(std::ostream& out)
@@ -66,14 +68,14 @@ void print_end(std::ostream& out)
     out.flush();
 }
 
-StageTimer::StageTimer(std::ostream& out) : out_(&out), start_(Clock::now()), lap_start_(start_) {}
+StageTimer::StageTimer() : start_(Clock::now()), lap_start_(start_) {}
 
 double StageTimer::lap(const std::string& stage)
 {
     const Clock::time_point now = Clock::now();
     const double seconds = std::chrono::duration<double>(now - lap_start_).count();
     lap_start_ = now;
-    *out_ << stage << " in " << format_seconds(seconds) << " s\n";
+    log::info() << stage << " in " << format_seconds(seconds) << " s";
     return seconds;
 }
 

@@ -30,19 +30,19 @@ struct BannerInfo
 //! Threads: 2
 //! Case   : /home/me/cavity
 //! ```
-//! followed by an empty line.
+//! followed by an empty line, and flush `out`.
 void print_banner(std::ostream& out, const BannerInfo& info);
 
 //! Print the closing `End` line (preceded by an empty line, as OpenFOAM does).
 void print_end(std::ostream& out);
 
-//! Wall-clock stage timer: `lap("Read mesh")` prints "Read mesh in 0.42 s" (time since the
-//! previous lap or construction) and returns the seconds.
+//! Wall-clock stage timer: `lap("Read mesh")` logs "Read mesh in 0.42 s" (log::info; time
+//! since the previous lap or construction) and returns the seconds.
 class StageTimer
 {
 public:
-    explicit StageTimer(std::ostream& out);
-    //! Print "<stage> in X s" and restart the lap clock. Returns the lap's seconds.
+    StageTimer();
+    //! Log "<stage> in X s" and restart the lap clock. Returns the lap's seconds.
     double lap(const std::string& stage);
     //! Seconds since construction.
     double total() const;
@@ -51,7 +51,6 @@ public:
 
 private:
     using Clock = std::chrono::steady_clock;
-    std::ostream* out_;
     Clock::time_point start_;
     Clock::time_point lap_start_;
 };

@@ -12,6 +12,7 @@
 #include "meshmorph/app/options.h"
 #include "meshmorph/core/config.h"
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
 #include "meshmorph/io/case_instance.h"
 #include "meshmorph/io/foam_dictionary.h"
 #include "meshmorph/io/foam_file.h"
@@ -165,10 +166,12 @@ int check_mesh_quality_main(const Options& options, std::ostream& out)
     if (!fs::is_directory(case_dir))
         throw IoError("case directory " + case_dir.string() + " does not exist");
     const bool quiet = options.found("quiet");
+    if (quiet)
+        log::set_level(log::Level::warning); // restored by run_check_mesh_quality's SinkScope
     std::ostringstream discard;
     std::ostream& info = quiet ? discard : out;
     print_banner(info, {"checkMeshQuality", options.command_line(), case_dir.string()});
-    StageTimer timer(info);
+    StageTimer timer;
 
     io::PolyMeshReadOptions read_options;
     read_options.region = region_option(options);
@@ -182,7 +185,7 @@ int check_mesh_quality_main(const Options& options, std::ostream& out)
     settings.no_topology = options.found("noTopology");
     settings.report_sets = options.found("writeSets");
     // The scaled Jacobian is reported in the JSON and VTK outputs only.
-    settings.scaled_jacobian = options.found("json") || options.found("vtk");
+    settings.scaled_jacobian = options.found("json") || vtk_requested(options);
     settings.write_precision = read_write_precision(case_dir);
     if (options.found("meshQuality"))
         settings.mesh_quality =
@@ -207,9 +210,12 @@ int check_mesh_quality_main(const Options& options, std::ostream& out)
             "Wrote " + std::to_string(files.size()) + " sets to " +
             (case_dir / foam.points_instance / read_options.region / "polyMesh" / "sets").string());
     }
-    if (const std::optional<std::string> vtk = options.get("vtk"))
+    if (vtk_requested(options))
     {
 #if MESHMORPH_WITH_VTK
+        fs::path vtk = vtk_file_argument(options);
+        if (vtk.empty())
+            vtk = default_vtk_file(case_dir, "checkMeshQuality", read_options.region, foam.time);
         std::vector<io::VtkField> fields;
         fields.emplace_back("nonOrthogonality", report.cell_non_orthogonality);
         fields.emplace_back("skewness", report.cell_skewness);
@@ -218,8 +224,9 @@ int check_mesh_quality_main(const Options& options, std::ostream& out)
         fields.emplace_back("determinant", report.cell_determinant);
         if (report.cell_scaled_jacobian.size() == mesh.n_cells)
             fields.emplace_back("scaledJacobian", report.cell_scaled_jacobian);
-        io::write_vtu(fs::absolute(*vtk), mesh, {}, fields);
-        timer.lap("Wrote " + *vtk);
+        fs::create_directories(vtk.parent_path());
+        io::write_vtu(vtk, mesh, {}, fields);
+        timer.lap("Wrote " + vtk.string());
 #else
         throw UsageError("-vtk: this build has no VTK support (MESHMORPH_WITH_VTK=OFF)");
 #endif
@@ -243,12 +250,17 @@ int check_mesh_quality_main(const Options& options, std::ostream& out)
 
 int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out, std::ostream& err)
 {
+    const log::SinkScope log_to(log::stream_sink(out, err));
+    const std::vector<OptionSpec> vtk =
+        vtk_option_specs("checkMeshQuality", "per-cell quality fields");
     Options options(
         "checkMeshQuality",
         "Checks the validity and quality of an OpenFOAM polyMesh like OpenFOAM's checkMesh\n"
         "(same checks, formulas and report text as v1912), optionally writing the sets of\n"
         "offending faces/cells, a VTK file with per-cell quality fields and a JSON summary.",
-        {{"case", "DIR", "Case directory (default: the current directory)"},
+        {vtk[0],
+         vtk[1],
+         {"case", "DIR", "Case directory (default: the current directory)"},
          {"region", "NAME",
           "Check region NAME (constant/NAME/polyMesh; system/NAME/meshQualityDict)"},
          {"time", "TIME", "Check the mesh at this time (a time name or value, or constant)"},
@@ -260,9 +272,6 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
          {"writeSets", "",
           "Write the offending faces/cells/points as OpenFOAM sets to "
           "<instance>/polyMesh/sets"},
-         {"vtk", "FILE",
-          "Write the mesh with per-cell quality fields as a VTK .vtu file (path relative to the "
-          "working directory)"},
          {"json", "FILE", "Write the results as JSON (path relative to the working directory)"},
          {"quiet", "", "Print only the report (no banner or timings)"}},
         {{exit_ok, "the mesh passed every check (\"Mesh OK.\")"},
@@ -270,9 +279,9 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
          {exit_input_error,
           "input error: bad option, missing or malformed case files or dictionaries"},
          {exit_internal_error, "unexpected internal error"}});
-    if (const std::optional<int> code = parse_command_line(options, argc, argv, out, err))
+    if (const std::optional<int> code = parse_command_line(options, argc, argv, out))
         return *code;
-    return run_guarded([&] { return check_mesh_quality_main(options, out); }, err, false);
+    return run_guarded([&] { return check_mesh_quality_main(options, out); }, false);
 }
 
 } // namespace meshmorph::app

@@ -41,7 +41,8 @@ std::vector<std::filesystem::path> write_mesh_sets(const std::vector<MeshSet>& s
                                                    const std::string& region = "");
 
 //! \brief Run checkMeshQuality with argv (argv[0] = program name); the report goes to `out`,
-//! errors to `err`. Returns the exit status (exit_ok, exit_checks_failed,
+//! and the log, for the length of the run, to log::stream_sink(out, err) (info on `out`,
+//! warnings and errors on `err`). Returns the exit status (exit_ok, exit_checks_failed,
 //! exit_input_error, exit_internal_error); never throws.
 int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out,
                            std::ostream& err);

@@ -2,23 +2,22 @@
 // The one catch ladder of the applications.
 #include "meshmorph/app/exit_status.h"
 
-#include <ostream>
-
 #include "meshmorph/app/options.h"
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
 
 namespace meshmorph::app
 {
 
-int run_guarded(const std::function<int()>& body, std::ostream& err, bool nothing_written,
+int run_guarded(const std::function<int()>& body, bool nothing_written,
                 const FailureHook& on_failure)
 {
-    const std::string written = nothing_written ? "Nothing written.\n" : "";
+    const std::string written = nothing_written ? "\nNothing written." : "";
     const auto fail = [&](int status, const std::string& message)
     {
-        err << message;
+        log::error() << message;
         if (on_failure)
-            on_failure(status, message);
+            on_failure(status, "Error: " + message + "\n");
         return status;
     };
     try
@@ -27,19 +26,20 @@ int run_guarded(const std::function<int()>& body, std::ostream& err, bool nothin
     }
     catch (const UsageError& e)
     {
-        return fail(exit_input_error, "Error: " + std::string(e.what()) + "\n");
+        return fail(exit_input_error, e.what());
     }
     catch (const SolverError& e)
     {
-        return fail(exit_fit_failed, "Error: " + std::string(e.what()) + "\n" + written);
+        return fail(exit_fit_failed, e.what() + written);
     }
     catch (const Error& e)
     {
-        return fail(exit_input_error, "Error: " + std::string(e.what()) + "\n" + written);
+        return fail(exit_input_error, e.what() + written);
     }
     catch (const std::exception& e)
     {
-        return fail(exit_internal_error, "Internal error: " + std::string(e.what()) + "\n");
+        return fail(exit_internal_error,
+                    "internal error (please report it): " + std::string(e.what()));
     }
 }
 

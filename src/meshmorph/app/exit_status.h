@@ -4,7 +4,6 @@
 #pragma once
 
 #include <functional>
-#include <iosfwd>
 #include <string>
 
 namespace meshmorph::app
@@ -17,15 +16,17 @@ inline constexpr int exit_refused = 3;        //!< morphMesh: the morph would in
 inline constexpr int exit_fit_failed = 4;     //!< morphMesh: the deformation could not be fitted
 inline constexpr int exit_internal_error = 5; //!< a bug: please report it
 
-//! Called with the exit status and the message already printed, e.g. to write a JSON
+//! Called with the exit status and the message already logged, e.g. to write a JSON
 //! report of the failure.
 using FailureHook = std::function<void(int status, const std::string& message)>;
 
 //! \brief Run an application's body and turn what it throws into an exit status and one
-//! message on `err`: "Error: ..." for UsageError and meshmorph::Error (exit_input_error,
-//! SolverError exit_fit_failed), "Internal error: ..." for anything else.
-//! \param nothing_written append "Nothing written." to input and fit errors (morphMesh).
-int run_guarded(const std::function<int()>& body, std::ostream& err, bool nothing_written,
+//! log::error message: the exception's text for UsageError and meshmorph::Error
+//! (exit_input_error; SolverError exit_fit_failed), "internal error (please report it):
+//! ..." for anything else (exit_internal_error).
+//! \param nothing_written append the line "Nothing written." to input and fit errors
+//! (morphMesh).
+int run_guarded(const std::function<int()>& body, bool nothing_written,
                 const FailureHook& on_failure = {});
 
 } // namespace meshmorph::app

@@ -28,6 +28,7 @@
 #include "meshmorph/io/foam_file.h"
 #include "meshmorph/io/point_field.h"
 #include "meshmorph/io/read_poly_mesh.h"
+#include "meshmorph/io/surface_io.h"
 #include "meshmorph/io/write_poly_mesh.h"
 #include "meshmorph/parallel/collective.h"
 #include "meshmorph/quality/cell_validity.h"
@@ -66,7 +67,7 @@ public:
             fs::path path = file;
             if (path.is_relative())
                 path = case_dir_ / path;
-            TriangleSurface surface = read_surface(path);
+            TriangleSurface surface = io::read_surface(path);
             log::info() << "Read target surface " << path.string() << ": " << surface.n_triangles()
                         << " triangles";
             it = trees_.emplace(file, std::make_shared<SurfaceTree>(std::move(surface))).first;
@@ -525,10 +526,11 @@ MorphResult morph_case(const MorphOptions& options)
 #if MESHMORPH_WITH_VTK
     if (options.vtk)
     {
-        const fs::path dir = case_dir / "VTK";
-        fs::create_directories(dir);
-        const std::string region = options.region.empty() ? "" : options.region + "_";
-        result.vtk_file = dir / ("morphMesh_" + region + result.output_instance + ".vtu");
+        result.vtk_file =
+            options.vtk_file.empty()
+                ? default_vtk_file(case_dir, "morphMesh", options.region, result.output_instance)
+                : options.vtk_file;
+        fs::create_directories(result.vtk_file.parent_path());
         std::vector<io::VtkField> point_data;
         point_data.emplace_back("displacement", result.morph.displacement);
         std::vector<io::VtkField> cell_data;
@@ -620,21 +622,8 @@ std::string morph_json(const MorphResult& result, int exit_status)
 namespace
 {
 
-//! RAII: the ranks other than the master print nothing (OpenFOAM's convention).
-struct DiscardLog
-{
-    DiscardLog()
-    {
-        log::set_sink([](log::Level, const std::string&) {});
-    }
-    ~DiscardLog() { log::set_sink(log::Sink()); }
-    DiscardLog(const DiscardLog&) = delete;
-    DiscardLog& operator=(const DiscardLog&) = delete;
-};
-
 //! morphMesh after its options are parsed; throws on errors (run_guarded reports them).
-int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostream& out,
-                    std::ostream& err)
+int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostream& out)
 {
     if (options.found("time") && options.found("latestTime"))
         throw UsageError("-time and -latestTime are mutually exclusive");
@@ -656,7 +645,8 @@ int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostr
         morph.method = *m;
     }
     morph.json = json_path;
-    morph.vtk = options.found("vtk");
+    morph.vtk = vtk_requested(options);
+    morph.vtk_file = vtk_file_argument(options);
     morph.force = options.found("force");
     morph.parallel = options.found("parallel");
 
@@ -676,8 +666,8 @@ int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostr
         << format_seconds(result.timings.write) << "\n";
     if (result.refused)
     {
-        err << "Error: " << result.refusal
-            << ". Nothing written: reduce the motion, change the method or use -force.\n";
+        log::error() << result.refusal
+                     << ". Nothing written: reduce the motion, change the method or use -force.";
         return exit_refused;
     }
     out << (result.after.mesh_ok()
@@ -692,6 +682,9 @@ int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostr
 
 int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::ostream& err)
 {
+    const log::SinkScope log_to(log::stream_sink(out, err));
+    const std::vector<OptionSpec> vtk =
+        vtk_option_specs("morphMesh", "the displacement and quality");
     Options options(
         "morphMesh",
         "Morphs the polyMesh of an OpenFOAM case with a space deformation (RBF by default,\n"
@@ -715,8 +708,8 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
          {"method", "rbf|dmffd|ffd|idw", "Override the dictionary's method"},
          {"json", "FILE",
           "Write constraints, timings and quality as JSON (relative to the working directory)"},
-         {"vtk", "",
-          "Also write VTK/morphMesh_[<region>_]<time>.vtu with the displacement and quality"},
+         vtk[0],
+         vtk[1],
          {"force", "", "Write even if the morph creates invalid cells"},
          {"parallel", "",
           "Morph the decomposed case (processor*/) under mpirun, one rank per processor "
@@ -726,11 +719,11 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
          {exit_refused, "the morph creates invalid cells; nothing written (see -force)"},
          {exit_fit_failed, "the deformation could not be fitted; nothing written"},
          {exit_internal_error, "unexpected internal error"}});
-    if (const std::optional<int> code = parse_command_line(options, argc, argv, out, err))
+    if (const std::optional<int> code = parse_command_line(options, argc, argv, out))
         return *code;
     // -parallel: MPI for the whole run; only the master prints and writes the report.
     std::optional<parallel::ParallelSession> session;
-    std::optional<DiscardLog> quiet;
+    std::optional<log::SinkScope> quiet; // the other ranks print nothing (as OpenFOAM's)
     std::ostringstream discarded;
     if (options.found("parallel"))
     {
@@ -740,15 +733,14 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
         }
         catch (const Error& e)
         {
-            err << "Error: " << e.what() << "\n";
+            log::error() << e.what();
             return exit_input_error;
         }
         if (!parallel::Communicator::world().master())
-            quiet.emplace();
+            quiet.emplace([](log::Level, const std::string&) {});
     }
     const bool master = parallel::Communicator::world().master();
     std::ostream& report_out = master ? out : discarded;
-    std::ostream& report_err = master ? err : discarded;
     fs::path json_path; // set as soon as known: a failure replaces any earlier report
     if (const std::optional<std::string> j = options.get("json"))
         json_path = fs::absolute(*j);
@@ -764,11 +756,11 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
         }
         catch (const std::exception& e)
         {
-            err << "Error: could not write " << json_path.string() << ": " << e.what() << "\n";
+            log::error() << "could not write " << json_path.string() << ": " << e.what();
         }
     };
-    return run_guarded([&] { return morph_mesh_main(options, json_path, report_out, report_err); },
-                       report_err, true, report_failure);
+    return run_guarded([&] { return morph_mesh_main(options, json_path, report_out); }, true,
+                       report_failure);
 }
 
 } // namespace meshmorph::app

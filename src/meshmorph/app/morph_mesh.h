@@ -43,7 +43,8 @@ struct MorphOptions
     bool overwrite = false;
     std::optional<std::string> method; //!< overrides the dictionary's `method`
     std::filesystem::path json;        //!< empty: no JSON
-    bool vtk = false;
+    bool vtk = false;                  //!< write a .vtu of the result
+    std::filesystem::path vtk_file;    //!< -vtkFile; empty: VTK/morphMesh_[<region>_]<time>.vtu
     bool force = false;
     //! -parallel: morph the decomposed case (processor<rank>/), one rank per processor
     //! directory (the run must have started MPI: parallel::ParallelSession).
@@ -90,7 +91,9 @@ MorphResult morph_case(const MorphOptions& options);
 std::string morph_json(const MorphResult& result, int exit_status);
 
 //! \brief The morphMesh application (argv[0] = program name): options, banner, morph_case,
-//! summary. Report to `out`, errors to `err`. Returns an exit status; never throws.
+//! summary. Report to `out`; the log, for the length of the run, to
+//! log::stream_sink(out, err) (info on `out`, warnings and errors on `err`). Returns an exit
+//! status; never throws.
 int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::ostream& err);
 
 } // namespace meshmorph::app

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "meshmorph/core/log.h"
+
 namespace meshmorph::app
 {
 
@@ -54,14 +56,23 @@ void Options::parse(int argc, const char* const argv[])
             return;
         }
     }
+    const OptionSpec* previous_flag = nullptr; // the flag just before, for stray arguments
     for (int i = 1; i < argc; ++i)
     {
         std::string arg = argv[i];
         if (arg.size() < 2 || arg[0] != '-' || (arg[1] >= '0' && arg[1] <= '9') || arg[1] == '.')
         {
+            if (previous_flag && positional_.size() >= positional_names_.size())
+                throw UsageError("unexpected argument '" + arg + "' after -" + previous_flag->name +
+                                 ", which takes no argument" +
+                                 (previous_flag->stray_argument_hint.empty()
+                                      ? std::string(" (see " + app_name_ + " -help)")
+                                      : ": " + previous_flag->stray_argument_hint + " " + arg));
             positional_.push_back(arg);
+            previous_flag = nullptr;
             continue;
         }
+        previous_flag = nullptr;
         std::string name = arg.substr(arg[1] == '-' ? 2 : 1);
         std::optional<std::string> inline_value;
         if (const std::size_t eq = name.find('='); eq != std::string::npos && arg[1] == '-')
@@ -79,6 +90,7 @@ void Options::parse(int argc, const char* const argv[])
             if (inline_value)
                 throw UsageError("option -" + name + " takes no argument");
             values_[name] = "";
+            previous_flag = spec;
             continue;
         }
         if (inline_value)
@@ -174,7 +186,7 @@ std::string Options::help_text() const
 }
 
 std::optional<int> parse_command_line(Options& options, int argc, const char* const argv[],
-                                      std::ostream& out, std::ostream& err)
+                                      std::ostream& out)
 {
     try
     {
@@ -182,9 +194,8 @@ std::optional<int> parse_command_line(Options& options, int argc, const char* co
     }
     catch (const UsageError& e)
     {
-        err << "Error: " << e.what() << "\n"
-            << "Usage: " << options.app_name() << " [OPTIONS]; see " << options.app_name()
-            << " -help\n";
+        log::error() << e.what() << "\nUsage: " << options.app_name() << " [OPTIONS]; see "
+                     << options.app_name() << " -help";
         return exit_input_error;
     }
     if (options.help_requested())
@@ -193,6 +204,37 @@ std::optional<int> parse_command_line(Options& options, int argc, const char* co
         return 0;
     }
     return std::nullopt;
+}
+
+std::vector<OptionSpec> vtk_option_specs(const std::string& app_name, const std::string& contents)
+{
+    const std::string file = "VTK/" + app_name + "_[<region>_]<time>.vtu";
+    return {{"vtk", "", "Also write " + file + " in the case with " + contents,
+             "-vtk writes " + file + " in the case; to choose the file, use -vtkFile"},
+            {"vtkFile", "FILE", "Like -vtk, but write FILE (relative to the working directory)"}};
+}
+
+std::filesystem::path default_vtk_file(const std::filesystem::path& case_dir,
+                                       const std::string& app_name, const std::string& region,
+                                       const std::string& time)
+{
+    return case_dir / "VTK" /
+           (app_name + "_" + (region.empty() ? "" : region + "_") + time + ".vtu");
+}
+
+bool vtk_requested(const Options& options)
+{
+    return options.found("vtk") || options.found("vtkFile");
+}
+
+std::filesystem::path vtk_file_argument(const Options& options)
+{
+    const std::optional<std::string> file = options.get("vtkFile");
+    if (!file)
+        return {};
+    if (file->empty())
+        throw UsageError("-vtkFile: expected a file name");
+    return std::filesystem::absolute(*file);
 }
 
 std::string region_option(const Options& options)

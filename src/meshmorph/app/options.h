@@ -4,9 +4,14 @@
 //! Options use a single dash (`-case DIR`, `-latestTime`); `--name` is accepted too.
 //! Unknown options and missing arguments raise UsageError (applications return exit
 //! code 2 for it). The table generates the `-help` text, so help and parser cannot drift.
+//!
+//! Conventions shared by the applications: options that write a file take it as argument
+//! (`-json FILE`), except VTK output, which follows foamToVTK: `-vtk` writes
+//! `<case>/VTK/<app>_[<region>_]<time>.vtu`, `-vtkFile FILE` writes FILE instead.
 #pragma once
 
 #include "meshmorph/app/exit_status.h"
+#include <filesystem>
 #include <iosfwd>
 #include <map>
 #include <optional>
@@ -31,6 +36,9 @@ struct OptionSpec
     std::string name;     //!< without the dash, e.g. "case"
     std::string argument; //!< argument name shown in -help ("DIR"); empty for a flag
     std::string help;     //!< one-line description
+    //! For a flag: said when an argument follows it (`-vtk out.vtu`); the argument is
+    //! appended, e.g. "to choose the file, use -vtkFile" + " out.vtu".
+    std::string stray_argument_hint = {};
 };
 
 //! One documented exit status of an application.
@@ -93,10 +101,28 @@ private:
 };
 
 //! Parse the command line the way every meshmorph application does: on -help print the
-//! help text to `out` and return 0; on a UsageError print "Error: <what>" and a hint to
-//! `err` and return exit_input_error; otherwise return std::nullopt (continue).
+//! help text to `out` and return 0; on a UsageError log the error "<what>" and a usage hint
+//! (log::error) and return exit_input_error; otherwise return std::nullopt (continue).
 std::optional<int> parse_command_line(Options& options, int argc, const char* const argv[],
-                                      std::ostream& out, std::ostream& err);
+                                      std::ostream& out);
+
+//! \brief The `-vtk` and `-vtkFile FILE` rows of an application's option table, worded the
+//! same in every application. \param contents what the file holds, e.g. "per-cell quality
+//! fields".
+std::vector<OptionSpec> vtk_option_specs(const std::string& app_name, const std::string& contents);
+
+//! The file `-vtk` writes: `<case>/VTK/<app_name>_[<region>_]<time>.vtu` (foamToVTK's folder).
+std::filesystem::path default_vtk_file(const std::filesystem::path& case_dir,
+                                       const std::string& app_name, const std::string& region,
+                                       const std::string& time);
+
+//! Whether `-vtk` or `-vtkFile` was given.
+bool vtk_requested(const Options& options);
+
+//! \brief The FILE of `-vtkFile FILE` as an absolute path (relative paths are from the working
+//! directory); empty when not given (then `-vtk` writes default_vtk_file()).
+//! \throw UsageError on an empty FILE.
+std::filesystem::path vtk_file_argument(const Options& options);
 
 //! \brief The `-region NAME` of a command line: "" when absent or `region0` (OpenFOAM's
 //! default region, whose files are not in a subdirectory). \throw UsageError when NAME is

@@ -3,8 +3,9 @@
 #include "meshmorph/core/log.h"
 
 #include <atomic>
-#include <cstdio>
+#include <iostream>
 #include <mutex>
+#include <utility>
 
 namespace meshmorph::log
 {
@@ -25,12 +26,44 @@ std::atomic<int>& current_level()
     static std::atomic<int> l{static_cast<int>(Level::info)};
     return l;
 }
+
+const char* prefix(Level l)
+{
+    switch (l)
+    {
+    case Level::error:
+        return "Error: ";
+    case Level::warning:
+        return "Warning: ";
+    default:
+        return "";
+    }
+}
+
+// One message as a line on `out` (info, debug) or `err` (errors, warnings), flushed.
+void write_line(std::ostream& out, std::ostream& err, Level l, const std::string& message)
+{
+    if (l == Level::error || l == Level::warning)
+    {
+        out.flush();
+        err << prefix(l) << message << '\n';
+        err.flush();
+        return;
+    }
+    out << message << '\n';
+    out.flush();
+}
 } // namespace
 
 void set_sink(Sink sink)
 {
     std::lock_guard<std::mutex> lock(sink_mutex());
     current_sink() = std::move(sink);
+}
+
+Sink stream_sink(std::ostream& out, std::ostream& err)
+{
+    return [&out, &err](Level l, const std::string& message) { write_line(out, err, l, message); };
 }
 
 void set_level(Level level)
@@ -52,45 +85,35 @@ void write(Level l, const std::string& message)
 {
     std::lock_guard<std::mutex> lock(sink_mutex());
     if (current_sink())
-    {
         current_sink()(l, message);
-        return;
-    }
-    switch (l)
+    else
+        write_line(std::cout, std::cerr, l, message);
+}
+
+SinkScope::SinkScope(Sink sink) : previous_level_(level())
+{
+    std::lock_guard<std::mutex> lock(sink_mutex());
+    previous_sink_ = std::exchange(current_sink(), std::move(sink));
+}
+
+SinkScope::~SinkScope()
+{
     {
-    case Level::error:
-        std::fflush(stdout);
-        std::fprintf(stderr, "Error: %s\n", message.c_str());
-        break;
-    case Level::warning:
-        std::fflush(stdout);
-        std::fprintf(stderr, "Warning: %s\n", message.c_str());
-        break;
-    default:
-        std::fprintf(stdout, "%s\n", message.c_str());
-        break;
+        std::lock_guard<std::mutex> lock(sink_mutex());
+        current_sink() = std::move(previous_sink_);
     }
-}
-
-CaptureScope::CaptureScope() : text_(std::make_shared<std::string>()), previous_level_(level())
-{
-    std::shared_ptr<std::string> text = text_;
-    set_sink(
-        [text](Level l, const std::string& m)
-        {
-            if (l == Level::error)
-                *text += "Error: ";
-            else if (l == Level::warning)
-                *text += "Warning: ";
-            *text += m;
-            *text += '\n';
-        });
-}
-
-CaptureScope::~CaptureScope()
-{
-    set_sink(Sink());
     set_level(previous_level_);
+}
+
+CaptureScope::CaptureScope()
+    : text_(std::make_shared<std::string>()), scope_(
+                                                  [text = text_](Level l, const std::string& m)
+                                                  {
+                                                      *text += prefix(l);
+                                                      *text += m;
+                                                      *text += '\n';
+                                                  })
+{
 }
 
 } // namespace meshmorph::log

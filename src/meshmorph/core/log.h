@@ -1,12 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-//! \file Leveled logging through a swappable sink (no initialisation needed).
+//! \file Leveled logging through one swappable sink (no initialisation needed).
 //!
 //! Usage: `log::info() << "Reading " << path;` — the line is emitted when the temporary
-//! dies. Errors and warnings go to stderr, info and debug to stdout, unless a sink is set
-//! (tests capture output that way).
+//! dies. Library code reports through here only, never to std::cout/std::cerr. The
+//! applications install stream_sink(out, err) for the length of a run (a SinkScope), so that
+//! the log lands in the same streams as their report; without a sink, errors and warnings go
+//! to stderr, info and debug to stdout. Every message is flushed as it is written: a run
+//! redirected to a file (`morphMesh > log.morphMesh`) shows each line when it happens.
 #pragma once
 
 #include <functional>
+#include <iosfwd>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -26,6 +30,11 @@ using Sink = std::function<void(Level, const std::string&)>;
 
 //! Replace the sink; an empty function restores the default (stdout/stderr). Thread-safe.
 void set_sink(Sink sink);
+//! \brief The sink applications use: info and debug lines to `out`; errors and warnings,
+//! prefixed "Error: " / "Warning: ", to `err` (after flushing `out`, so that a terminal shows
+//! them in order). Each message is one line (or several, for a message with newlines) and
+//! is flushed. The streams must outlive the sink.
+Sink stream_sink(std::ostream& out, std::ostream& err);
 //! Messages above this level are dropped (default: info).
 void set_level(Level level);
 Level level();
@@ -75,19 +84,34 @@ inline Line debug()
     return Line(Level::debug);
 }
 
-//! RAII: capture every message into a string while alive (for tests), restoring the sink.
+//! RAII: use `sink` while alive; then restore the previous sink and level (so a scope may
+//! also change the level, e.g. an application's `-quiet`).
+class SinkScope
+{
+public:
+    explicit SinkScope(Sink sink);
+    ~SinkScope();
+    SinkScope(const SinkScope&) = delete;
+    SinkScope& operator=(const SinkScope&) = delete;
+
+private:
+    Sink previous_sink_;
+    Level previous_level_;
+};
+
+//! RAII: capture every message into a string while alive (for tests), restoring the
+//! previous sink and level. Errors and warnings carry their "Error: "/"Warning: " prefix.
 class CaptureScope
 {
 public:
     CaptureScope();
-    ~CaptureScope();
     CaptureScope(const CaptureScope&) = delete;
     CaptureScope& operator=(const CaptureScope&) = delete;
     const std::string& text() const { return *text_; }
 
 private:
     std::shared_ptr<std::string> text_;
-    Level previous_level_;
+    SinkScope scope_;
 };
 
 } // namespace meshmorph::log

@@ -60,6 +60,8 @@ void ProgressScope::update(std::int64_t done)
                     << total_ << ")";
         return;
     }
+    // Redrawing one line in place is terminal control, not a log line, so it writes to the
+    // terminal itself; anywhere else progress is the log line above.
     std::fprintf(stderr, "\r  %s: %3.0f%% (%lld/%lld)", task_.c_str(), pct,
                  static_cast<long long>(done), static_cast<long long>(total_));
     std::fflush(stderr);

@@ -1,4 +1,5 @@
-# core: types, mesh container, addressing, errors, logging, progress.
+# core: types, mesh container, addressing, errors, logging, progress, triangle surfaces and
+# pure geometry. No file I/O (that is io/).
 meshmorph_add_component(core
     SOURCES
         meshmorph/core/poly_mesh.cpp
@@ -8,5 +9,4 @@ meshmorph_add_component(core
         meshmorph/core/cell_shapes.cpp
         meshmorph/core/triangle_surface.cpp
         # (one file per line)
-    DEPENDS Eigen3::Eigen OpenMP::OpenMP_CXX
-    PRIVATE_DEPENDS ZLIB::ZLIB)
+    DEPENDS Eigen3::Eigen OpenMP::OpenMP_CXX)

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-//! \file A triangle surface (vertices + triangles): STL/OBJ readers and an AABB tree for
-//! closest-point queries (morphMesh's `surface` boundary type projects points onto it).
+//! \file A triangle surface (vertices + triangles) and an AABB tree for closest-point
+//! queries (morphMesh's `surface` boundary type projects points onto it). The STL and OBJ
+//! readers are in io/surface_io.h.
 #pragma once
 
-#include <filesystem>
 #include <limits>
 #include <vector>
 
@@ -26,29 +26,6 @@ struct TriangleSurface
     Index n_vertices() const { return static_cast<Index>(vertices.rows()); }
     Index n_triangles() const { return static_cast<Index>(triangles.rows()); }
 };
-
-//! \brief Read an STL file, ASCII or binary (told apart by the binary size rule
-//! 84 + 50 m bytes, since binary headers may also start with "solid"); all solids of an ASCII
-//! file are concatenated. Vertices with identical coordinates are merged, so the result is
-//! indexed (STL itself is a triangle soup). Facet normals are ignored: the vertex order gives
-//! the orientation. A `.gz` file is decompressed.
-//! \throw IoError if the file cannot be read.
-//! \throw ParseError naming the file and line (ASCII) or byte offset (binary) on malformed
-//!        content: unexpected keyword, bad or non-finite number, truncated data, no triangles.
-TriangleSurface read_stl(const std::filesystem::path& path);
-
-//! \brief Read a Wavefront OBJ file: `v x y z [w]` and `f` lines (`i`, `i/t`, `i//n`, `i/t/n`,
-//! negative = relative indices); polygons are fan-triangulated from their first vertex; other
-//! statements (vn, vt, g, o, s, usemtl, mtllib, l, ...) are ignored. A `.gz` file is
-//! decompressed.
-//! \throw IoError if unreadable. \throw ParseError (file:line) on a malformed number, an index
-//!        out of range, a face with fewer than 3 vertices, or no faces at all.
-TriangleSurface read_obj(const std::filesystem::path& path);
-
-//! \brief read_stl or read_obj by extension (`.stl`, `.obj`, case-insensitive, optionally
-//! followed by `.gz`). \throw InvalidInput for another extension (message lists the supported
-//! ones), else as the readers.
-TriangleSurface read_surface(const std::filesystem::path& path);
 
 //! The result of a closest-point query.
 struct SurfacePoint

@@ -278,11 +278,13 @@ FoamDictionary parse_dictionary_block(FoamTokenizer& tokenizer, const std::strin
 FoamDictionary read_dictionary(const std::filesystem::path& path, ParseOptions options = {});
 
 //! \brief Read a `List<T>` compound body after its type word (`N(…)`, `N{v}`, `(…)`, or a
-//! binary block when options.binary and T is contiguous).
+//! binary block when options.binary and T is contiguous) with foam_lists.h's readers.
 //! \param type_word "List<label>", "List<scalar>", "List<vector>", "List<bool>", "List<word>".
-//! \throw ParseError on an unknown type word, a size mismatch or truncated data.
+//! \param what names the list in messages (the entry's keyword); empty: the type word.
+//! \throw ParseError naming file and line on an unknown type word, a size mismatch,
+//! a bad element or truncated data.
 FoamCompound read_compound(FoamTokenizer& tokenizer, const std::string& type_word,
-                           const ParseOptions& options = {});
+                           const ParseOptions& options = {}, const std::string& what = {});
 
 //! A uniform list `N{v}` is expanded in memory; N beyond the label range is malformed input
 //! (OpenFOAM could not hold it either), not a reason to exhaust memory.

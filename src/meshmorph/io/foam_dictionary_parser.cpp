@@ -701,7 +701,7 @@ struct detail_dictionary_access
                         FoamValueToken vt;
                         static_cast<FoamToken&>(vt) = t;
                         vt.compound = std::make_shared<const FoamCompound>(
-                            read_compound(tok, t.text, options));
+                            read_compound(tok, t.text, options, e.keyword_));
                         last = tok.offset();
                         e.tokens_.push_back(std::move(vt));
                         continue;

@@ -52,15 +52,18 @@ ParseError binary_error(const FoamTokenizer& tok, std::size_t line, std::size_t 
                                   std::to_string(byte_offset) + ": " + msg);
 }
 
-Index to_index(std::int64_t v, const FoamTokenizer& tok, const std::string& what)
+// A label read as int64 converted to the list's label type L (Index, or int64 for
+// dictionary values), range-checked when L is narrower.
+template <class L = Index>
+L to_label(std::int64_t v, const FoamTokenizer& tok, const std::string& what)
 {
-    if constexpr (sizeof(Index) < sizeof(std::int64_t))
+    if constexpr (sizeof(L) < sizeof(std::int64_t))
     {
-        if (v < std::numeric_limits<Index>::min() || v > std::numeric_limits<Index>::max())
+        if (v < std::numeric_limits<L>::min() || v > std::numeric_limits<L>::max())
             throw tok.error("label " + std::to_string(v) + " in '" + what + "' does not fit in a " +
-                            std::to_string(8 * sizeof(Index)) + "-bit label");
+                            std::to_string(8 * sizeof(L)) + "-bit label");
     }
-    return static_cast<Index>(v);
+    return static_cast<L>(v);
 }
 
 // What starts a list: its declared size (or none for `( … )`), and the bracket.
@@ -168,13 +171,13 @@ void expect_binary_close(FoamTokenizer& tok, const ListStart& start, const std::
                            "header, use other sizes than the arch says, or be truncated");
 }
 
-template <class Int>
-void decode_labels_as(std::string_view raw, Index* out, std::size_t n, const FoamTokenizer& tok,
+template <class Int, class L>
+void decode_labels_as(std::string_view raw, L* out, std::size_t n, const FoamTokenizer& tok,
                       const ListStart& start, std::size_t data_offset, const std::string& what)
 {
-    if constexpr (sizeof(Int) == sizeof(Index))
+    if constexpr (sizeof(Int) == sizeof(L))
     {
-        std::memcpy(out, raw.data(), n * sizeof(Index));
+        std::memcpy(out, raw.data(), n * sizeof(L));
     }
     else
     {
@@ -182,19 +185,20 @@ void decode_labels_as(std::string_view raw, Index* out, std::size_t n, const Foa
         {
             Int v;
             std::memcpy(&v, raw.data() + i * sizeof(Int), sizeof(Int));
-            if constexpr (sizeof(Int) > sizeof(Index))
+            if constexpr (sizeof(Int) > sizeof(L))
             {
-                if (v < std::numeric_limits<Index>::min() || v > std::numeric_limits<Index>::max())
+                if (v < std::numeric_limits<L>::min() || v > std::numeric_limits<L>::max())
                     throw binary_error(tok, start.line, data_offset + i * sizeof(Int), what,
                                        "label " + std::to_string(v) + " does not fit in a " +
-                                           std::to_string(8 * sizeof(Index)) + "-bit label");
+                                           std::to_string(8 * sizeof(L)) + "-bit label");
             }
-            out[i] = static_cast<Index>(v);
+            out[i] = static_cast<L>(v);
         }
     }
 }
 
-void decode_labels(std::string_view raw, int label_bytes, Index* out, std::size_t n,
+template <class L>
+void decode_labels(std::string_view raw, int label_bytes, L* out, std::size_t n,
                    const FoamTokenizer& tok, const ListStart& start, std::size_t data_offset,
                    const std::string& what)
 {
@@ -249,13 +253,14 @@ void expect_close(FoamTokenizer& tok, const ListStart& start, const std::string&
                                    "' of " + kind + "s but found " + t.describe());
 }
 
-inline void read_ascii_label(FoamTokenizer& tok, Index& out, const ListStart& start, std::size_t i,
-                             const std::string& what)
+template <class L>
+void read_ascii_label(FoamTokenizer& tok, L& out, const ListStart& start, std::size_t i,
+                      const std::string& what)
 {
     std::int64_t v;
     if (!tok.read_label(v))
         throw_short_list(tok, start, i, what, "an integer");
-    out = to_index(v, tok, what);
+    out = to_label<L>(v, tok, what);
 }
 
 inline void read_ascii_scalar(FoamTokenizer& tok, double& out, const ListStart& start,
@@ -390,7 +395,7 @@ inline const char* skip_space(const char* p, const char* e)
     return p;
 }
 
-inline bool label(const char*& p, const char* e, Index& out)
+template <class L> bool label(const char*& p, const char* e, L& out)
 {
     p = skip_space(p, e);
     bool negative = false;
@@ -406,9 +411,9 @@ inline bool label(const char*& p, const char* e, Index& out)
     if (p == digits || !is_delimiter(p, e))
         return false;
     const std::int64_t s = negative ? -static_cast<std::int64_t>(v) : static_cast<std::int64_t>(v);
-    if (s < std::numeric_limits<Index>::min() || s > std::numeric_limits<Index>::max())
+    if (s < std::numeric_limits<L>::min() || s > std::numeric_limits<L>::max())
         return false;
-    out = static_cast<Index>(s);
+    out = static_cast<L>(s);
     return true;
 }
 
@@ -523,9 +528,10 @@ bool parse_fast(FoamTokenizer& tok, const ListStart& start, const ListReadOption
     // chunk boundary inside a comment cannot go unnoticed.
     std::size_t body_end =
         worth_parallel(tok, options) ? list_body_end(tok, element_depth) : std::string_view::npos;
+    std::vector<Chunk> chunks;
     if (body_end != std::string_view::npos)
     {
-        std::vector<Chunk> chunks = split_lines(buf, body_begin, body_end, chunk_count());
+        chunks = split_lines(buf, body_begin, body_end, chunk_count());
 #pragma omp parallel for schedule(static)
         for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
             chunks[k].count = count_chunk(chunks[k]);
@@ -535,8 +541,13 @@ bool parse_fast(FoamTokenizer& tok, const ListStart& start, const ListReadOption
             c.first = total;
             total += c.count;
         }
+        // Not exactly n elements: the guessed end was not this list's (a list inside a
+        // dictionary, followed by more lists); the serial kernel finds the real one.
         if (total != n)
-            return false;
+            chunks.clear();
+    }
+    if (!chunks.empty())
+    {
         std::vector<char> chunk_ok(chunks.size(), 1);
 #pragma omp parallel for schedule(dynamic, 1)
         for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
@@ -568,30 +579,35 @@ bool parse_fast(FoamTokenizer& tok, const ListStart& start, const ListReadOption
     return true;
 }
 
-template <class T, class ReadOne>
-std::vector<T>
-read_number_list(FoamTokenizer& tok, const FoamHeader& header, const ListReadOptions& options,
-                 int binary_bytes, ReadOne read_one, const char* kind,
-                 void (*decode)(std::string_view, int, T*, std::size_t, const FoamTokenizer&,
-                                const ListStart&, std::size_t, const std::string&))
+// Reads a list with one value of type T per element (labels, scalars, bools, words):
+// `element_bytes` is its size in a binary block, 0 for a type that is not contiguous (its
+// lists stay ASCII tokens in binary files). `read_ascii(tok, T&, start, i, what)` reads one
+// element with the tokenizer (precise errors); `decode(raw, T*, n, tok, start, data_offset,
+// what)` converts n elements of a binary block; `fast_one(p, e, T&)` is the kernel for big
+// ASCII bodies, or nullptr for element types that have none.
+template <class T, class ReadAscii, class Decode, class Fast>
+std::vector<T> read_flat_list(FoamTokenizer& tok, const FoamHeader& header,
+                              const ListReadOptions& options, std::size_t element_bytes,
+                              const char* kind, ReadAscii read_ascii, Decode decode, Fast fast_one)
 {
-    const ListStart start = read_list_start(tok, header, options, min_chars_label,
-                                            header.is_binary() ? binary_bytes : 0);
+    const bool binary = header.is_binary() && element_bytes > 0;
+    const ListStart start =
+        read_list_start(tok, header, options, min_chars_label, binary ? element_bytes : 0);
     std::vector<T> values;
     if (start.open == 0)
         return values;
-    if (header.is_binary())
+    if (binary)
     {
         const std::size_t n = start.open == '{' ? 1 : start.size;
         const std::size_t data_offset = tok.offset();
-        if (n * static_cast<std::size_t>(binary_bytes) > remaining(tok))
+        if (n * element_bytes > remaining(tok))
             throw binary_error(tok, start.line, data_offset, options.what,
-                               "truncated: " + size_text(n * binary_bytes) +
+                               "truncated: " + size_text(n * element_bytes) +
                                    " bytes of data expected, " + size_text(remaining(tok)) +
                                    " remain");
-        const std::string_view raw = tok.read_raw(n * static_cast<std::size_t>(binary_bytes));
+        const std::string_view raw = tok.read_raw(n * element_bytes);
         values.resize(n);
-        decode(raw, binary_bytes, values.data(), n, tok, start, data_offset, options.what);
+        decode(raw, values.data(), n, tok, start, data_offset, options.what);
         expect_binary_close(tok, start, options.what, data_offset, start.open == '{' ? '}' : ')');
         if (start.open == '{')
             values.assign(start.size, values.empty() ? T{} : values[0]);
@@ -600,7 +616,7 @@ read_number_list(FoamTokenizer& tok, const FoamHeader& header, const ListReadOpt
     if (start.open == '{')
     {
         T v{};
-        read_one(tok, v, start, 0, options.what);
+        read_ascii(tok, v, start, 0, options.what);
         expect_close(tok, start, options.what, kind);
         values.assign(start.size, v);
         return values;
@@ -608,21 +624,19 @@ read_number_list(FoamTokenizer& tok, const FoamHeader& header, const ListReadOpt
     if (start.has_size)
     {
         values.resize(start.size);
-        T* const out = values.data();
-        const std::string_view buf = tok.buffer();
-        if (parse_fast(
-                tok, start, options, 0,
-                [out](const char*& p, const char* e, std::size_t i)
-                {
-                    if constexpr (std::is_same_v<T, double>)
-                        return fast::scalar(p, e, out[i]);
-                    else
-                        return fast::label(p, e, out[i]);
-                },
-                [&buf](const Chunk& c) { return count_tokens(buf, c); }, kind))
-            return values;
+        if constexpr (!std::is_same_v<Fast, std::nullptr_t>)
+        {
+            T* const out = values.data();
+            const std::string_view buf = tok.buffer();
+            if (parse_fast(
+                    tok, start, options, 0,
+                    [out, fast_one](const char*& p, const char* e, std::size_t i)
+                    { return fast_one(p, e, out[i]); },
+                    [&buf](const Chunk& c) { return count_tokens(buf, c); }, kind))
+                return values;
+        }
         for (std::size_t i = 0; i < start.size; ++i)
-            read_one(tok, values[i], start, i, options.what);
+            read_ascii(tok, values[i], start, i, options.what);
         expect_close(tok, start, options.what, kind);
         return values;
     }
@@ -633,8 +647,8 @@ read_number_list(FoamTokenizer& tok, const FoamHeader& header, const ListReadOpt
         if (tok.offset() < tok.buffer().size() && tok.buffer()[tok.offset()] == ')')
             break;
         T v{};
-        read_one(tok, v, start, values.size(), options.what);
-        values.push_back(v);
+        read_ascii(tok, v, start, values.size(), options.what);
+        values.push_back(std::move(v));
     }
     tok.expect(')');
     if (options.expected_size && values.size() != *options.expected_size)
@@ -644,17 +658,51 @@ read_number_list(FoamTokenizer& tok, const FoamHeader& header, const ListReadOpt
     return values;
 }
 
-void decode_label_adapter(std::string_view raw, int bytes, Index* out, std::size_t n,
-                          const FoamTokenizer& tok, const ListStart& start, std::size_t off,
-                          const std::string& what)
+template <class L>
+std::vector<L> read_labels_as(FoamTokenizer& tok, const FoamHeader& header,
+                              const ListReadOptions& options)
 {
-    decode_labels(raw, bytes, out, n, tok, start, off, what);
+    const int bytes = header.label_bytes;
+    return read_flat_list<L>(
+        tok, header, options, static_cast<std::size_t>(bytes), "label", read_ascii_label<L>,
+        [bytes](std::string_view raw, L* out, std::size_t n, const FoamTokenizer& t,
+                const ListStart& start, std::size_t offset, const std::string& what)
+        { decode_labels(raw, bytes, out, n, t, start, offset, what); },
+        [](const char*& p, const char* e, L& out) { return fast::label(p, e, out); });
 }
 
-void decode_scalar_adapter(std::string_view raw, int bytes, double* out, std::size_t n,
-                           const FoamTokenizer&, const ListStart&, std::size_t, const std::string&)
+// A bool element: OpenFOAM writes 0/1 (also true/false, on/off, yes/no in hand-written
+// files); any other number or word is an error.
+void read_ascii_bool(FoamTokenizer& tok, std::uint8_t& out, const ListStart& start, std::size_t i,
+                     const std::string& what)
 {
-    decode_scalars(raw, bytes, out, n);
+    std::int64_t v = 0;
+    if (tok.read_label(v))
+    {
+        if (v != 0 && v != 1)
+            throw tok.error("element " + size_text(i) + " of list '" + what + "' is " +
+                            std::to_string(v) + ", not a bool (0 or 1)");
+        out = static_cast<std::uint8_t>(v);
+        return;
+    }
+    const FoamToken& t = tok.peek();
+    if (t.is_word("true") || t.is_word("on") || t.is_word("yes"))
+        out = 1;
+    else if (t.is_word("false") || t.is_word("off") || t.is_word("no"))
+        out = 0;
+    else
+        throw_short_list(tok, start, i, what, "a bool (0/1, true/false, on/off, yes/no)");
+    tok.next();
+}
+
+// A word element: a word or a quoted string.
+void read_ascii_word(FoamTokenizer& tok, std::string& out, const ListStart& start, std::size_t i,
+                     const std::string& what)
+{
+    const FoamToken& t = tok.peek();
+    if (!t.is_word() && !t.is_string())
+        throw_short_list(tok, start, i, what, "a word");
+    out = tok.next().text;
 }
 
 // Faces: read one ASCII face `k(v0 … vk-1)` (or `k{v}`) appending to values.
@@ -687,7 +735,7 @@ void read_ascii_face(FoamTokenizer& tok, std::vector<Index>& values, const ListS
                                            std::to_string(k) +
                                            ": expected a vertex label but found " + t.describe());
         }
-        values.push_back(to_index(v, tok, what));
+        values.push_back(to_label(v, tok, what));
     }
     if (uniform)
         values.insert(values.end(), static_cast<std::size_t>(k) - 1, values[base]);
@@ -1105,15 +1153,49 @@ void expect_end_of_file(FoamTokenizer& tok, const std::string& what)
 std::vector<Index> read_label_list(FoamTokenizer& tok, const FoamHeader& header,
                                    const ListReadOptions& options)
 {
-    return read_number_list<Index>(tok, header, options, header.label_bytes, read_ascii_label,
-                                   "label", decode_label_adapter);
+    return read_labels_as<Index>(tok, header, options);
 }
 
 std::vector<double> read_scalar_list(FoamTokenizer& tok, const FoamHeader& header,
                                      const ListReadOptions& options)
 {
-    return read_number_list<double>(tok, header, options, header.scalar_bytes, read_ascii_scalar,
-                                    "scalar", decode_scalar_adapter);
+    const int bytes = header.scalar_bytes;
+    return read_flat_list<double>(
+        tok, header, options, static_cast<std::size_t>(bytes), "scalar", read_ascii_scalar,
+        [bytes](std::string_view raw, double* out, std::size_t n, const FoamTokenizer&,
+                const ListStart&, std::size_t, const std::string&)
+        { decode_scalars(raw, bytes, out, n); },
+        [](const char*& p, const char* e, double& out) { return fast::scalar(p, e, out); });
+}
+
+std::vector<std::int64_t> read_int64_list(FoamTokenizer& tok, const FoamHeader& header,
+                                          const ListReadOptions& options)
+{
+    return read_labels_as<std::int64_t>(tok, header, options);
+}
+
+std::vector<std::uint8_t> read_bool_list(FoamTokenizer& tok, const FoamHeader& header,
+                                         const ListReadOptions& options)
+{
+    return read_flat_list<std::uint8_t>(
+        tok, header, options, 1, "bool", read_ascii_bool,
+        [](std::string_view raw, std::uint8_t* out, std::size_t n, const FoamTokenizer&,
+           const ListStart&, std::size_t, const std::string&)
+        {
+            for (std::size_t i = 0; i < n; ++i)
+                out[i] = raw[i] != 0 ? 1 : 0;
+        },
+        nullptr);
+}
+
+std::vector<std::string> read_word_list(FoamTokenizer& tok, const FoamHeader& header,
+                                        const ListReadOptions& options)
+{
+    return read_flat_list<std::string>(
+        tok, header, options, 0, "word", read_ascii_word,
+        [](std::string_view, std::string*, std::size_t, const FoamTokenizer&, const ListStart&,
+           std::size_t, const std::string&) {},
+        nullptr);
 }
 
 Points read_vector_list(FoamTokenizer& tok, const FoamHeader& header,

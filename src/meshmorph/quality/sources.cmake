@@ -1,5 +1,5 @@
 # quality: checkMesh-equivalent metrics and report; the paper's metrics (scaled Jacobian,
-# mean curvature). Owners add their files to the list (one per line).
+# mean curvature). One source per line.
 #
 # checkMesh's three tiers: metric fields (one topic per file: face_*, cell_*, edge_*, ...),
 # checks (*_checks.cpp: field -> CheckResult), report (check_mesh.cpp drives, report_text.cpp
