@@ -137,9 +137,18 @@ fs::path processor_case(const fs::path& case_dir, const parallel::Communicator& 
                         {
                             std::size_t n = 0;
                             for (const fs::directory_entry& e : fs::directory_iterator(case_dir))
-                                n += e.is_directory() &&
-                                     e.path().filename().string().rfind("processor", 0) == 0 &&
-                                     e.path().filename().string() != "processors";
+                            {
+                                const std::string name = e.path().filename().string();
+                                if (!e.is_directory() || name.rfind("processor", 0) != 0)
+                                    continue;
+                                if (name.rfind("processors", 0) == 0)
+                                    throw InvalidInput(
+                                        (case_dir / name).string() +
+                                        " is the collated layout (decomposePar -fileHandler "
+                                        "collated), which morphMesh does not read yet: "
+                                        "decompose with -fileHandler uncollated");
+                                ++n;
+                            }
                             if (n != std::size_t(comm.size()))
                                 throw InvalidInput("the case has " + std::to_string(n) +
                                                    " processor directories but the run has " +
