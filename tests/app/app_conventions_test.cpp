@@ -5,6 +5,8 @@
 // the application is given (info with the report on out, warnings and errors on err).
 #include <gtest/gtest.h>
 
+#include "check_mesh_run.h"
+
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -39,24 +41,6 @@ fs::path write_case(const std::string& name, const PolyMesh& mesh)
     return dir;
 }
 
-struct AppRun
-{
-    int status;
-    std::string out, err;
-};
-
-AppRun check(std::vector<std::string> args)
-{
-    args.insert(args.begin(), "checkMeshQuality");
-    std::vector<const char*> argv;
-    for (const std::string& a : args)
-        argv.push_back(a.c_str());
-    std::ostringstream out, err;
-    const int status =
-        app::run_check_mesh_quality(static_cast<int>(argv.size()), argv.data(), out, err);
-    return {status, out.str(), err.str()};
-}
-
 std::string read_text(const fs::path& path)
 {
     std::ifstream in(path, std::ios::binary);
@@ -72,7 +56,7 @@ TEST(AppConventions, vtk_flag_writes_into_the_case_vtk_folder_in_both_applicatio
 {
 #if MESHMORPH_WITH_VTK
     const fs::path dir = write_case("vtk_flag", test::make_box_mesh(3, 3, 3));
-    const AppRun c = check({"-case", dir.string(), "-vtk"});
+    const test::AppRun c = test::run_check_mesh_quality({"-case", dir.string(), "-vtk"});
     ASSERT_EQ(c.status, app::exit_ok) << c.err;
     const fs::path checked = dir / "VTK" / "checkMeshQuality_constant.vtu";
     EXPECT_NE(read_text(checked).find("NumberOfCells=\"27\""), std::string::npos) << checked;
@@ -86,7 +70,8 @@ TEST(AppConventions, vtk_flag_writes_into_the_case_vtk_folder_in_both_applicatio
 
     // -vtkFile FILE writes FILE instead (relative paths: from the working directory).
     const fs::path own = dir / "elsewhere" / "q.vtu";
-    const AppRun f = check({"-case", dir.string(), "-time", "1", "-vtkFile", own.string()});
+    const test::AppRun f = test::run_check_mesh_quality(
+        {"-case", dir.string(), "-time", "1", "-vtkFile", own.string()});
     ASSERT_EQ(f.status, app::exit_ok) << f.err;
     EXPECT_NE(read_text(own).find("Name=\"scaledJacobian\""), std::string::npos);
     EXPECT_FALSE(fs::exists(dir / "VTK" / "checkMeshQuality_1.vtu"));
@@ -100,7 +85,7 @@ TEST(AppConventions, vtk_flag_writes_into_the_case_vtk_folder_in_both_applicatio
 TEST(AppConventions, old_vtk_file_spelling_names_vtk_file)
 {
     const fs::path dir = write_case("vtk_old", test::make_box_mesh(2, 2, 2));
-    const AppRun c = check({"-case", dir.string(), "-vtk", "q.vtu"});
+    const test::AppRun c = test::run_check_mesh_quality({"-case", dir.string(), "-vtk", "q.vtu"});
     EXPECT_EQ(c.status, app::exit_input_error);
     EXPECT_EQ(c.err.rfind("Error: unexpected argument 'q.vtu' after -vtk, which takes no "
                           "argument: -vtk writes VTK/checkMeshQuality_[<region>_]<time>.vtu in "
@@ -123,7 +108,7 @@ TEST(AppConventions, log_lines_go_to_the_application_streams)
     const fs::path dir = write_case("log", test::make_box_mesh(2, 2, 2));
     // Both `points` and `points.gz`: reading warns (and reads the plain file).
     fs::copy_file(dir / "constant/polyMesh/points", dir / "constant/polyMesh/points.gz");
-    const AppRun c = check({"-case", dir.string()});
+    const test::AppRun c = test::run_check_mesh_quality({"-case", dir.string()});
     ASSERT_EQ(c.status, app::exit_ok) << c.err;
     const std::size_t read = c.out.find("Read mesh (8 cells) in ");
     const std::size_t time = c.out.find("Time = constant");
@@ -136,7 +121,7 @@ TEST(AppConventions, log_lines_go_to_the_application_streams)
     EXPECT_NE(c.err.find("points.gz"), std::string::npos) << c.err;
     EXPECT_EQ(c.out.find("Warning"), std::string::npos);
 
-    const AppRun quiet = check({"-case", dir.string(), "-quiet"});
+    const test::AppRun quiet = test::run_check_mesh_quality({"-case", dir.string(), "-quiet"});
     ASSERT_EQ(quiet.status, app::exit_ok) << quiet.err;
     EXPECT_EQ(quiet.out.rfind("Time = constant\n", 0), 0u) << quiet.out;
     EXPECT_EQ(quiet.out.find("Read mesh"), std::string::npos) << quiet.out;
@@ -159,7 +144,8 @@ TEST(AppConventions, log_lines_go_to_the_application_streams)
 TEST(AppConventions, errors_have_one_prefix_in_both_applications)
 {
     const fs::path dir = write_case("errors", test::make_box_mesh(2, 2, 2));
-    for (const AppRun& r : {check({"-bogus"}), check({"-case", (dir / "none").string()})})
+    for (const test::AppRun& r : {test::run_check_mesh_quality({"-bogus"}),
+                                  test::run_check_mesh_quality({"-case", (dir / "none").string()})})
     {
         EXPECT_EQ(r.status, app::exit_input_error);
         EXPECT_EQ(r.err.rfind("Error: ", 0), 0u) << r.err;

@@ -5,6 +5,8 @@
 // No OpenFOAM installation is needed (check_mesh_oracle_test.cpp compares with checkMesh).
 #include <gtest/gtest.h>
 
+#include "check_mesh_run.h"
+
 #include <fstream>
 #include <sstream>
 
@@ -33,24 +35,6 @@ fs::path write_case(const std::string& name, const PolyMesh& mesh)
     return dir;
 }
 
-struct AppRun
-{
-    int status;
-    std::string out, err;
-};
-
-AppRun run(std::vector<std::string> args)
-{
-    args.insert(args.begin(), "checkMeshQuality");
-    std::vector<const char*> argv;
-    for (const std::string& a : args)
-        argv.push_back(a.c_str());
-    std::ostringstream out, err;
-    const int status =
-        app::run_check_mesh_quality(static_cast<int>(argv.size()), argv.data(), out, err);
-    return {status, out.str(), err.str()};
-}
-
 std::string read_text(const fs::path& path)
 {
     std::ifstream in(path);
@@ -71,8 +55,8 @@ PolyMesh damaged_box()
 TEST(CheckMeshQualityApp, good_mesh_exits_0_and_writes_json)
 {
     const fs::path dir = write_case("app_good", test::make_box_mesh(4, 3, 2));
-    const AppRun r =
-        run({"-case", dir.string(), "-allGeometry", "-json", (dir / "q.json").string()});
+    const test::AppRun r = test::run_check_mesh_quality(
+        {"-case", dir.string(), "-allGeometry", "-json", (dir / "q.json").string()});
     ASSERT_EQ(r.status, app::exit_ok) << r.err;
     EXPECT_NE(r.out.find("Time = constant\n\nMesh stats\n"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\nMesh OK.\n"), std::string::npos);
@@ -116,7 +100,8 @@ TEST(CheckMeshQualityApp, good_mesh_exits_0_and_writes_json)
 TEST(CheckMeshQualityApp, damaged_mesh_exits_1_and_writes_openfoam_sets)
 {
     const fs::path dir = write_case("app_damaged", damaged_box());
-    const AppRun r = run({"-case", dir.string(), "-allGeometry", "-writeSets"});
+    const test::AppRun r =
+        test::run_check_mesh_quality({"-case", dir.string(), "-allGeometry", "-writeSets"});
     ASSERT_EQ(r.status, app::exit_checks_failed) << r.err;
     EXPECT_NE(r.out.find("  <<Writing "), std::string::npos);
     const fs::path set = dir / "constant" / "polyMesh" / "sets" / "zeroVolumeCells";
@@ -150,8 +135,9 @@ TEST(CheckMeshQualityApp, region_option_reads_and_writes_the_regions_directories
         << "maxConcave 80;\nminVol 1e-13;\nminTetQuality 1e-15;\nminArea -1;\n"
         << "minTwist 0.02;\nminDeterminant 0.001;\nminFaceWeight 0.05;\nminVolRatio 0.01;\n"
         << "minTriangleTwist -1;\n";
-    const AppRun r = run({"-case", dir.string(), "-region", "solid", "-writeSets", "-meshQuality",
-                          "-json", (dir / "q.json").string()});
+    const test::AppRun r =
+        test::run_check_mesh_quality({"-case", dir.string(), "-region", "solid", "-writeSets",
+                                      "-meshQuality", "-json", (dir / "q.json").string()});
     ASSERT_EQ(r.status, app::exit_checks_failed) << r.err;
     const fs::path set = dir / "constant/solid/polyMesh/sets/zeroVolumeCells";
     ASSERT_TRUE(fs::exists(set)) << r.out;
@@ -160,10 +146,12 @@ TEST(CheckMeshQualityApp, region_option_reads_and_writes_the_regions_directories
     EXPECT_FALSE(fs::exists(dir / "constant/polyMesh"));
     EXPECT_NE(read_text(dir / "q.json").find("\"region\": \"solid\""), std::string::npos);
 
-    const AppRun missing = run({"-case", dir.string(), "-region", "fluid"});
+    const test::AppRun missing =
+        test::run_check_mesh_quality({"-case", dir.string(), "-region", "fluid"});
     EXPECT_EQ(missing.status, app::exit_input_error);
     EXPECT_NE(missing.err.find("constant/fluid/polyMesh"), std::string::npos) << missing.err;
-    const AppRun bad = run({"-case", dir.string(), "-region", "../solid"});
+    const test::AppRun bad =
+        test::run_check_mesh_quality({"-case", dir.string(), "-region", "../solid"});
     EXPECT_EQ(bad.status, app::exit_input_error);
     EXPECT_NE(bad.err.find("-region"), std::string::npos) << bad.err;
 }
@@ -171,7 +159,7 @@ TEST(CheckMeshQualityApp, region_option_reads_and_writes_the_regions_directories
 TEST(CheckMeshQualityApp, without_write_sets_nothing_is_written)
 {
     const fs::path dir = write_case("app_nosets", damaged_box());
-    const AppRun r = run({"-case", dir.string()});
+    const test::AppRun r = test::run_check_mesh_quality({"-case", dir.string()});
     EXPECT_EQ(r.status, app::exit_checks_failed);
     EXPECT_EQ(r.out.find("<<Writing"), std::string::npos);
     EXPECT_FALSE(fs::exists(dir / "constant" / "polyMesh" / "sets"));
@@ -179,19 +167,19 @@ TEST(CheckMeshQualityApp, without_write_sets_nothing_is_written)
 
 TEST(CheckMeshQualityApp, usage_and_input_errors_exit_2)
 {
-    AppRun r = run({"-bogus"});
+    test::AppRun r = test::run_check_mesh_quality({"-bogus"});
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("unknown option '-bogus'"), std::string::npos);
-    r = run({"-case"});
+    r = test::run_check_mesh_quality({"-case"});
     EXPECT_EQ(r.status, 2);
-    r = run({"-case", "/nonexistent/case"});
+    r = test::run_check_mesh_quality({"-case", "/nonexistent/case"});
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("/nonexistent/case"), std::string::npos);
     const fs::path empty = test::scratch_dir("app_empty");
-    r = run({"-case", empty.string()});
+    r = test::run_check_mesh_quality({"-case", empty.string()});
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("polyMesh"), std::string::npos) << r.err;
-    r = run({"-help"});
+    r = test::run_check_mesh_quality({"-help"});
     EXPECT_EQ(r.status, 0);
     for (const char* option : {"-case", "-time", "-latestTime", "-allGeometry", "-allTopology",
                                "-meshQuality", "-writeSets", "-vtk", "-vtkFile", "-json"})
@@ -202,7 +190,7 @@ TEST(CheckMeshQualityApp, usage_and_input_errors_exit_2)
 TEST(CheckMeshQualityApp, mesh_quality_dict_errors_name_file_and_line)
 {
     const fs::path dir = write_case("app_mqd", test::make_box_mesh(2, 2, 2));
-    AppRun r = run({"-case", dir.string(), "-meshQuality"});
+    test::AppRun r = test::run_check_mesh_quality({"-case", dir.string(), "-meshQuality"});
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("meshQualityDict"), std::string::npos) << r.err;
     std::ofstream(dir / "system" / "meshQualityDict")
@@ -210,12 +198,13 @@ TEST(CheckMeshQualityApp, mesh_quality_dict_errors_name_file_and_line)
         << "maxNonOrtho 65;\nmaxBoundarySkewness 20;\nmaxInternalSkewness 4;\n"
         << "maxConcave 80;\nminVol 1e-13;\nminTetQuality 1e-15;\nminArea -1;\n"
         << "minTwist 0.02;\nminDeterminant 0.001;\nminFaceWeight 0.05;\nminVolRatio 0.01;\n";
-    r = run({"-case", dir.string(), "-meshQuality"});
+    r = test::run_check_mesh_quality({"-case", dir.string(), "-meshQuality"});
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("minTriangleTwist"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("meshQualityDict:"), std::string::npos) << r.err;
     std::ofstream(dir / "system" / "meshQualityDict", std::ios::app) << "minTriangleTwist -1;\n";
-    r = run({"-case", dir.string(), "-meshQuality", "-json", (dir / "q.json").string()});
+    r = test::run_check_mesh_quality(
+        {"-case", dir.string(), "-meshQuality", "-json", (dir / "q.json").string()});
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("Checking faces in error :\n"), std::string::npos);
     EXPECT_NE(r.out.find("    non-orthogonality > 65  degrees                        : 0\n"),
@@ -226,7 +215,7 @@ TEST(CheckMeshQualityApp, mesh_quality_dict_errors_name_file_and_line)
     // Enabled: all but minArea (-1), minTriangleTwist (-1) and minFaceFlatness (absent).
     EXPECT_EQ(j["meshQualityFailures"].size(), 9u);
     std::ofstream(dir / "system" / "meshQualityDict", std::ios::app) << "minFaceFlatness 1.5;\n";
-    r = run({"-case", dir.string(), "-meshQuality"});
+    r = test::run_check_mesh_quality({"-case", dir.string(), "-meshQuality"});
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("minFaceFlatness"), std::string::npos) << r.err;
 }
@@ -250,7 +239,8 @@ TEST(CheckMeshQualityApp, vtk_file_has_the_quality_fields)
 {
 #if MESHMORPH_WITH_VTK
     const fs::path dir = write_case("app_vtk", damaged_box());
-    const AppRun r = run({"-case", dir.string(), "-vtkFile", (dir / "quality.vtu").string()});
+    const test::AppRun r = test::run_check_mesh_quality(
+        {"-case", dir.string(), "-vtkFile", (dir / "quality.vtu").string()});
     ASSERT_EQ(r.status, app::exit_checks_failed) << r.err;
     const std::string vtu = read_text(dir / "quality.vtu");
     for (const char* field :

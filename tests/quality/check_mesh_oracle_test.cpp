@@ -12,6 +12,8 @@
 // writePrecision 15, so checkMesh prints 15 digits.
 #include <gtest/gtest.h>
 
+#include "check_mesh_run.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -152,22 +154,10 @@ std::string run_checkmesh(const fs::path& case_dir, const std::string& args)
     return read_text(log);
 }
 
-struct OurRun
+test::AppRun run_ours(const fs::path& case_dir, std::vector<std::string> args)
 {
-    int status;
-    std::string out, err;
-};
-
-OurRun run_ours(const fs::path& case_dir, std::vector<std::string> args)
-{
-    args.insert(args.begin(), {"checkMeshQuality", "-case", case_dir.string()});
-    std::vector<const char*> argv;
-    for (const std::string& a : args)
-        argv.push_back(a.c_str());
-    std::ostringstream out, err;
-    const int status =
-        app::run_check_mesh_quality(static_cast<int>(argv.size()), argv.data(), out, err);
-    return {status, out.str(), err.str()};
+    args.insert(args.begin(), {"-case", case_dir.string()});
+    return test::run_check_mesh_quality(args);
 }
 
 //! A private copy of a generated case (checkMesh writes sets into the case).
@@ -190,7 +180,7 @@ void expect_same_report(const std::string& name, const std::vector<std::string>&
     }
     const fs::path dir = copy_case(name, scratch);
     const std::string theirs = run_checkmesh(dir, joined);
-    const OurRun ours = run_ours(dir, options);
+    const test::AppRun ours = run_ours(dir, options);
     ASSERT_TRUE(ours.status == 0 || ours.status == 1) << ours.err;
     const std::vector<std::string> expected = report_block(theirs);
     ASSERT_GT(expected.size(), 10u) << "no checkMesh report parsed:\n" << theirs;
@@ -241,7 +231,7 @@ TEST(CheckMeshOracle, damaged_mesh_exercises_failing_checks)
 {
     REQUIRE_OPENFOAM("damaged mesh");
     expect_same_report("damaged", all_checks);
-    const OurRun ours = run_ours(test::openfoam_case("damaged"), {"-allGeometry"});
+    const test::AppRun ours = run_ours(test::openfoam_case("damaged"), {"-allGeometry"});
     EXPECT_EQ(ours.status, app::exit_checks_failed);
     EXPECT_NE(ours.out.find(" ***Zero or negative cell volume detected."), std::string::npos);
     EXPECT_NE(ours.out.find(" ***Error in face pyramids"), std::string::npos);
@@ -264,7 +254,7 @@ TEST(CheckMeshOracle, snappy_flange_mesh_quality_dict)
         << "maxNonOrtho 30;\nmaxConcave 40;\nminTwist 0.8;\nminTriangleTwist 0.9;\n"
         << "minFaceFlatness 0.9;\nminDeterminant 0.5;\nminFaceWeight 0.3;\n";
     const std::string theirs = run_checkmesh(dir, " -meshQuality");
-    const OurRun ours = run_ours(dir, {"-meshQuality"});
+    const test::AppRun ours = run_ours(dir, {"-meshQuality"});
     const std::vector<std::string> expected = report_block(theirs);
     ASSERT_GT(expected.size(), 10u) << theirs;
     EXPECT_NE(theirs.find("Checking faces in error"), std::string::npos) << theirs;
@@ -289,7 +279,7 @@ TEST(CheckMeshOracle, wedge_with_edges_leaning_across_fails_alike)
     // The "<<Writing" line of the nonAlignedEdges point set too.
     const fs::path dir = copy_case("wedge-twisted", "quality_oracle_wedge_sets");
     const std::string theirs = run_checkmesh(dir, "");
-    const OurRun ours = run_ours(dir, {"-writeSets"});
+    const test::AppRun ours = run_ours(dir, {"-writeSets"});
     EXPECT_EQ(ours.status, app::exit_checks_failed) << ours.err;
     EXPECT_NE(theirs.find("to set nonAlignedEdges"), std::string::npos) << theirs;
     EXPECT_EQ(compare_reports(report_block(theirs, true), report_block(ours.out, true)), "");
@@ -325,7 +315,7 @@ TEST(CheckMeshOracle, written_sets_match_checkmesh_sets)
     ASSERT_TRUE(fs::exists(sets)) << theirs;
     const fs::path openfoam_sets = dir / "openfoam_sets";
     fs::rename(sets, openfoam_sets);
-    const OurRun ours = run_ours(dir, {"-allGeometry", "-writeSets"});
+    const test::AppRun ours = run_ours(dir, {"-allGeometry", "-writeSets"});
     ASSERT_EQ(ours.status, app::exit_checks_failed) << ours.err;
     // Same "<<Writing" lines as checkMesh (set names and sizes).
     EXPECT_EQ(compare_reports(report_block(theirs, true), report_block(ours.out, true)), "");
@@ -364,6 +354,6 @@ TEST(CheckMeshOracle, short_edges_and_collapsed_points)
     io::write_points(mesh.points, foam.points, dir, "constant");
     const std::string theirs = run_checkmesh(dir, "-allGeometry");
     ASSERT_NE(theirs.find("Edges too small"), std::string::npos) << theirs;
-    const OurRun ours = run_ours(dir, {"-allGeometry"});
+    const test::AppRun ours = run_ours(dir, {"-allGeometry"});
     EXPECT_EQ(compare_reports(report_block(theirs), report_block(ours.out)), "");
 }

@@ -188,6 +188,21 @@ void require_some_motion(const MorphSetup& setup, bool asked, const std::vector<
                                   "':" + list + "\n  set 'conflicts' to first, last or average)"));
 }
 
+std::vector<Vector3> resolve_and_merge(const PolyMesh& mesh, const MorphSetup& setup,
+                                       const std::vector<Claim>& claims,
+                                       const std::vector<double>& edges,
+                                       const std::vector<Claim>& handle_claims, double agree_tol,
+                                       Constraints& out)
+{
+    const Resolution boundary = resolve_boundary(mesh, setup, claims, edges, agree_tol, out);
+    const Resolution handles = resolve_handles(setup, handle_claims, agree_tol, out);
+    const std::vector<Vector3> values = merge(boundary.points, handles.points, out);
+    require_some_motion(setup,
+                        any_motion(claims, agree_tol) || any_motion(handle_claims, agree_tol),
+                        values, out, agree_tol);
+    return values;
+}
+
 void fill_displacements(const std::vector<Vector3>& values, Constraints& out)
 {
     out.n_prescribed_points = static_cast<Index>(out.points.size());

@@ -39,17 +39,10 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
 
     const std::vector<Claim> claims =
         collect_claims(mesh, setup, out.patches, inputs, out.empty_planes, out.rotations);
-    const Resolution boundary = detail::resolve_boundary(
-        mesh, setup, claims, detail::shortest_boundary_edges(mesh), agree_tol, out);
     const std::vector<Claim> handle_claims =
         collect_handle_claims(mesh, setup, out.empty_planes, agree_tol);
-    const Resolution handles = detail::resolve_handles(setup, handle_claims, agree_tol, out);
-
-    const std::vector<Vector3> values = detail::merge(boundary.points, handles.points, out);
-    detail::require_some_motion(setup,
-                                detail::any_motion(claims, agree_tol) ||
-                                    detail::any_motion(handle_claims, agree_tol),
-                                values, out, agree_tol);
+    const std::vector<Vector3> values = detail::resolve_and_merge(
+        mesh, setup, claims, detail::shortest_boundary_edges(mesh), handle_claims, agree_tol, out);
     detail::fill_displacements(values, out);
     return out;
 }

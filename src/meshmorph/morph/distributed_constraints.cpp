@@ -246,26 +246,21 @@ Constraints build_distributed_constraints(const PolyMesh& mesh, const MorphSetup
     const auto handle_wire = comm.gather_values(to_wire(handle_claims, {}, decomposition));
 
     std::vector<std::vector<WirePrescription>> per_rank;
-    parallel::on_master(
-        comm,
-        [&]
-        {
-            const GlobalPoints g = number_points(boundary_wire, handle_wire);
-            std::vector<double> edges;
-            const std::vector<Claim> all_claims = compact_claims(boundary_wire, g, &edges);
-            const std::vector<Claim> all_handles = compact_claims(handle_wire, g, nullptr);
-            const Resolution boundary =
-                detail::resolve_boundary(mesh, setup, all_claims, edges, agree_tol, out);
-            const Resolution handles = detail::resolve_handles(setup, all_handles, agree_tol, out);
-            const std::vector<Vector3> values = detail::merge(boundary.points, handles.points, out);
-            detail::require_some_motion(setup,
-                                        detail::any_motion(all_claims, agree_tol) ||
-                                            detail::any_motion(all_handles, agree_tol),
-                                        values, out, agree_tol);
-            per_rank = split_by_rank(out, values, g, comm.size());
-            out.n_prescribed_points = static_cast<Index>(out.points.size());
-            out.n_slip_points = static_cast<Index>(out.slip_points.size());
-        });
+    parallel::on_master(comm,
+                        [&]
+                        {
+                            const GlobalPoints g = number_points(boundary_wire, handle_wire);
+                            std::vector<double> edges;
+                            const std::vector<Claim> all_claims =
+                                compact_claims(boundary_wire, g, &edges);
+                            const std::vector<Claim> all_handles =
+                                compact_claims(handle_wire, g, nullptr);
+                            const std::vector<Vector3> values = detail::resolve_and_merge(
+                                mesh, setup, all_claims, edges, all_handles, agree_tol, out);
+                            per_rank = split_by_rank(out, values, g, comm.size());
+                            out.n_prescribed_points = static_cast<Index>(out.points.size());
+                            out.n_slip_points = static_cast<Index>(out.slip_points.size());
+                        });
     const Index prescribed = out.n_prescribed_points, slip = out.n_slip_points;
     set_local(comm.scatter_values(per_rank), out);
     if (comm.master()) // set_local counted this rank's points
