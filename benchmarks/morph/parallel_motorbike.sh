@@ -30,8 +30,7 @@ export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mkdir -p "$out" && out=$(cd "$out" && pwd)
 work=$out/case
-rm -rf "$work" && mkdir -p "$work/system" && cp -r "$case_dir/constant" "$work/" &&
-    cp "$case_dir/system/controlDict" "$case_dir/system/fvSchemes" "$case_dir/system/fvSolution" "$work/system/" &&
+rm -rf "$work" && mkdir -p "$work" && cp -r "$case_dir/constant" "$case_dir/system" "$work/" &&
     cp "$source_dir/tutorials/motorBike/system/morphDict" "$work/system/" || exit 1
 
 peak_mb() { awk '/Maximum resident set size/ {printf "%.0f", $NF / 1024}' "$1"; }

@@ -259,6 +259,147 @@ void warn_if_decomposed(const fs::path& case_dir)
                       "decomposePar -force, before a parallel run)";
 }
 
+//! The set-up, as the user should see it: per patch its motion and why, the constraint
+//! counts, conflicts and near agreements.
+void log_setup(const morph::Constraints& c)
+{
+    for (const morph::PatchAssignment& a : c.patches)
+        if (a.matched_by != "processor") // internal faces of the undecomposed mesh
+            log::info() << "    " << a.patch << " (" << a.patch_type << ", " << a.n_points
+                        << " points): " << to_string(a.motion) << "  [" << a.matched_by << "]";
+    log::info() << "Constraints: " << c.n_prescribed_points << " prescribed points, "
+                << c.n_slip_points << " slip points, " << c.n_free_points
+                << " free boundary points, " << c.n_handle_points << " handle points"
+                << (c.n_handle_overrides > 0 ? " (" + std::to_string(c.n_handle_overrides) +
+                                                   " boundary points overridden by handles)"
+                                             : std::string());
+    if (c.empty_planes)
+        log::info() << "2D case: no motion normal to the empty planes (normal "
+                    << c.empty_planes->normal.transpose() << ")";
+    if (c.n_conflicts > 0)
+    {
+        auto w = log::warning();
+        w << c.n_conflicts << " points have conflicting prescriptions, resolved by rule '"
+          << to_string(c.conflict_rule) << "' (set 'conflicts' in the dictionary to change):";
+        for (const std::string& line : c.conflict_summary)
+            w << "\n    " << line;
+    }
+    if (c.n_near_agreements > 0)
+        log::info() << c.n_near_agreements
+                    << " points shared by patches get prescriptions that differ by at most "
+                    << std::lround(100.0 * c.max_near_agreement)
+                    << "% of their shortest edge (as snappyHexMesh leaves patch edges slightly "
+                       "off the surfaces): not conflicts; slip points keep the motion within "
+                       "their plane, others follow rule '"
+                    << to_string(c.conflict_rule) << "'";
+}
+
+//! The pointDisplacement values a type pointDisplacement needs.
+struct PointDisplacementInputs
+{
+    Points internal;
+    std::vector<std::optional<Points>> patches;
+};
+
+//! <time>[/<region>]/pointDisplacement of the time read (0/ when the mesh came from
+//! constant/). Patches of type pointDisplacement take their boundaryField values (fixedValue /
+//! calculated), else the internalField at their points; other patches' entries are not used,
+//! so their disagreements do not matter here.
+PointDisplacementInputs read_point_displacement(const fs::path& mesh_case,
+                                                const io::FoamPolyMesh& foam,
+                                                const std::string& region,
+                                                const parallel::Communicator& comm)
+{
+    const std::string time = foam.time == "constant" ? "0" : foam.time;
+    io::PointVectorField field;
+    parallel::collective(comm,
+                         [&]
+                         {
+                             field = io::read_point_vector_field(
+                                 mesh_case / time / region / "pointDisplacement", foam.mesh);
+                         });
+    PointDisplacementInputs out{field.internal, {}};
+    for (const io::PointPatchField& pf : field.patches)
+        out.patches.push_back(pf.value);
+    log::info() << "Read " << field.path.string();
+    return out;
+}
+
+//! The fit and the field, as the user should see them: centres, residuals, the largest
+//! displacement against the largest prescribed one, the constraint error.
+void log_fit(const MorphResult& result, const DeformationSettings& settings, Index n_points)
+{
+    const FitReport& r = result.morph.report;
+    log::info() << "Fitted " << result.morph.n_constraints << " constraints with " << r.num_centres
+                << (settings.method == DeformationMethod::rbf ? " centres" : " control points")
+                << (r.solver.empty() ? std::string() : " (" + r.solver + ")")
+                << (r.condition_estimate > 0 ? ", condition ~ " + fmt(r.condition_estimate) : "")
+                << " in " << format_seconds(result.timings.fit) << " s";
+    log::info() << "Evaluated " << n_points << " points in "
+                << format_seconds(result.timings.evaluate) << " s; max displacement "
+                << fmt(result.max_displacement);
+    if (r.method.ends_with("+idw"))
+        log::info() << "Global RBF residual " << fmt(r.max_residual) << " ("
+                    << fmt(r.max_residual / std::max(r.max_displacement, 1e-300))
+                    << " relative), taken up by the local IDW correction";
+    log::info() << "Largest displacement " << fmt(result.max_displacement)
+                << " (largest prescribed " << fmt(result.morph.max_prescribed) << ")";
+    if (result.max_displacement > 1.01 * result.morph.max_prescribed &&
+        result.morph.max_prescribed > 0.0)
+        log::warning() << "points away from the constraints move up to "
+                       << fmt(result.max_displacement / result.morph.max_prescribed)
+                       << " times the largest prescribed displacement (the global RBF "
+                          "overshoots): method idw never exceeds it; rbf { kernel biharmonic; } "
+                          "overshoots less than the triharmonic kernel";
+    log::info() << "Max constraint error " << fmt(result.morph.max_constraint_error) << " ("
+                << fmt(result.morph.relative_constraint_error)
+                << " of the largest prescribed displacement " << fmt(result.morph.max_prescribed)
+                << ")";
+    if (is_exact(settings) && result.morph.relative_constraint_error > 1e-9)
+        log::warning() << "the constrained points miss their prescriptions by up to "
+                       << fmt(result.morph.relative_constraint_error)
+                       << " (relative): report this case, the field should interpolate them";
+}
+
+//! Why a morph is refused: invalid cells that were not there before.
+std::vector<std::string> refusal_reasons(const QualityReport& before, const QualityReport& after)
+{
+    std::vector<std::string> reasons;
+    if (after.negative_volume_cells > before.negative_volume_cells)
+        reasons.push_back(std::to_string(after.negative_volume_cells) + " negative-volume cells (" +
+                          std::to_string(before.negative_volume_cells) + " before)");
+    if (after.incorrectly_oriented_face_pyramids > before.incorrectly_oriented_face_pyramids)
+        reasons.push_back(std::to_string(after.incorrectly_oriented_face_pyramids) +
+                          " incorrectly oriented face pyramids (" +
+                          std::to_string(before.incorrectly_oriented_face_pyramids) + " before)");
+    return reasons;
+}
+
+//! -vtk: the morphed mesh with the displacement and the quality fields.
+void write_vtk(const fs::path& case_dir, const MorphOptions& options, const PolyMesh& moved,
+               MorphResult& result)
+{
+#if MESHMORPH_WITH_VTK
+    result.vtk_file =
+        options.vtk_file.empty()
+            ? default_vtk_file(case_dir, "morphMesh", options.region, result.output_instance)
+            : options.vtk_file;
+    fs::create_directories(result.vtk_file.parent_path());
+    std::vector<io::VtkField> point_data;
+    point_data.emplace_back("displacement", result.morph.displacement);
+    std::vector<io::VtkField> cell_data;
+    if (result.after.cell_non_orthogonality.size() == moved.n_cells)
+        cell_data.emplace_back("nonOrthogonality", result.after.cell_non_orthogonality);
+    if (result.after.cell_skewness.size() == moved.n_cells)
+        cell_data.emplace_back("skewness", result.after.cell_skewness);
+    if (result.after.cell_aspect_ratio.size() == moved.n_cells)
+        cell_data.emplace_back("aspectRatio", result.after.cell_aspect_ratio);
+    io::write_vtu(result.vtk_file, moved, point_data, cell_data);
+#else
+    (void)case_dir, (void)options, (void)moved, (void)result;
+#endif
+}
+
 } // namespace
 
 MorphResult morph_case(const MorphOptions& options)
@@ -308,35 +449,18 @@ MorphResult morph_case(const MorphOptions& options)
     auto projector = std::make_shared<SurfaceProjector>(case_dir);
     inputs.project_to_surface = [projector](const std::string& file, const Points& query)
     { return (*projector)(file, query); };
-    Points point_displacement;
-    std::vector<std::optional<Points>> patch_point_displacement;
     std::vector<morph::PatchAssignment> assignment;
     parallel::collective(comm, [&]
                          { assignment = morph::assign_patches(mesh, setup, options.parallel); });
     inputs.patches = &assignment;
+    PointDisplacementInputs displacement;
     if (std::any_of(assignment.begin(), assignment.end(),
                     [](const morph::PatchAssignment& a)
                     { return a.motion == morph::MotionType::point_displacement; }))
     {
-        // <time>[/<region>]/pointDisplacement of the time read (0/ when the mesh came from
-        // constant/).
-        const std::string time = foam.time == "constant" ? "0" : foam.time;
-        io::PointVectorField field;
-        parallel::collective(comm,
-                             [&]
-                             {
-                                 field = io::read_point_vector_field(
-                                     mesh_case / time / options.region / "pointDisplacement", mesh);
-                             });
-        // Patches of type pointDisplacement take their boundaryField values (fixedValue /
-        // calculated), else the internalField at their points. Other patches' entries are
-        // not used, so their disagreements do not matter here.
-        point_displacement = field.internal;
-        for (const io::PointPatchField& pf : field.patches)
-            patch_point_displacement.push_back(pf.value);
-        inputs.point_displacement = &point_displacement;
-        inputs.patch_point_displacement = &patch_point_displacement;
-        log::info() << "Read " << field.path.string();
+        displacement = read_point_displacement(mesh_case, foam, options.region, comm);
+        inputs.point_displacement = &displacement.internal;
+        inputs.patch_point_displacement = &displacement.patches;
     }
     if (options.parallel)
         inputs.decomposition = &decomposition;
@@ -364,36 +488,7 @@ MorphResult morph_case(const MorphOptions& options)
     log::info() << "Read case and " << dict_path.string() << " in "
                 << format_seconds(result.timings.read) << " s";
 
-    // The set-up, as the user should see it.
-    for (const morph::PatchAssignment& a : c.patches)
-        if (a.matched_by != "processor") // internal faces of the undecomposed mesh
-            log::info() << "    " << a.patch << " (" << a.patch_type << ", " << a.n_points
-                        << " points): " << to_string(a.motion) << "  [" << a.matched_by << "]";
-    log::info() << "Constraints: " << c.n_prescribed_points << " prescribed points, "
-                << c.n_slip_points << " slip points, " << c.n_free_points
-                << " free boundary points, " << c.n_handle_points << " handle points"
-                << (c.n_handle_overrides > 0 ? " (" + std::to_string(c.n_handle_overrides) +
-                                                   " boundary points overridden by handles)"
-                                             : std::string());
-    if (c.empty_planes)
-        log::info() << "2D case: no motion normal to the empty planes (normal "
-                    << c.empty_planes->normal.transpose() << ")";
-    if (c.n_conflicts > 0)
-    {
-        auto w = log::warning();
-        w << c.n_conflicts << " points have conflicting prescriptions, resolved by rule '"
-          << to_string(c.conflict_rule) << "' (set 'conflicts' in the dictionary to change):";
-        for (const std::string& line : c.conflict_summary)
-            w << "\n    " << line;
-    }
-    if (c.n_near_agreements > 0)
-        log::info() << c.n_near_agreements
-                    << " points shared by patches get prescriptions that differ by at most "
-                    << std::lround(100.0 * c.max_near_agreement)
-                    << "% of their shortest edge (as snappyHexMesh leaves patch edges slightly "
-                       "off the surfaces): not conflicts; slip points keep the motion within "
-                       "their plane, others follow rule '"
-                    << to_string(c.conflict_rule) << "'";
+    log_setup(c);
 
     // Quality before.
     stage.restart();
@@ -433,36 +528,7 @@ MorphResult morph_case(const MorphOptions& options)
     result.morph.displacement = std::move(stepped.displacement);
     morph::measure_constraint_error(c, mesh.points, result.morph, parts);
     result.max_displacement = comm.max(max_norm(result.morph.displacement));
-    const FitReport& r = result.morph.report;
-    log::info() << "Fitted " << result.morph.n_constraints << " constraints with " << r.num_centres
-                << (settings.method == DeformationMethod::rbf ? " centres" : " control points")
-                << (r.solver.empty() ? std::string() : " (" + r.solver + ")")
-                << (r.condition_estimate > 0 ? ", condition ~ " + fmt(r.condition_estimate) : "")
-                << " in " << format_seconds(result.timings.fit) << " s";
-    log::info() << "Evaluated " << global_count(decomposition, mesh.n_points(), true)
-                << " points in " << format_seconds(result.timings.evaluate)
-                << " s; max displacement " << fmt(result.max_displacement);
-    if (r.method.ends_with("+idw"))
-        log::info() << "Global RBF residual " << fmt(r.max_residual) << " ("
-                    << fmt(r.max_residual / std::max(r.max_displacement, 1e-300))
-                    << " relative), taken up by the local IDW correction";
-    log::info() << "Largest displacement " << fmt(result.max_displacement)
-                << " (largest prescribed " << fmt(result.morph.max_prescribed) << ")";
-    if (result.max_displacement > 1.01 * result.morph.max_prescribed &&
-        result.morph.max_prescribed > 0.0)
-        log::warning() << "points away from the constraints move up to "
-                       << fmt(result.max_displacement / result.morph.max_prescribed)
-                       << " times the largest prescribed displacement (the global RBF "
-                          "overshoots): method idw never exceeds it; rbf { kernel biharmonic; } "
-                          "overshoots less than the triharmonic kernel";
-    log::info() << "Max constraint error " << fmt(result.morph.max_constraint_error) << " ("
-                << fmt(result.morph.relative_constraint_error)
-                << " of the largest prescribed displacement " << fmt(result.morph.max_prescribed)
-                << ")";
-    if (is_exact(settings) && result.morph.relative_constraint_error > 1e-9)
-        log::warning() << "the constrained points miss their prescriptions by up to "
-                       << fmt(result.morph.relative_constraint_error)
-                       << " (relative): report this case, the field should interpolate them";
+    log_fit(result, settings, global_count(decomposition, mesh.n_points(), true));
 
     // Quality after.
     stage.restart();
@@ -493,17 +559,7 @@ MorphResult morph_case(const MorphOptions& options)
         print_quality_summary(summary, quality_json(result.before), quality_json(result.after));
         log::info() << "Mesh quality before and after the morph:\n" << summary.str();
     }
-    std::vector<std::string> reasons;
-    if (result.after.negative_volume_cells > result.before.negative_volume_cells)
-        reasons.push_back(std::to_string(result.after.negative_volume_cells) +
-                          " negative-volume cells (" +
-                          std::to_string(result.before.negative_volume_cells) + " before)");
-    if (result.after.incorrectly_oriented_face_pyramids >
-        result.before.incorrectly_oriented_face_pyramids)
-        reasons.push_back(std::to_string(result.after.incorrectly_oriented_face_pyramids) +
-                          " incorrectly oriented face pyramids (" +
-                          std::to_string(result.before.incorrectly_oriented_face_pyramids) +
-                          " before)");
+    const std::vector<std::string> reasons = refusal_reasons(result.before, result.after);
     if (!reasons.empty())
     {
         result.refusal = "the morphed mesh has " + reasons.front() +
@@ -532,26 +588,8 @@ MorphResult morph_case(const MorphOptions& options)
                                                   result.output_instance, foam.region);
                          });
     result.written = true;
-#if MESHMORPH_WITH_VTK
     if (options.vtk)
-    {
-        result.vtk_file =
-            options.vtk_file.empty()
-                ? default_vtk_file(case_dir, "morphMesh", options.region, result.output_instance)
-                : options.vtk_file;
-        fs::create_directories(result.vtk_file.parent_path());
-        std::vector<io::VtkField> point_data;
-        point_data.emplace_back("displacement", result.morph.displacement);
-        std::vector<io::VtkField> cell_data;
-        if (result.after.cell_non_orthogonality.size() == moved.n_cells)
-            cell_data.emplace_back("nonOrthogonality", result.after.cell_non_orthogonality);
-        if (result.after.cell_skewness.size() == moved.n_cells)
-            cell_data.emplace_back("skewness", result.after.cell_skewness);
-        if (result.after.cell_aspect_ratio.size() == moved.n_cells)
-            cell_data.emplace_back("aspectRatio", result.after.cell_aspect_ratio);
-        io::write_vtu(result.vtk_file, moved, point_data, cell_data);
-    }
-#endif
+        write_vtk(case_dir, options, moved, result);
     result.timings.write = stage.seconds();
     log::info() << "Wrote " << result.points_file.string() << " in "
                 << format_seconds(result.timings.write) << " s";
