@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "meshmorph/core/poly_mesh.h"
 
@@ -125,6 +126,64 @@ inline PolyMesh make_box_mesh(int nx, int ny, int nz, const Vector3& lo = Vector
                                               lo.y() + v * (hi.y() - lo.y()),
                                               lo.z() + w * (hi.z() - lo.z()));
                            });
+}
+
+//! Two unit hexahedra side by side along x ([0,1] and [1,2] x [0,1]^2) that share no face:
+//! where they touch, each has a boundary face of its own (patch "split", type `wall`: face 0
+//! of cell 0, face 1 of cell 1), so the mesh has two regions. With `shared_points` both
+//! faces use the same 4 points (a baffle: the regions are point connected); otherwise cell 1
+//! has its own coincident copies of them (points 12..15: the regions are fully disconnected,
+//! and the copies lie 0 apart).
+inline PolyMesh make_split_pair_mesh(bool shared_points)
+{
+    const PolyMesh box = make_box_mesh(2, 1, 1, Vector3(0, 0, 0), Vector3(2, 1, 1));
+    // box: face 0 is the one internal face (owner 0, neighbour 1); points at x = 1 are
+    // i = 1 of pid(i, j, k) = i + 3 (j + 2 k).
+    PolyMesh mesh;
+    mesh.points = box.points;
+    std::vector<Index> of_cell1(static_cast<std::size_t>(box.n_points()));
+    for (Index p = 0; p < box.n_points(); ++p)
+    {
+        of_cell1[static_cast<std::size_t>(p)] = p;
+        if (!shared_points && p % 3 == 1)
+        {
+            mesh.points.conservativeResize(mesh.points.rows() + 1, 3);
+            mesh.points.row(mesh.points.rows() - 1) = box.points.row(p);
+            of_cell1[static_cast<std::size_t>(p)] = mesh.points.rows() - 1;
+        }
+    }
+    const auto add = [&](std::vector<Index> face, Index own)
+    {
+        if (own == 1)
+            for (Index& p : face)
+                p = of_cell1[static_cast<std::size_t>(p)];
+        mesh.faces.push_back(std::span<const Index>(face));
+        mesh.owner.push_back(own);
+    };
+    for (const Patch& p : box.patches)
+    {
+        Patch patch = p;
+        patch.start_face = mesh.n_faces();
+        for (Index f = p.start_face; f < p.start_face + p.n_faces; ++f)
+        {
+            const std::span<const Index> face = box.faces[f];
+            add(std::vector<Index>(face.begin(), face.end()), box.owner[f]);
+        }
+        mesh.patches.push_back(patch);
+    }
+    Patch split;
+    split.name = "split";
+    split.type = "wall";
+    split.in_groups = {"wall"};
+    split.entries = {{"inGroups", "1(wall)"}};
+    split.start_face = mesh.n_faces();
+    const std::span<const Index> middle = box.faces[0]; // oriented out of cell 0
+    add(std::vector<Index>(middle.begin(), middle.end()), 0);
+    add({middle[0], middle[3], middle[2], middle[1]}, 1);
+    split.n_faces = 2;
+    mesh.patches.push_back(split);
+    mesh.finalize();
+    return mesh;
 }
 
 //! Path inside tests/data.

@@ -165,6 +165,53 @@ TEST(CheckMeshQualityApp, without_write_sets_nothing_is_written)
     EXPECT_FALSE(fs::exists(dir / "constant" / "polyMesh" / "sets"));
 }
 
+TEST(CheckMeshQualityApp, regions_write_cell_to_region_in_the_checked_time)
+{
+    // Two cells that share no face: two regions. checkMesh writes <time>/cellToRegion (with
+    // -region, <time>/<region>/cellToRegion); we do with -writeSets, as the sets.
+    const fs::path dir = write_case("app_regions", test::make_split_pair_mesh(false));
+    test::AppRun r = test::run_check_mesh_quality({"-case", dir.string()});
+    EXPECT_EQ(r.status, app::exit_ok) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "constant" / "cellToRegion"));
+    r = test::run_check_mesh_quality({"-case", dir.string(), "-writeSets"});
+    EXPECT_EQ(r.status, app::exit_ok) << r.err;
+    EXPECT_NE(r.out.find("  <<Writing region information to \"constant/cellToRegion\"\n"),
+              std::string::npos)
+        << r.out;
+    const std::string text = read_text(dir / "constant" / "cellToRegion");
+    EXPECT_NE(text.find("class       labelList;"), std::string::npos);
+    EXPECT_NE(text.find("location    \"constant\";"), std::string::npos);
+    EXPECT_NE(text.find("\n2(0 1)\n"), std::string::npos) << text;
+    for (const std::string set : {"region0", "region1"})
+        EXPECT_TRUE(fs::exists(dir / "constant" / "polyMesh" / "sets" / set)) << set;
+
+    // A time directory with the mesh: that is the checked time.
+    const fs::path timed = test::scratch_dir("app_regions_time");
+    io::write_poly_mesh(test::make_split_pair_mesh(false),
+                        io::default_poly_mesh_files(io::FoamFormat::ascii), timed, "constant",
+                        "solid");
+    fs::create_directories(timed / "0");
+    fs::create_directories(timed / "system");
+    std::ofstream(timed / "system" / "controlDict")
+        << "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n";
+    r = test::run_check_mesh_quality({"-case", timed.string(), "-region", "solid", "-writeSets"});
+    EXPECT_EQ(r.status, app::exit_ok) << r.err;
+    EXPECT_NE(r.out.find("Time = 0\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"0/cellToRegion\""), std::string::npos) << r.out;
+    ASSERT_TRUE(fs::exists(timed / "0" / "solid" / "cellToRegion"));
+    EXPECT_NE(read_text(timed / "0" / "solid" / "cellToRegion").find("location    \"0/solid\";"),
+              std::string::npos);
+}
+
+TEST(CheckMeshQualityApp, long_cell_to_region_lists_one_label_a_line)
+{
+    std::vector<Index> labels(11, 0);
+    labels[10] = 1;
+    const std::string text = app::cell_to_region_file_text(labels, "constant");
+    EXPECT_NE(text.find("\n\n\n11\n(\n0\n0\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("\n1\n)\n\n\n// ****"), std::string::npos) << text;
+}
+
 TEST(CheckMeshQualityApp, usage_and_input_errors_exit_2)
 {
     test::AppRun r = test::run_check_mesh_quality({"-bogus"});

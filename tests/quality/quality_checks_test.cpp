@@ -6,12 +6,14 @@
 #include <stdexcept>
 
 #include "helpers.h"
+#include "meshmorph/quality/cell_regions.h"
 #include "meshmorph/quality/cell_validity.h"
 #include "meshmorph/quality/check_mesh.h"
 #include "meshmorph/quality/face_orthogonality.h"
 #include "meshmorph/quality/face_skewness.h"
 #include "meshmorph/quality/geometry_checks.h"
 #include "meshmorph/quality/mesh_quality_checks.h"
+#include "meshmorph/quality/point_faces.h"
 #include "meshmorph/quality/quality_json.h"
 #include "meshmorph/quality/report_text.h"
 #include "meshmorph/quality/topology_checks.h"
@@ -140,4 +142,110 @@ TEST(QualityReport, a_new_check_reaches_the_json_without_touching_the_json_write
     EXPECT_FALSE(j.contains("extraTextOnly"));
     // The text report needs a formatter for it.
     EXPECT_THROW(report_text(r, CheckMeshSettings{}), std::logic_error);
+}
+
+TEST(TopologyChecks, regions_touching_at_points_are_point_connected)
+{
+    // The baffle pair: two cells whose boundary faces share 4 points.
+    const PolyMesh mesh = test::make_split_pair_mesh(true);
+    const std::vector<std::vector<Index>> regions = cell_regions(mesh);
+    ASSERT_EQ(regions.size(), 2u);
+    const CheckResult plain = check_regions(mesh, regions, false);
+    EXPECT_EQ(plain.count("regions"), 2);
+    EXPECT_EQ(plain.find("regionDisconnected"), nullptr);
+    ASSERT_EQ(plain.sets.size(), 2u); // region0, region1
+    const CheckResult r = check_regions(mesh, regions, true);
+    EXPECT_EQ(r.counts("regionDisconnected"), (Statistic::Counts{{"region0", 0}, {"region1", 0}}));
+    ASSERT_EQ(r.sets.size(), 3u);
+    EXPECT_EQ(r.sets[2].set.name, "multiRegionPoints");
+    // The 4 points of the x = 1 plane: pid(1, j, k) = 1 + 3 (j + 2 k).
+    EXPECT_EQ(r.sets[2].set.labels, (std::vector<Index>{1, 4, 7, 10}));
+    EXPECT_FALSE(r.failed());
+}
+
+TEST(TopologyChecks, baffle_faces_go_into_the_edge_faces_set)
+{
+    // The baffle pair's two split faces (10 and 11, after the 10 faces of the box's six
+    // patches) have the same 4 points: one baffle, both faces in edgeFaces, no failure.
+    const PolyMesh mesh = test::make_split_pair_mesh(true);
+    const CheckResult r = check_face_faces(face_face_connectivity(mesh, point_faces(mesh)));
+    EXPECT_EQ(r.count("baffleFaces"), 1);
+    EXPECT_EQ(r.count("duplicateFaces"), 0);
+    ASSERT_EQ(r.sets.size(), 1u);
+    EXPECT_EQ(r.sets[0].set.name, "edgeFaces");
+    EXPECT_EQ(r.sets[0].set.labels, (std::vector<Index>{10, 11}));
+    EXPECT_FALSE(r.failed());
+    // Without the baffle, no pair and no set.
+    const PolyMesh box = test::make_box_mesh(2, 1, 1);
+    EXPECT_TRUE(check_face_faces(face_face_connectivity(box, point_faces(box))).sets.empty());
+}
+
+TEST(TopologyChecks, regions_without_shared_points_are_fully_disconnected)
+{
+    const PolyMesh mesh = test::make_split_pair_mesh(false);
+    const CheckResult r = check_regions(mesh, cell_regions(mesh), true);
+    EXPECT_EQ(r.counts("regionDisconnected"), (Statistic::Counts{{"region0", 1}, {"region1", 1}}));
+    ASSERT_EQ(r.sets.size(), 2u); // no multiRegionPoints
+    EXPECT_EQ(r.sets[0].set.labels, std::vector<Index>{0});
+    EXPECT_EQ(r.sets[1].set.labels, std::vector<Index>{1});
+}
+
+TEST(GeometryChecks, near_points_set_only_when_it_adds_to_the_short_edges)
+{
+    EdgeLengths lengths;
+    lengths.short_edge_points = {1, 0, 0, 0};
+    lengths.n_short = 1;
+    // The near pair (0, 1) adds point 1: the set is the union.
+    CheckResult r = check_edge_length(lengths, {1, 1, 0, 0}, 1e-12);
+    ASSERT_EQ(r.sets.size(), 2u);
+    EXPECT_EQ(r.sets[1].set.name, "nearPoints");
+    EXPECT_EQ(r.sets[1].set.labels, (std::vector<Index>{0, 1}));
+    EXPECT_DOUBLE_EQ(r.real("nearPointDistance"), 1e-6);
+    // Near points already on short edges: no nearPoints set.
+    r = check_edge_length(lengths, {1, 0, 0, 0}, 1e-12);
+    ASSERT_EQ(r.sets.size(), 1u);
+    EXPECT_EQ(r.sets[0].set.name, "shortEdges");
+}
+
+TEST(ReportText, region_and_near_point_lines_as_checkmesh_prints_them)
+{
+    // The fully disconnected pair: cell 1's points at x = 1 are copies 0 apart from cell 0's.
+    CheckMeshSettings settings;
+    settings.all_geometry = settings.all_topology = settings.report_sets = true;
+    settings.time_name = "0";
+    QualityReport r = check_mesh(test::make_split_pair_mesh(false), settings);
+    EXPECT_NE(r.text.find("   *Number of regions: 2\n"
+                          "    The mesh has multiple regions which are not connected by any "
+                          "face.\n"
+                          "  <<Writing region information to \"0/cellToRegion\"\n"
+                          "  <<Writing region 0 (fully disconnected) with 1 cells to cellSet "
+                          "region0\n"
+                          "  <<Writing region 1 (fully disconnected) with 1 cells to cellSet "
+                          "region1\n"),
+              std::string::npos)
+        << r.text;
+    // sqrt(|1e-6 * (2 1 1)|^2) = 1e-6 sqrt(6); 8 points: the 4 pairs.
+    EXPECT_NE(r.text.find("  <<Writing 8 near (closer than 2.44949e-06 apart) points to set "
+                          "nearPoints\n"),
+              std::string::npos)
+        << r.text;
+    EXPECT_EQ(r.cell_to_region, (std::vector<Index>{0, 1}));
+    // The baffle pair, -allTopology: point connected, the shared points as a set.
+    r = check_mesh(test::make_split_pair_mesh(true), settings);
+    EXPECT_NE(r.text.find("  <<Writing region 1 (point connected) with 1 cells to cellSet "
+                          "region1\n"
+                          "  <<Writing 4 points that are in multiple regions to set "
+                          "multiRegionPoints\n"),
+              std::string::npos)
+        << r.text;
+    // Without -allTopology no connection word; without -writeSets no "<<Writing" line.
+    settings.all_topology = false;
+    r = check_mesh(test::make_split_pair_mesh(true), settings);
+    EXPECT_NE(r.text.find("  <<Writing region 0 with 1 cells to cellSet region0\n"),
+              std::string::npos)
+        << r.text;
+    settings.report_sets = false;
+    r = check_mesh(test::make_split_pair_mesh(true), settings);
+    EXPECT_EQ(r.text.find("<<Writing"), std::string::npos) << r.text;
+    EXPECT_NE(r.text.find("   *Number of regions: 2\n"), std::string::npos);
 }

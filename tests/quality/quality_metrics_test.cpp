@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Tests of the quality metrics alone (face_orthogonality.h, face_skewness.h,
 // cell_closedness.h, cell_determinant.h, face_weights.h, face_flatness.h, face_tets.h,
-// cell_concavity.h, edge_lengths.h, cell_regions.h): fields of undistorted, sheared and
-// damaged meshes.
+// cell_concavity.h, edge_lengths.h, point_nearness.h, cell_regions.h): fields of
+// undistorted, sheared and damaged meshes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "helpers.h"
@@ -20,6 +21,7 @@
 #include "meshmorph/quality/face_skewness.h"
 #include "meshmorph/quality/face_tets.h"
 #include "meshmorph/quality/face_weights.h"
+#include "meshmorph/quality/point_nearness.h"
 
 using namespace meshmorph;
 
@@ -184,4 +186,59 @@ TEST(CellRegions, numbered_from_the_lowest_cell)
     ASSERT_EQ(regions.size(), 2u);
     EXPECT_EQ(regions[0], std::vector<Index>{0});
     EXPECT_EQ(regions[1], (std::vector<Index>{1, 2}));
+}
+
+TEST(PointNearness, marks_both_points_of_each_close_pair)
+{
+    PolyMesh mesh = test::make_box_mesh(2, 1, 1, Vector3::Zero(), Vector3(2, 1, 1));
+    const std::vector<char> apart = near_points(mesh, 1e-12);
+    EXPECT_EQ(std::count(apart.begin(), apart.end(), 1), 0);
+    // Point 4, (1 1 0), brought to 1e-7 of point 1, (1 0 0).
+    mesh.points.row(4) = mesh.points.row(1) + Eigen::RowVector3d(0, 1e-7, 0);
+    const std::vector<char> near = near_points(mesh, 1e-12);
+    EXPECT_EQ(std::count(near.begin(), near.end(), 1), 2);
+    EXPECT_TRUE(near[1] && near[4]);
+    // Not closer than 1e-8.
+    const std::vector<char> none = near_points(mesh, 1e-16);
+    EXPECT_EQ(std::count(none.begin(), none.end(), 1), 0);
+}
+
+TEST(PointNearness, compares_only_points_of_similar_magnitude_as_openfoam)
+{
+    // OpenFOAM compares a point with the points before it in |p|^2 order whose |p|^2 lies
+    // within dist^2 below its own. Two points 1e-7 apart along x at x = 1000 differ by
+    // 2 * 1000 * 1e-7 = 2e-4 in |p|^2, far more than dist^2 = 1e-12: not compared, so not
+    // reported. At the origin the same pair differs by 1e-14 in |p|^2 and is reported.
+    PolyMesh mesh = test::make_box_mesh(1, 1, 1);
+    mesh.points.row(7) = Eigen::RowVector3d(1000, 0, 0);
+    mesh.points.row(6) = Eigen::RowVector3d(1000 + 1e-7, 0, 0);
+    std::vector<char> near = near_points(mesh, 1e-12);
+    EXPECT_EQ(std::count(near.begin(), near.end(), 1), 0);
+    mesh.points.row(7) = Eigen::RowVector3d(0, 0, 1e-7); // point 0 is the origin
+    near = near_points(mesh, 1e-12);
+    EXPECT_EQ(std::count(near.begin(), near.end(), 1), 2);
+    EXPECT_TRUE(near[0] && near[7]);
+}
+
+TEST(CellRegions, cyclic_faces_join_regions_as_internal_faces_do)
+{
+    // Two cells that touch through a pair of coincident boundary faces: two regions, unless
+    // the faces form a cyclic pair (regionSplit walks across cyclics).
+    PolyMesh mesh = test::make_split_pair_mesh(true);
+    EXPECT_EQ(cell_regions(mesh).size(), 2u);
+    Patch& split = mesh.patches.back();
+    split.n_faces = 1;
+    split.name = "left";
+    split.type = "cyclic";
+    split.entries = {{"neighbourPatch", "right"}};
+    split.in_groups.clear();
+    Patch right = split;
+    right.name = "right";
+    right.start_face = split.start_face + 1;
+    right.entries = {{"neighbourPatch", "left"}};
+    mesh.patches.push_back(right);
+    const std::vector<std::vector<Index>> regions = cell_regions(mesh);
+    ASSERT_EQ(regions.size(), 1u);
+    EXPECT_EQ(regions[0], (std::vector<Index>{0, 1}));
+    EXPECT_EQ(region_of_cells(regions, 2), (std::vector<Index>{0, 0}));
 }

@@ -60,6 +60,26 @@ std::string resolve_include_etc(const std::string& text)
     return result;
 }
 
+//! An ascii FoamFile header, its divider line and the blank line after it, as OpenFOAM
+//! writes them (with our banner).
+std::string file_header(const std::string& cls, const std::string& location,
+                        const std::string& object)
+{
+    std::ostringstream out;
+    out << "/*--------------------------------*- C++ -*----------------------------------*\\\n"
+        << "  Written by meshMorph " << MESHMORPH_VERSION << " (checkMeshQuality)\n"
+        << "\\*---------------------------------------------------------------------------*/\n"
+        << "FoamFile\n{\n"
+        << "    version     2.0;\n"
+        << "    format      ascii;\n"
+        << "    class       " << cls << ";\n"
+        << "    location    \"" << location << "\";\n"
+        << "    object      " << object << ";\n"
+        << "}\n"
+        << "// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //\n\n";
+    return out.str();
+}
+
 } // namespace
 
 MeshQualitySettings read_mesh_quality_dict(const fs::path& path)
@@ -113,19 +133,7 @@ std::string mesh_set_file_text(const MeshSet& set, const std::string& location)
                           ? "faceSet"
                           : (set.kind == MeshSet::Kind::cell ? "cellSet" : "pointSet");
     std::ostringstream out;
-    out << "/*--------------------------------*- C++ -*----------------------------------*\\\n"
-        << "  Written by meshMorph " << MESHMORPH_VERSION << " (checkMeshQuality)\n"
-        << "\\*---------------------------------------------------------------------------*/\n"
-        << "FoamFile\n{\n"
-        << "    version     2.0;\n"
-        << "    format      ascii;\n"
-        << "    class       " << cls << ";\n"
-        << "    location    \"" << location << "\";\n"
-        << "    object      " << set.name << ";\n"
-        << "}\n"
-        << "// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //\n\n"
-        << "\n"
-        << set.labels.size() << "\n(\n";
+    out << file_header(cls, location, set.name) << "\n" << set.labels.size() << "\n(\n";
     for (Index label : set.labels)
         out << label << "\n";
     out << ")\n\n\n"
@@ -149,6 +157,45 @@ std::vector<fs::path> write_mesh_sets(const std::vector<MeshSet>& sets, const fs
             dir / set.name,
             mesh_set_file_text(set, (fs::path(instance) / region / "polyMesh" / "sets").string())));
     return written;
+}
+
+std::string cell_to_region_file_text(const std::vector<Index>& cell_to_region,
+                                     const std::string& location)
+{
+    std::ostringstream out;
+    out << file_header("labelList", location, "cellToRegion");
+    // UList::writeList with a short-list length of 10 (the regions differ, so the list is
+    // never written as uniform `N{v}`).
+    const std::size_t n = cell_to_region.size();
+    if (n <= 10)
+    {
+        out << n << "(";
+        for (std::size_t i = 0; i < n; ++i)
+            out << (i ? " " : "") << cell_to_region[i];
+        out << ")";
+    }
+    else
+    {
+        out << "\n" << n << "\n(\n";
+        for (Index label : cell_to_region)
+            out << label << "\n";
+        out << ")\n";
+    }
+    out << "\n\n// ************************************************************************* //\n";
+    return out.str();
+}
+
+fs::path write_cell_to_region(const std::vector<Index>& cell_to_region, const fs::path& case_dir,
+                              const std::string& time, const std::string& region)
+{
+    const fs::path dir = case_dir / time / region;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec)
+        throw IoError("cannot create directory " + dir.string() + ": " + ec.message());
+    const std::string location = region.empty() ? time : time + "/" + region;
+    return io::write_file_atomic(dir / "cellToRegion",
+                                 cell_to_region_file_text(cell_to_region, location));
 }
 
 namespace
@@ -193,6 +240,7 @@ int check_mesh_quality_main(const Options& options, std::ostream& out)
 
     const io::FoamPolyMesh foam = io::read_poly_mesh(case_dir, read_options);
     const PolyMesh& mesh = foam.mesh;
+    settings.time_name = foam.time;
     timer.lap("Read mesh (" + std::to_string(mesh.n_cells) + " cells)");
 
     const CompactList cf = cell_faces(mesh);
@@ -209,6 +257,10 @@ int check_mesh_quality_main(const Options& options, std::ostream& out)
         timer.lap(
             "Wrote " + std::to_string(files.size()) + " sets to " +
             (case_dir / foam.points_instance / read_options.region / "polyMesh" / "sets").string());
+        if (!report.cell_to_region.empty())
+            timer.lap("Wrote " + write_cell_to_region(report.cell_to_region, case_dir, foam.time,
+                                                      read_options.region)
+                                     .string());
     }
     if (vtk_requested(options))
     {

@@ -40,6 +40,18 @@ std::vector<std::filesystem::path> write_mesh_sets(const std::vector<MeshSet>& s
                                                    const std::string& instance,
                                                    const std::string& region = "");
 
+//! \brief checkMesh's cellToRegion file: an OpenFOAM labelList (ascii, `class labelList`) of
+//! each cell's region, as OpenFOAM's List writes it (one label a line; on one line, `N(...)`,
+//! up to 10 labels). \param location the header's `location`, e.g. "constant".
+std::string cell_to_region_file_text(const std::vector<Index>& cell_to_region,
+                                     const std::string& location);
+
+//! \brief Write `<case>/<time>[/<region>]/cellToRegion` atomically (where checkMesh writes it).
+//! Returns the path. \throw IoError naming the path on failure.
+std::filesystem::path write_cell_to_region(const std::vector<Index>& cell_to_region,
+                                           const std::filesystem::path& case_dir,
+                                           const std::string& time, const std::string& region = "");
+
 //! \brief Run checkMeshQuality with argv (argv[0] = program name); the report goes to `out`,
 //! and the log, for the length of the run, to log::stream_sink(out, err) (info on `out`,
 //! warnings and errors on `err`). Returns the exit status (exit_ok, exit_checks_failed,

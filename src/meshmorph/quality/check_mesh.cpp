@@ -29,6 +29,7 @@
 #include "meshmorph/quality/geometry_checks.h"
 #include "meshmorph/quality/mesh_quality_checks.h"
 #include "meshmorph/quality/point_faces.h"
+#include "meshmorph/quality/point_nearness.h"
 #include "meshmorph/quality/report_text.h"
 #include "meshmorph/quality/scaled_jacobian.h"
 #include "meshmorph/quality/topology_checks.h"
@@ -121,7 +122,10 @@ void run_topology_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
         checks.push_back(check_face_faces(face_face_connectivity(mesh, point_faces)));
         checks.push_back(check_internal_face_cells(mesh));
     }
-    checks.push_back(check_regions(cell_regions(mesh)));
+    const std::vector<std::vector<Index>> regions = cell_regions(mesh);
+    checks.push_back(check_regions(mesh, regions, all_topology));
+    if (regions.size() > 1)
+        r.cell_to_region = region_of_cells(regions, mesh.n_cells);
     r.patch_topology = patch_topology(mesh);
     r.face_zone_topology = face_zone_topology(mesh);
     r.cell_zones = cell_zone_summaries(mesh, cell_faces, g);
@@ -151,7 +155,8 @@ void run_all_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces
     const double min_length_sqr = detail::mag_sqr(1e-6 * span);
     std::vector<CheckResult>& checks = r.checks;
     checks.push_back(check_face_tets(face_tet_errors(mesh, g)));
-    checks.push_back(check_edge_length(edge_lengths(mesh, min_length_sqr)));
+    checks.push_back(check_edge_length(edge_lengths(mesh, min_length_sqr),
+                                       near_points(mesh, min_length_sqr), min_length_sqr));
     checks.push_back(check_face_angles(face_concavity(mesh, g)));
     checks.push_back(check_face_flatness(mesh, mag_area, face_flatness(mesh, g, mag_area)));
     checks.push_back(check_cell_determinant(r.cell_determinant));

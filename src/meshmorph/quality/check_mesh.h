@@ -59,6 +59,9 @@ struct CheckMeshSettings
     bool no_topology = false;  //!< -noTopology (skip §3.2)
     bool report_sets = false;  //!< print the "  <<Writing N ... to set X" lines (-writeSets)
     int write_precision = 6;   //!< controlDict writePrecision (%.{p}g)
+    //! The time directory of the check, as "Time = " names it: checkMesh writes cellToRegion
+    //! there ("  <<Writing region information to "<time>/cellToRegion"").
+    std::string time_name = "constant";
     //! Compute the per-cell scaled Jacobian (not a checkMesh check; for JSON/VTK/morph).
     bool scaled_jacobian = true;
     //! -meshQuality: the criteria from system/meshQualityDict.
@@ -108,6 +111,9 @@ struct QualityReport
     bool mesh_ok() const { return failed_checks == 0; }
 
     std::vector<MeshSet> sets; //!< non-empty offender sets, in report order
+    //! Per cell its region (cell_regions), when the mesh has several regions: checkMesh's
+    //! <time>/cellToRegion. Empty otherwise, and with no_topology.
+    std::vector<Index> cell_to_region;
 
     //! Per-cell fields (nCells): max face non-orthogonality [deg] and skewness over the
     //! cell's faces, aspect ratio, and the checkMesh cell determinant (always computed,

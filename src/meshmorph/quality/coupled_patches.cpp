@@ -238,21 +238,12 @@ void set_computed(const PolyMesh& mesh, const Patch& p, const Patch& nbr, const 
         c.separation.push_back(eigen(s));
 }
 
-Index neighbour_index(const PolyMesh& mesh, const Patch& p)
-{
-    const std::string name = word_entry(p, "neighbourPatch", "");
-    for (std::size_t i = 0; i < mesh.patches.size(); ++i)
-        if (mesh.patches[i].name == name && is_coupled_patch(mesh.patches[i]))
-            return static_cast<Index>(i);
-    throw InvalidInput("cyclic patch " + p.name + " has no cyclic neighbourPatch '" + name + "'");
-}
-
 CyclicPatch cyclic_patch(const PolyMesh& mesh, const MeshGeometry& g, Index index)
 {
     const Patch& p = mesh.patches[static_cast<std::size_t>(index)];
     CyclicPatch c;
     c.patch = index;
-    c.neighbour = neighbour_index(mesh, p);
+    c.neighbour = cyclic_neighbour_patch(mesh, index);
     const Patch& nbr = mesh.patches[static_cast<std::size_t>(c.neighbour)];
     if (nbr.n_faces != p.n_faces)
         throw InvalidInput("cyclic patch " + p.name + " has " + std::to_string(p.n_faces) +
@@ -276,6 +267,16 @@ CyclicPatch cyclic_patch(const PolyMesh& mesh, const MeshGeometry& g, Index inde
 bool is_coupled_patch(const Patch& p)
 {
     return p.type == "cyclic" || p.type == "cyclicSlip";
+}
+
+Index cyclic_neighbour_patch(const PolyMesh& mesh, Index patch)
+{
+    const Patch& p = mesh.patches[static_cast<std::size_t>(patch)];
+    const std::string name = word_entry(p, "neighbourPatch", "");
+    for (std::size_t i = 0; i < mesh.patches.size(); ++i)
+        if (mesh.patches[i].name == name && is_coupled_patch(mesh.patches[i]))
+            return static_cast<Index>(i);
+    throw InvalidInput("cyclic patch " + p.name + " has no cyclic neighbourPatch '" + name + "'");
 }
 
 std::vector<double> face_tolerances(const PolyMesh& mesh, const MeshGeometry& g, const Patch& p)

@@ -20,6 +20,10 @@ namespace meshmorph
 //! \brief Whether checkMesh couples the patch's faces: cyclic and cyclicSlip.
 bool is_coupled_patch(const Patch& patch);
 
+//! \brief The index of the neighbourPatch of the cyclic patch `patch`.
+//! \throws InvalidInput if it names no cyclic patch.
+Index cyclic_neighbour_patch(const PolyMesh& mesh, Index patch);
+
 //! One cyclic (or cyclicSlip) patch with faces and the transform that brings its neighbour
 //! patch's positions onto it (cyclicPolyPatch::calcTransforms and transformPosition).
 struct CyclicPatch

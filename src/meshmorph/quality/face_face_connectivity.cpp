@@ -89,6 +89,7 @@ struct Scratch
     std::vector<Shared> shared;
     std::vector<Index> touched;
     std::vector<Index> positions;
+    std::vector<Index> partners; //!< the higher faces of flagged pairs (merged at the end)
 };
 
 //! Record in s.shared / s.touched every higher face sharing a point with face f.
@@ -142,6 +143,11 @@ void scan_face(const PolyMesh& mesh, const PointFaceLists& pf, Index f, Scratch&
         }
         else if (sg.count >= 2 && !consecutive_on_both(face, other, f, g, sg, pf, s.positions))
             out.order_errors[f] = 1;
+        else
+            continue;
+        // OpenFOAM inserts both faces of the pair into the set.
+        out.in_pair[f] = 1;
+        s.partners.push_back(g);
     }
 }
 
@@ -151,15 +157,20 @@ FaceFaceConnectivity face_face_connectivity(const PolyMesh& mesh, const CompactL
 {
     const std::size_t n_faces = static_cast<std::size_t>(mesh.n_faces());
     FaceFaceConnectivity out{std::vector<Index>(n_faces, 0), std::vector<Index>(n_faces, 0),
-                             std::vector<char>(n_faces, 0)};
+                             std::vector<char>(n_faces, 0), std::vector<char>(n_faces, 0)};
     const PointFaceLists pf{point_faces.offsets.data(), point_faces.values.data()};
+    std::vector<Index> partners;
 #pragma omp parallel if (mesh.n_faces() > detail::parallel_threshold)
     {
-        Scratch scratch{std::vector<Shared>(n_faces), {}, {}};
+        Scratch scratch{std::vector<Shared>(n_faces), {}, {}, {}};
 #pragma omp for schedule(dynamic, 1024)
         for (Index f = 0; f < mesh.n_faces(); ++f)
             scan_face(mesh, pf, f, scratch, out);
+#pragma omp critical
+        partners.insert(partners.end(), scratch.partners.begin(), scratch.partners.end());
     }
+    for (const Index g : partners)
+        out.in_pair[static_cast<std::size_t>(g)] = 1;
     return out;
 }
 

@@ -18,6 +18,9 @@ struct FaceFaceConnectivity
     std::vector<Index> duplicates;  //!< nFaces: higher faces with all of f's or all of g's
                                     //!< points but of another size
     std::vector<char> order_errors; //!< nFaces: some shared run is not consecutive
+    //! nFaces: in a pair of faces that are duplicates, baffles or not consecutive on each
+    //! other (both faces of the pair: checkMesh's edgeFaces set).
+    std::vector<char> in_pair;
 };
 
 //! \brief Scan every pair of faces sharing a point. \param point_faces point_faces(mesh).

@@ -314,14 +314,24 @@ CheckResult check_face_tets(const std::vector<char>& errors)
     return r;
 }
 
-CheckResult check_edge_length(const EdgeLengths& lengths)
+CheckResult check_edge_length(const EdgeLengths& lengths, const std::vector<char>& near,
+                              double min_length_sqr)
 {
     CheckResult r("edgeLength");
     r.add("minEdgeLength", lengths.min_length);
     r.add("maxEdgeLength", lengths.max_length);
     r.add("shortEdges", lengths.n_short, false);
+    r.add("nearPointDistance", std::sqrt(min_length_sqr), false);
     r.add_set("shortEdges", MeshSet::Kind::point, flagged(lengths.short_edge_points),
               "points on short edges");
+    // checkGeometry.C: checkPointNearness adds to the shortEdges set; the union is written
+    // as nearPoints when it grew.
+    std::vector<char> both = lengths.short_edge_points;
+    for (std::size_t p = 0; p < near.size() && p < both.size(); ++p)
+        both[p] = both[p] || near[p];
+    std::vector<Index> union_labels = flagged(both);
+    if (size_of(union_labels) > lengths.n_short)
+        r.add_set("nearPoints", MeshSet::Kind::point, std::move(union_labels), "");
     return r;
 }
 

@@ -77,9 +77,15 @@ CheckResult check_coupled_points(const CoupledPointMatch& match);
 //! lowQualityTetFaces. \param errors face_tet_errors(mesh, geometry).
 CheckResult check_face_tets(const std::vector<char>& errors);
 
-//! \brief -allGeometry: edge lengths. Never fails. Statistics minEdgeLength, maxEdgeLength,
-//! "shortEdges"; set shortEdges (points).
-CheckResult check_edge_length(const EdgeLengths& lengths);
+//! \brief -allGeometry: edge lengths and point nearness. Never fails. Statistics
+//! minEdgeLength, maxEdgeLength, "shortEdges", "nearPointDistance"; sets shortEdges (points)
+//! and nearPoints: as checkMesh, the points on short edges together with the points closer
+//! than the distance, present only when the near points add to the short-edge ones
+//! (announced by the report's own line).
+//! \param near near_points(mesh, min_length_sqr), or empty (no nearness check).
+//! \param min_length_sqr the squared distance of both (checkMesh: |1e-6 * span|^2).
+CheckResult check_edge_length(const EdgeLengths& lengths, const std::vector<char>& near = {},
+                              double min_length_sqr = 0);
 
 //! \brief -allGeometry: concave face corners. Never fails. Statistics concaveFaces,
 //! maxConcaveAngle [deg]; set concaveFaces. \param concavity face_concavity(mesh, geometry).

@@ -151,10 +151,22 @@ void regions(const CheckResult& c, Writer& t)
     }
     t.out << "   *Number of regions: " << n << "\n"
           << "    The mesh has multiple regions which are not connected by any face.\n";
-    if (t.settings.report_sets)
-        for (std::size_t i = 0; i < c.sets.size(); ++i)
-            t.out << "  <<Writing region " << i << " with " << c.sets[i].set.labels.size()
-                  << " cells to cellSet region" << i << "\n";
+    if (!t.settings.report_sets)
+        return;
+    // A fileName is written in quotes.
+    t.out << "  <<Writing region information to \"" << t.settings.time_name << "/cellToRegion\"\n";
+    // -allTopology says how each region touches the others.
+    const Statistic* disconnected = c.find("regionDisconnected");
+    for (std::size_t i = 0; i < static_cast<std::size_t>(n) && i < c.sets.size(); ++i)
+    {
+        t.out << "  <<Writing region " << i;
+        if (disconnected)
+            t.out << (std::get<Statistic::Counts>(disconnected->value).at(i).second
+                          ? " (fully disconnected)"
+                          : " (point connected)");
+        t.out << " with " << c.sets[i].set.labels.size() << " cells to cellSet "
+              << c.sets[i].set.name << "\n";
+    }
 }
 
 // ---------------------------------------------------------------------------------------
@@ -305,6 +317,16 @@ void edge_length(const CheckResult& c, Writer& t)
         t.out << "    Min/max edge length = " << lengths << " OK.\n";
 }
 
+//! After the shortEdges line: checkMesh's point nearness set (points on short edges and
+//! points closer than the same distance), written when it has more points.
+void near_points(const CheckResult& c, Writer& t)
+{
+    for (const OffenderSet& s : c.sets)
+        if (s.set.name == "nearPoints")
+            t.out << "  <<Writing " << s.set.labels.size() << " near (closer than "
+                  << t.s(c.real("nearPointDistance")) << " apart) points to set nearPoints\n";
+}
+
 void face_angles(const CheckResult& c, Writer& t)
 {
     if (const Index n = c.count("concaveFaces"); n > 0)
@@ -444,38 +466,40 @@ struct Format
     std::string_view id;
     Section section;
     Formatter print;
+    //! Lines after the sets' "<<Writing" lines (-writeSets only), or nullptr.
+    Formatter after_sets;
 };
 
 const Format formats[] = {
-    {"boundaryDefinition", Section::topology, boundary_definition},
-    {"emptyPatches", Section::topology, empty_patches},
-    {"cellAddressing", Section::topology, cell_addressing},
-    {"pointUsage", Section::topology, point_usage},
-    {"upperTriangular", Section::topology, upper_triangular},
-    {"faceVertices", Section::topology, face_vertices},
-    {"cellsZipUp", Section::topology, cells_zip_up},
-    {"faceFaces", Section::topology, face_faces},
-    {"internalFaceCells", Section::topology, no_lines},
-    {"regions", Section::topology, regions},
-    {"edgeAlignment", Section::geometry, edge_alignment},
-    {"wedges", Section::geometry, wedges},
-    {"closedBoundary", Section::geometry, closed_boundary},
-    {"closedCells", Section::geometry, closed_cells},
-    {"faceAreas", Section::geometry, face_areas},
-    {"cellVolumes", Section::geometry, cell_volumes},
-    {"faceOrthogonality", Section::geometry, face_orthogonality},
-    {"facePyramids", Section::geometry, face_pyramids},
-    {"faceSkewness", Section::geometry, face_skewness},
-    {"coupledPoints", Section::geometry, coupled_points},
-    {"faceTets", Section::geometry, face_tets},
-    {"edgeLength", Section::geometry, edge_length},
-    {"faceAngles", Section::geometry, face_angles},
-    {"faceFlatness", Section::geometry, face_flatness},
-    {"cellDeterminant", Section::geometry, cell_determinant},
-    {"concaveCells", Section::geometry, concave_cells},
-    {"faceWeight", Section::geometry, face_weight},
-    {"volumeRatio", Section::geometry, volume_ratio},
-    {"meshQuality", Section::geometry, mesh_quality},
+    {"boundaryDefinition", Section::topology, boundary_definition, nullptr},
+    {"emptyPatches", Section::topology, empty_patches, nullptr},
+    {"cellAddressing", Section::topology, cell_addressing, nullptr},
+    {"pointUsage", Section::topology, point_usage, nullptr},
+    {"upperTriangular", Section::topology, upper_triangular, nullptr},
+    {"faceVertices", Section::topology, face_vertices, nullptr},
+    {"cellsZipUp", Section::topology, cells_zip_up, nullptr},
+    {"faceFaces", Section::topology, face_faces, nullptr},
+    {"internalFaceCells", Section::topology, no_lines, nullptr},
+    {"regions", Section::topology, regions, nullptr},
+    {"edgeAlignment", Section::geometry, edge_alignment, nullptr},
+    {"wedges", Section::geometry, wedges, nullptr},
+    {"closedBoundary", Section::geometry, closed_boundary, nullptr},
+    {"closedCells", Section::geometry, closed_cells, nullptr},
+    {"faceAreas", Section::geometry, face_areas, nullptr},
+    {"cellVolumes", Section::geometry, cell_volumes, nullptr},
+    {"faceOrthogonality", Section::geometry, face_orthogonality, nullptr},
+    {"facePyramids", Section::geometry, face_pyramids, nullptr},
+    {"faceSkewness", Section::geometry, face_skewness, nullptr},
+    {"coupledPoints", Section::geometry, coupled_points, nullptr},
+    {"faceTets", Section::geometry, face_tets, nullptr},
+    {"edgeLength", Section::geometry, edge_length, near_points},
+    {"faceAngles", Section::geometry, face_angles, nullptr},
+    {"faceFlatness", Section::geometry, face_flatness, nullptr},
+    {"cellDeterminant", Section::geometry, cell_determinant, nullptr},
+    {"concaveCells", Section::geometry, concave_cells, nullptr},
+    {"faceWeight", Section::geometry, face_weight, nullptr},
+    {"volumeRatio", Section::geometry, volume_ratio, nullptr},
+    {"meshQuality", Section::geometry, mesh_quality, nullptr},
 };
 
 const Format& format_of(const CheckResult& c)
@@ -501,6 +525,8 @@ void print_checks(Section section, Writer& t)
             if (!s.description.empty())
                 t.out << "  <<Writing " << s.set.labels.size() << " " << s.description << " to set "
                       << s.set.name << "\n";
+        if (format.after_sets)
+            format.after_sets(c, t);
     }
 }
 

@@ -29,6 +29,7 @@ set(MESHMORPH_QUALITY_SOURCES
     meshmorph/quality/coupled_points.cpp
     meshmorph/quality/mesh_edges.cpp
     meshmorph/quality/point_faces.cpp
+    meshmorph/quality/point_nearness.cpp
     meshmorph/quality/wedge_alignment.cpp
     meshmorph/quality/wedge_geometry.cpp
     meshmorph/quality/zone_topology.cpp

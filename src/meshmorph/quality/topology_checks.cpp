@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <string>
 
+#include "meshmorph/quality/cell_regions.h"
 #include "meshmorph/quality/coupled_patches.h"
 
 namespace meshmorph
@@ -225,6 +226,8 @@ CheckResult check_face_faces(const FaceFaceConnectivity& c)
     r.add("baffleFaces", baffles, false);
     r.add("duplicateFaces", duplicates, false);
     r.add("nonConsecutiveFaces", order_errors, false);
+    r.add_set("edgeFaces", MeshSet::Kind::face, flagged(c.in_pair),
+              "faces with non-standard edge connectivity");
     return r;
 }
 
@@ -257,13 +260,49 @@ CheckResult check_internal_face_cells(const PolyMesh& mesh)
     return r;
 }
 
-CheckResult check_regions(const std::vector<std::vector<Index>>& regions)
+CheckResult check_regions(const PolyMesh& mesh, const std::vector<std::vector<Index>>& regions,
+                          bool all_topology)
 {
     CheckResult r("regions");
     r.add("regions", size_of(regions), false);
-    if (regions.size() > 1)
-        for (std::size_t i = 0; i < regions.size(); ++i)
-            r.add_set("region" + std::to_string(i), MeshSet::Kind::cell, regions[i], "");
+    if (regions.size() <= 1)
+        return r;
+    for (std::size_t i = 0; i < regions.size(); ++i)
+        r.add_set("region" + std::to_string(i), MeshSet::Kind::cell, regions[i], "");
+    if (!all_topology)
+        return r;
+    // checkTopology.C: walk the boundary faces' points; a point reached from two regions
+    // connects them (neither is "fully disconnected") and goes into multiRegionPoints.
+    constexpr Index unassigned = -1, several = -2;
+    const std::vector<Index> cell_region = region_of_cells(regions, mesh.n_cells);
+    std::vector<Index> point_region(static_cast<std::size_t>(mesh.n_points()), unassigned);
+    std::vector<char> disconnected(regions.size(), 1);
+    std::vector<Index> multi_region_points;
+    for (Index f = mesh.n_internal_faces(); f < mesh.n_faces(); ++f)
+    {
+        const Index region = cell_region[static_cast<std::size_t>(mesh.owner[f])];
+        for (Index p : mesh.faces[f])
+        {
+            Index& seen = point_region[static_cast<std::size_t>(p)];
+            if (seen == unassigned)
+                seen = region;
+            else if (seen == several)
+                disconnected[static_cast<std::size_t>(region)] = 0;
+            else if (seen != region)
+            {
+                disconnected[static_cast<std::size_t>(region)] = 0;
+                disconnected[static_cast<std::size_t>(seen)] = 0;
+                seen = several;
+                multi_region_points.push_back(p);
+            }
+        }
+    }
+    Statistic::Counts flags;
+    for (std::size_t i = 0; i < regions.size(); ++i)
+        flags.emplace_back("region" + std::to_string(i), Index{disconnected[i]});
+    r.add("regionDisconnected", std::move(flags), false);
+    r.add_set("multiRegionPoints", MeshSet::Kind::point, std::move(multi_region_points),
+              "points that are in multiple regions");
     return r;
 }
 

@@ -45,7 +45,8 @@ CheckResult check_face_vertices(const PolyMesh& mesh);
 CheckResult check_cells_zip_up(const CellEdgeUsage& usage);
 
 //! \brief -allTopology: duplicate faces and non-consecutive shared points. Never fails.
-//! Statistics "baffleFaces", "duplicateFaces", "nonConsecutiveFaces".
+//! Statistics "baffleFaces", "duplicateFaces", "nonConsecutiveFaces"; set edgeFaces (both
+//! faces of every such pair, baffles included).
 CheckResult check_face_faces(const FaceFaceConnectivity& connectivity);
 
 //! \brief -allTopology: cells with zero or one, and with two, internal or coupled faces (sets
@@ -53,8 +54,12 @@ CheckResult check_face_faces(const FaceFaceConnectivity& connectivity);
 CheckResult check_internal_face_cells(const PolyMesh& mesh);
 
 //! \brief The number of cell regions. Never fails. Statistic "regions"; with several, sets
-//! region0, region1, ... (announced by the report's own lines).
+//! region0, region1, ... (announced by the report's own lines), and with all_topology (as
+//! checkTopology.C) statistic "regionDisconnected" (per region set name: 1 when no boundary
+//! point of the region is on a boundary face of another region, 0 when "point connected")
+//! and set multiRegionPoints (the boundary points shared by regions).
 //! \param regions cell_regions(mesh).
-CheckResult check_regions(const std::vector<std::vector<Index>>& regions);
+CheckResult check_regions(const PolyMesh& mesh, const std::vector<std::vector<Index>>& regions,
+                          bool all_topology);
 
 } // namespace meshmorph
