@@ -143,6 +143,16 @@ inline const std::map<std::string, std::string>& openfoam_case_scripts()
         {"cyclic-box", "blockmesh-tutorial.sh {dir} DNS/dnsFoam/boxTurb16"},
         {"cyclic-column",
          "blockmesh-tutorial.sh {dir} incompressible/boundaryFoam/boundaryWallFunctions"},
+        // 1D periodic: 40 graded cells in one column, cyclic left/right, empty front/back.
+        {"periodic-1d",
+         "blockmesh-tutorial.sh {dir} incompressible/pimpleFoam/laminar/planarPoiseuille"},
+        // AMI: 3072 cells (m4), a rotor and a stator region joined only by a cyclicAMI pair.
+        {"ami-mixer",
+         "blockmesh-tutorial.sh {dir} incompressible/pimpleFoam/laminar/mixerVesselAMI2D"},
+        // Split regions: 3000 cells split by cellZones into 5 region meshes (80 to 1200 cells),
+        // each keeping every cellZone, the other regions' empty.
+        {"split-heater",
+         "split-regions.sh {dir} heatTransfer/chtMultiRegionFoam/multiRegionHeater"},
     };
     return scripts;
 }

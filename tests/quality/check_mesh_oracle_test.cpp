@@ -14,6 +14,7 @@
 
 #include "check_mesh_run.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -167,6 +168,50 @@ fs::path copy_case(const std::string& name, const std::string& scratch)
     const fs::path dir = test::scratch_dir(scratch);
     fs::copy(source, dir, fs::copy_options::recursive);
     return dir;
+}
+
+//! Without checkMesh's AMI lines (-allGeometry's writeAMIWeightsSums and the AMI
+//! construction it triggers), which checkMeshQuality does not print (README).
+std::vector<std::string> without_ami_lines(std::vector<std::string> block)
+{
+    std::erase_if(block, [](const std::string& line)
+                  { return line.rfind("AMI: ", 0) == 0 || line.rfind("Calculating AMI", 0) == 0; });
+    return block;
+}
+
+//! The labels of an OpenFOAM list file (a set or cellToRegion): the integers after the
+//! header's divider line, without the leading size, which must match their number.
+//! (checkMesh writes a set in its hash table's order: compare sets sorted.)
+std::vector<long> list_file_labels(const fs::path& path, bool sorted = false)
+{
+    const std::string text = read_text(path);
+    const std::size_t divider = text.find("// * * *");
+    EXPECT_NE(divider, std::string::npos) << path;
+    std::string body = text.substr(text.find('\n', divider));
+    body = body.substr(0, body.find("// ****"));
+    for (char& c : body)
+        if (c == '(' || c == ')')
+            c = ' ';
+    std::istringstream in(body);
+    std::vector<long> labels;
+    for (long v; in >> v;)
+        labels.push_back(v);
+    EXPECT_FALSE(labels.empty()) << path;
+    if (labels.empty())
+        return labels;
+    EXPECT_EQ(labels[0], static_cast<long>(labels.size() - 1)) << path;
+    labels.erase(labels.begin());
+    if (sorted)
+        std::sort(labels.begin(), labels.end());
+    return labels;
+}
+
+//! The part of an OpenFOAM file after its header's divider line.
+std::string after_header(const fs::path& path)
+{
+    const std::string text = read_text(path);
+    const std::size_t divider = text.find("// * * *");
+    return divider == std::string::npos ? "" : text.substr(text.find('\n', divider));
 }
 
 //! Compare checkMesh and checkMeshQuality on `name` with the given options.
@@ -356,4 +401,132 @@ TEST(CheckMeshOracle, short_edges_and_collapsed_points)
     ASSERT_NE(theirs.find("Edges too small"), std::string::npos) << theirs;
     const test::AppRun ours = run_ours(dir, {"-allGeometry"});
     EXPECT_EQ(compare_reports(report_block(theirs), report_block(ours.out)), "");
+}
+
+TEST(CheckMeshOracle, one_dimensional_periodic_mesh)
+{
+    REQUIRE_OPENFOAM("1D periodic mesh");
+    // planarPoiseuille: 40 graded cells in one column, cyclic in x, empty in z, a wall and a
+    // symmetryPlane: 2 solution directions, determinants and weights across the cyclic.
+    expect_same_report("periodic-1d", {});
+    expect_same_report("periodic-1d", all_checks);
+}
+
+TEST(CheckMeshOracle, split_region_meshes)
+{
+    REQUIRE_OPENFOAM("splitMeshRegions meshes");
+    // multiRegionHeater split by cellZones: each region mesh keeps all 5 cellZones, the 4
+    // of the other regions empty (checkMesh's inverted 1e+150 box); the small solid heater
+    // fails the determinant check, the fluid topAir passes.
+    for (const std::string region : {"heater", "topAir"})
+    {
+        expect_same_report("split-heater", {"-region", region});
+        expect_same_report("split-heater", {"-region", region, "-allGeometry", "-allTopology"});
+    }
+}
+
+TEST(CheckMeshOracle, ami_mesh_regions_and_their_files)
+{
+    REQUIRE_OPENFOAM("cyclicAMI mesh");
+    // mixerVesselAMI2D: the rotor and the stator touch through a cyclicAMI pair only, which
+    // connects no cells: two regions, fully disconnected.
+    expect_same_report("ami-mixer", {});
+    const fs::path dir = copy_case("ami-mixer", "quality_oracle_ami_files");
+    const std::string theirs = run_checkmesh(dir, "-allTopology -allGeometry");
+    ASSERT_NE(theirs.find("(fully disconnected)"), std::string::npos) << theirs;
+    // checkMesh's files, kept aside; ours written in their place.
+    const fs::path sets = dir / "constant" / "polyMesh" / "sets";
+    const fs::path cell_to_region = dir / "0" / "cellToRegion";
+    ASSERT_TRUE(fs::exists(cell_to_region)) << theirs;
+    fs::rename(sets, dir / "openfoam_sets");
+    fs::rename(cell_to_region, dir / "openfoam_cellToRegion");
+    const test::AppRun ours = run_ours(dir, {"-allTopology", "-allGeometry", "-writeSets"});
+    ASSERT_EQ(ours.status, app::exit_ok) << ours.err;
+    // The region lines, the sets' lines included; checkMesh's AMI weight lines are the
+    // only ones we do not print.
+    EXPECT_EQ(compare_reports(without_ami_lines(report_block(theirs, true)),
+                              report_block(ours.out, true)),
+              "");
+    EXPECT_LT(without_ami_lines(report_block(theirs, true)).size(),
+              report_block(theirs, true).size())
+        << "checkMesh printed no AMI lines:\n"
+        << theirs;
+    // cellToRegion as checkMesh writes it (a labelList in the checked time, 0/), and the
+    // region cellSets with the same cells.
+    ASSERT_TRUE(fs::exists(cell_to_region)) << ours.out;
+    EXPECT_EQ(after_header(cell_to_region), after_header(dir / "openfoam_cellToRegion"));
+    EXPECT_NE(read_text(cell_to_region).find("class       labelList;"), std::string::npos);
+    for (const std::string set : {"region0", "region1"})
+        EXPECT_EQ(list_file_labels(sets / set, true),
+                  list_file_labels(dir / "openfoam_sets" / set, true))
+            << set;
+}
+
+namespace
+{
+
+//! A case with `mesh` in constant/polyMesh, a complete controlDict and the fvSchemes and
+//! fvSolution that checkMesh's fvMesh reads.
+fs::path write_mesh_case(const std::string& name, const PolyMesh& mesh)
+{
+    const fs::path dir = test::scratch_dir(name);
+    io::write_poly_mesh(mesh, io::default_poly_mesh_files(io::FoamFormat::ascii), dir, "constant");
+    fs::create_directories(dir / "system");
+    std::ofstream(dir / "system" / "controlDict")
+        << "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
+        << "application checkMesh;\nstartFrom startTime;\nstartTime 0;\nstopAt endTime;\n"
+        << "endTime 1;\ndeltaT 1;\nwriteControl timeStep;\nwriteInterval 1;\n"
+        << "writeFormat ascii;\nwritePrecision 15;\nwriteCompression off;\n"
+        << "timeFormat general;\ntimePrecision 6;\nrunTimeModifiable false;\n";
+    std::ofstream(dir / "system" / "fvSchemes")
+        << "FoamFile { version 2.0; format ascii; class dictionary; object fvSchemes; }\n"
+        << "ddtSchemes { default steadyState; }\ngradSchemes { default Gauss linear; }\n"
+        << "divSchemes { default none; }\nlaplacianSchemes { default Gauss linear corrected; }\n"
+        << "interpolationSchemes { default linear; }\nsnGradSchemes { default corrected; }\n";
+    std::ofstream(dir / "system" / "fvSolution")
+        << "FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }\n";
+    return dir;
+}
+
+} // namespace
+
+TEST(CheckMeshOracle, disconnected_and_point_connected_regions)
+{
+    REQUIRE_OPENFOAM("split two-cell meshes");
+    // Two hexahedra with a boundary face each where they touch (tests/helpers.h): with
+    // their own coincident points there, fully disconnected, and the 4 pairs of points 0
+    // apart are near points; sharing the points (a baffle), point connected, the 4 shared
+    // points in multiRegionPoints.
+    for (const bool shared : {false, true})
+    {
+        const fs::path dir =
+            write_mesh_case(shared ? "quality_oracle_baffle_pair" : "quality_oracle_split_pair",
+                            test::make_split_pair_mesh(shared));
+        const std::string theirs = run_checkmesh(dir, "-allTopology -allGeometry");
+        EXPECT_NE(theirs.find(shared ? "(point connected)" : "(fully disconnected)"),
+                  std::string::npos)
+            << theirs;
+        if (!shared)
+        {
+            EXPECT_NE(theirs.find("to set nearPoints"), std::string::npos) << theirs;
+        }
+        const fs::path sets = dir / "constant" / "polyMesh" / "sets";
+        fs::rename(sets, dir / "openfoam_sets");
+        fs::rename(dir / "constant" / "cellToRegion", dir / "openfoam_cellToRegion");
+        const test::AppRun ours = run_ours(dir, {"-allTopology", "-allGeometry", "-writeSets"});
+        ASSERT_TRUE(ours.status == 0 || ours.status == 1) << ours.err;
+        EXPECT_EQ(compare_reports(report_block(theirs, true), report_block(ours.out, true)), "")
+            << (shared ? "baffle pair" : "split pair");
+        // Every set checkMesh wrote, with the same labels; cellToRegion byte for byte
+        // after the header (a short list: "2(0 1)").
+        for (const auto& entry : fs::directory_iterator(dir / "openfoam_sets"))
+        {
+            const fs::path ours_set = sets / entry.path().filename();
+            ASSERT_TRUE(fs::exists(ours_set)) << "checkMesh wrote set " << entry.path().filename();
+            EXPECT_EQ(list_file_labels(ours_set, true), list_file_labels(entry.path(), true))
+                << entry.path().filename();
+        }
+        EXPECT_EQ(after_header(dir / "constant" / "cellToRegion"),
+                  after_header(dir / "openfoam_cellToRegion"));
+    }
 }
