@@ -254,13 +254,15 @@ int check_mesh_quality_main(const Options& options, std::ostream& out)
     {
         const std::vector<fs::path> files =
             write_mesh_sets(report.sets, case_dir, foam.points_instance, read_options.region);
-        timer.lap(
+        std::string written =
             "Wrote " + std::to_string(files.size()) + " sets to " +
-            (case_dir / foam.points_instance / read_options.region / "polyMesh" / "sets").string());
+            (case_dir / foam.points_instance / read_options.region / "polyMesh" / "sets").string();
+        // One timing line for all that -writeSets writes.
         if (!report.cell_to_region.empty())
-            timer.lap("Wrote " + write_cell_to_region(report.cell_to_region, case_dir, foam.time,
+            written += " and " + write_cell_to_region(report.cell_to_region, case_dir, foam.time,
                                                       read_options.region)
-                                     .string());
+                                     .string();
+        timer.lap(written);
     }
     if (vtk_requested(options))
     {
