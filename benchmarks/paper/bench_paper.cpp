@@ -11,7 +11,7 @@
 //   precision                                                            (Sec. 3.5)
 //   pipe -case DIR [-name NAME] [-motion squeeze|shift] [-step S] [-max A]
 //        [-methods rbf,dmffd-5,...]                                      (Sec. 3.6.1)
-//   motorbike -case CACHE -runs DIR [-lift L] [-handles "x y z;..."]
+//   motorbike -case CACHE -runs DIR [-lifts L1,L2,...] [-handles "x y z;..."]
 //        [-methods rbf,dmffd-10,...]                                     (Sec. 3.6.2)
 // The adaptivity benchmark (Sec. 3.4) is benchAdaptivity (benchmarks/deform).
 #include <cstdio>

@@ -70,6 +70,13 @@ def g(v, digits=3):
     return f"{v:.{digits}g}"
 
 
+def method_label(name):
+    """rbf -> RBF, dmffd-10 -> DM-FFD-10, original stays."""
+    if name == "original":
+        return name
+    return name.upper().replace("DMFFD", "DM-FFD")
+
+
 def table(header, rows):
     out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     for r in rows:
@@ -700,7 +707,7 @@ def section_volume(data, fig, grades, notes, run):
             for ax, p in zip(axs[0], pipes):
                 for r in p["runs"]:
                     ax.plot(r["amplitudes"], r["minScaledJacobian"], lw=1.2,
-                            label=r["method"].upper().replace("DMFFD", "DM-FFD"))
+                            label=method_label(r["method"]))
                 ax.axhline(0, color="k", lw=0.6)
                 ax.set_ylim(-0.3, max(1.0, p["baseMinScaledJacobian"] + 0.05))
                 ax.set_xlabel("squeeze amplitude A (fraction of R)")
@@ -737,42 +744,49 @@ def section_volume(data, fig, grades, notes, run):
             f"points; the paper's DrivAer mesh has 1.2M cells): three handle points on the "
             f"rider (the mesh points nearest to the top of the helmet, the top of the back and "
             f"the right shoulder, {g(max(x['distance'] for x in h))} m away at most) lifted by "
-            f"{mb['lift']} m, every point of the outer boundary (inlet, outlet, lowerWall, "
-            f"upperWall, frontAndBack: {mb['fixedPoints']}) fixed, the bike's surface free: "
-            f"{mb['constraints']} constraints. RBF solved directly (exact; morphMesh would "
-            f"select greedy centres above 5000 constraints), DM-FFD on N^3 lattices over the "
-            f"whole domain. Each morph is one step without morphMesh's untangling (the methods "
-            f"alone). Numbers of the worst cell or face, as in Table 2, from checkMeshQuality "
+            f"{', '.join(mb['lifts'])} m (the bike is 1.35 m high), every point of the outer "
+            f"boundary (inlet, outlet, lowerWall, upperWall, frontAndBack: {mb['fixedPoints']}) "
+            f"fixed, the bike's surface free: {mb['constraints']} constraints. RBF solved "
+            f"directly (exact; morphMesh would select greedy centres above 5000 constraints), "
+            f"DM-FFD on N^3 lattices over the whole domain; each fitted once, the mesh of lift L "
+            f"is x + L d(x). One step without morphMesh's untangling: the methods alone. "
+            f"Numbers of the worst cell or face, as in Table 2, from checkMeshQuality "
             f"(checkMesh's checks and formulas); the verdict from OpenFOAM's checkMesh when "
             f"installed. Marks: aspect ratio ✗ above 1000; non-orthogonality ! above 70 "
             f"degrees, ✗ above 90 (checkMesh's error); skewness ✗ above 4; pyramids ✗ when "
             f"any is wrongly oriented.")
+        fits = [[method_label(r["method"]), r["dof"],
+                 r["rank"] or "-", g(r["fitSeconds"]), g(r["evaluateSeconds"]),
+                 g(r["residual"]["maxRel"])] for r in mb["runs"]]
+        md.append(table(["method", "DoF", "rank", "fit s", f"evaluate {mb['points']} points s",
+                         "max constraint error"], fits))
         rows = []
-        for name in ["original"] + [r["method"] for r in mb["runs"]]:
-            c = (mbc or {}).get(name, {})
+        jobs = [("original", "0")] + [(r["method"], lift) for lift in mb["lifts"]
+                                      for r in mb["runs"]]
+        for name, lift in jobs:
+            c = (mbc or {}).get(name, {}).get(lift, {})
             q = c.get("checkMeshQuality", {})
-            run_r = next((r for r in mb["runs"] if r["method"] == name), None)
+            label = method_label(name)
+            shown_lift = "-" if lift == "0" else lift
             if not q:
-                rows.append([name] + ["-"] * 7)
+                rows.append([shown_lift, label] + ["-"] * 5)
                 continue
             ar, no, sk = q.get("maxAspectRatio"), q.get("maxNonOrthogonality"), q.get("maxSkewness")
             pyr = q.get("incorrectlyOrientedFacePyramids", 0)
+            neg = q.get("negativeVolumeCells", 0)
             mark_ar = "✗" if ar is not None and ar > 1000 else "✓"
             mark_no = "✗" if no is not None and no > 90 else "!" if no is not None and no > 70 else "✓"
             mark_sk = "✗" if sk is not None and sk > 4 else "✓"
             verdict = (c.get("checkMesh") or {}).get("verdict") or \
                 ("Mesh OK" if q.get("meshOK") else f"Failed {q.get('failedChecks')} checks "
                  "(checkMeshQuality)")
-            label = {"original": "original", "rbf": "RBF"}.get(name, name.upper())
-            rows.append([label, f"{g(ar)} {mark_ar}",
-                         f"{g(no)} {mark_no}", f"{g(sk)} {mark_sk}",
-                         f"{pyr} {'✗' if pyr else '✓'}", verdict,
-                         g(run_r["residual"]["maxRel"]) if run_r else "-",
-                         g(run_r["fitSeconds"]) if run_r else "-"])
-        md.append(table(["mesh", "aspect ratio", "cell orthogonality", "face skewness",
-                         "face pyramids (wrong)", "checkMesh", "max constraint error",
-                         "fit s"], rows))
-        base = (mbc or {}).get("original", {}).get("checkMeshQuality", {})
+            rows.append([shown_lift, label, f"{g(ar)} {mark_ar}", f"{g(no)} {mark_no}",
+                         f"{g(sk)} {mark_sk}",
+                         f"{pyr} {'✗' if pyr else '✓'}" + (f", {neg} negative volumes"
+                                                            if neg else ""), verdict])
+        md.append(table(["lift m", "mesh", "aspect ratio", "cell orthogonality",
+                         "face skewness", "face pyramids (wrong)", "checkMesh"], rows))
+        base = (mbc or {}).get("original", {}).get("0", {}).get("checkMeshQuality", {})
         if base and base.get("highlySkewedFaces"):
             md.append(
                 f"The unmoved mesh already fails checkMesh's skewness check "
