@@ -261,7 +261,14 @@ Json scale_run(const std::string& method, const Points& h, const Points& d, cons
     const meshmorph::FitReport& r = def->report();
     j["centres"] = r.num_centres;
     if (method == "greedy+idw")
+    {
         j["globalResidualRel"] = r.max_displacement > 0 ? r.max_residual / r.max_displacement : 0;
+        const auto& corrected = static_cast<const meshmorph::CorrectedDeformation&>(*def);
+        const auto& greedy =
+            static_cast<const meshmorph::GreedyRbfDeformation&>(corrected.global());
+        j["greedyConverged"] = greedy.converged();
+        j["greedyStoppedGrowing"] = greedy.stopped_growing();
+    }
     j["maxDisplacementRatio"] = max_row_norm(out) / max_row_norm(d);
     return j;
 }
