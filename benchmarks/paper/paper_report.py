@@ -1146,8 +1146,9 @@ def write_report(out):
         f"Optimization*, Sec. 3.1-3.6 and Table 3, re-run with this project's FFD, DM-FFD and "
         f"RBF. Generated {env['date']} by `benchmarks/paper/deformationBenchmarks"
         f"{' -quick' if env['quick'] else ''}` (meshMorph {env.get('commit', '?')}) on "
-        f"{env.get('cpu', '?')}, {env['cores']} cores; run time {env['seconds']} s. Data: "
-        f"`data/*.json`; logs: `logs/`.")
+        f"{env.get('cpu', '?')}, {env['cores']} cores; run time {env['seconds']} s. The "
+        f"measured data (`data/*.json`) and logs (`logs/`) are in the output directory next to "
+        f"this file; `paper_report.py DIR` writes the report again from them.")
     if env["quick"]:
         md.append("**-quick run: reduced sizes (a test of the benchmark, not a measurement). "
                   "Timings and marks below are not representative.**")
