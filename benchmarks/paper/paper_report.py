@@ -1174,9 +1174,16 @@ def write_report(out):
     else:
         md.append("Everything ran.")
     md.append("## Steps")
+    md.append("Optional steps (making a case, a checker's verdict: checkMeshQuality exits 1 "
+              "for \"Failed N mesh checks\") do not fail the run.")
+
+    def exit_of(step):
+        if step.get("exit") is None:
+            return "skipped"
+        return f"{step['exit']}{' (optional)' if step.get('optional') else ''}"
     md.append(table(["step", "seconds", "exit", "log"],
-                    [[s["step"], g(s["seconds"]), s.get("exit", "-") if s.get("exit") is not None
-                      else "skipped", s.get("log", s.get("skipped", ""))] for s in run["steps"]]))
+                    [[s["step"], g(s["seconds"]), exit_of(s), s.get("log", s.get("skipped", ""))]
+                     for s in run["steps"]]))
     path = os.path.join(out, "report.md")
     with open(path, "w") as f:
         f.write("\n\n".join(md) + "\n")
