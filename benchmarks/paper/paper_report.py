@@ -228,12 +228,16 @@ def section_performance(data, fig, grades, notes):
         notes_scale = []
         if direct:
             big = direct[-1]
+            skipped_rbf = [r for r in sc if r["method"] == "rbf" and r.get("skipped")]
             notes_scale.append(
                 f"The direct RBF is exact and took {g(big['fitSeconds'])} s to fit "
-                f"{big['constraints']} constraints (O(m^3)); above that its dense matrix does "
-                f"not fit in memory here, and the handle basis B ({g(big['handleBasisGB'])} GB "
-                f"for {big['constraints']} constraints and {n} points) is out of reach at every "
-                f"size of this table: at this scale a new design is a fit and an evaluation.")
+                f"{big['constraints']} constraints (O(m^3))"
+                + (f"; larger sets were not tried, as its dense matrix needs (per copy) "
+                   f"{', '.join(g(8 * r['constraints'] ** 2 / 1e9) + ' GB at ' + str(r['constraints']) for r in skipped_rbf)} "
+                   f"constraints" if skipped_rbf else "") +
+                f". The handle basis B ({g(big['handleBasisGB'])} GB for {big['constraints']} "
+                f"constraints and {n} points) is out of reach at every size of this table: at "
+                f"this scale a new design is a fit and an evaluation.")
         stopped = [r for r in greedy if not r.get("greedyConverged", True)]
         if greedy:
             notes_scale.append(
