@@ -155,6 +155,9 @@ def main(out):
                   f"pipe {pp['name']} {r['method']}: A = 0 is not the undeformed mesh")
             b = r["breakAmplitude"]
             check(b is None or 0 < b <= 1.0, f"pipe {pp['name']} {r['method']}: break A {b}")
+    if run and not run["environment"]["quick"] and "pipe" not in run["skipped"]:
+        check(load(data, "pipe-movemesh") is not None or "pipe-movemesh" in run["skipped"],
+              "pipe: neither moveMesh's break amplitudes nor a reason why not")
     mb = load(data, "motorbike")
     if mb:
         for r in mb["runs"]:

@@ -1054,6 +1054,17 @@ def figure_comparisons(data):
         if coarse_err:
             text += (f"; DM-FFD-5 breaks late too, but misses the wall by up to "
                      f"{g(100 * max(coarse_err))} % of the motion")
+        mm = load(data, "pipe-movemesh")
+        if mm:
+            mv = "; ".join(f"{mesh}: " + ", ".join(f"{k} {g(v['break'])}"
+                                                   for k, v in e["moveMesh"].items())
+                           for mesh, e in mm.items())
+            rows_mm = [x for e in mm.values() for x in e["morphMesh"]]
+            ok = rows_mm and all(x["verdict"] == "OK" for x in rows_mm)
+            text += (f". OpenFOAM's moveMesh (not in the paper) breaks the same meshes at {mv}; "
+                     f"morphMesh with its defaults (RBF, steps, untangling) at 1.5x the larger "
+                     f"of those amplitudes " + ("leaves them valid" if ok else
+                                                ": " + ", ".join(x["verdict"] for x in rows_mm)))
         out.append(text + ". Break amplitudes: " + "; ".join(parts) + ".")
     mb, mbc = load(data, "motorbike"), load(data, "motorbike-checks")
     if mb and mbc:
