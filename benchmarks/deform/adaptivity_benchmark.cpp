@@ -5,10 +5,14 @@
 // x and y (one fit_refined, its history), with DM-FFD on uniform lattices for reference, as a
 // table and optionally as CSV. Greedy RBF rows are separate fits, each timed; the refined
 // DM-FFD's total time (a fresh SVD per step) is on its last row.
+// -json writes the rows and the example shapes of Fig. 12 (right): the target, the refined
+// DM-FFD with at most -showDof control points and the greedy RBF with the centre count
+// closest to it (heights z of the n x n grid), for benchmarks/paper/deformationBenchmarks.
 //
 // Usage: benchAdaptivity [-n <points per side, 41>] [-width <bump sigma, 0.05>]
 //                                  [-tolerance <relative max error, 1e-3>]
 //                                  [-clamping <DM-FFD SVD clamping, 1e-2>] [-csv <file>]
+//                                  [-json <file>] [-showDof <900>]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,6 +21,8 @@
 #include <fstream>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
@@ -52,7 +58,8 @@ int main(int argc, char** argv)
     double width = 0.05;
     double tolerance = 1e-3;
     double clamping = 1e-2;
-    std::string csv;
+    std::string csv, json;
+    meshmorph::Index show_dof = 900;
     for (int i = 1; i < argc; ++i)
     {
         const std::string a = argv[i];
@@ -71,6 +78,10 @@ int main(int argc, char** argv)
             clamping = std::atof(argv[++i]);
         else if (a == "-csv")
             csv = argv[++i];
+        else if (a == "-json")
+            json = argv[++i];
+        else if (a == "-showDof")
+            show_dof = std::atoi(argv[++i]);
         else
         {
             std::fprintf(stderr, "Error: unknown option %s\n", a.c_str());
@@ -101,6 +112,9 @@ int main(int argc, char** argv)
     // here: errors only.
     meshmorph::log::set_level(meshmorph::log::Level::error);
     std::vector<Row> rows;
+    // Example shapes (heights of the fitted plane) for -json.
+    Eigen::VectorXd rbf_shape, dmffd_shape;
+    Index rbf_shape_count = 0, dmffd_shape_count = 0;
     try
     {
         // Greedy RBF: fits with growing centre budgets up to the number of constraints.
@@ -116,6 +130,12 @@ int main(int argc, char** argv)
             const meshmorph::FitReport& r = rbf.report();
             rows.push_back({"greedy-rbf", r.num_centres, r.num_centres, r.max_residual,
                             r.rms_residual, now() - t0});
+            if (!json.empty() && (rbf_shape_count == 0 || std::abs(r.num_centres - show_dof) <
+                                                              std::abs(rbf_shape_count - show_dof)))
+            {
+                rbf_shape_count = r.num_centres;
+                rbf_shape = meshmorph::displacements(rbf, x).col(2);
+            }
             if (r.max_residual <= tolerance * r.max_displacement)
                 break;
         }
@@ -152,6 +172,15 @@ int main(int argc, char** argv)
             rows.push_back({"dmffd-planes", step.control_points, step.rank, step.max_residual,
                             step.rms_residual, 0.0});
         rows.back().seconds = seconds; // total of all refinement steps
+        if (!json.empty())
+        {
+            // The refinement again, stopped at the example's budget: its last lattice.
+            refinement.max_control_points = show_dof;
+            meshmorph::DmffdDeformation shown(s);
+            shown.fit_refined(x, d, refinement);
+            dmffd_shape_count = shown.refinement_history().back().control_points;
+            dmffd_shape = meshmorph::displacements(shown, x).col(2);
+        }
     }
     catch (const meshmorph::Error& e)
     {
@@ -183,6 +212,37 @@ int main(int argc, char** argv)
         if (!out)
         {
             std::fprintf(stderr, "Error: cannot write %s\n", csv.c_str());
+            return 1;
+        }
+    }
+    if (!json.empty())
+    {
+        nlohmann::ordered_json j;
+        j["n"] = n;
+        j["width"] = width;
+        j["tolerance"] = tolerance;
+        j["clamping"] = clamping;
+        j["constraints"] = m;
+        j["maxDisplacement"] = max_d;
+        j["rows"] = nlohmann::ordered_json::array();
+        for (const Row& r : rows)
+            j["rows"].push_back({{"method", r.method},
+                                 {"count", r.count},
+                                 {"rank", r.rank},
+                                 {"maxError", r.max_error},
+                                 {"rmsError", r.rms_error},
+                                 {"seconds", r.seconds}});
+        const auto heights = [](const Eigen::VectorXd& z)
+        { return std::vector<double>(z.data(), z.data() + z.size()); };
+        j["shapes"] = {
+            {"target", heights(d.col(2))},
+            {"dmffd-planes", {{"count", dmffd_shape_count}, {"z", heights(dmffd_shape)}}},
+            {"greedy-rbf", {{"count", rbf_shape_count}, {"z", heights(rbf_shape)}}}};
+        std::ofstream out(json);
+        out << j.dump(1) << '\n';
+        if (!out)
+        {
+            std::fprintf(stderr, "Error: cannot write %s\n", json.c_str());
             return 1;
         }
     }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Deformation benchmarks: dgemm reference rate, RBF fit (GFLOP/s of the m^3/3 Cholesky) and
-// evaluation (kernel evaluations / s), and the paper's Fig. 6 set-up (427 constraints, 8^3
-// lattice), serial and OpenMP.
+// evaluation (kernel evaluations / s), FFD evaluation, greedy fit. The paper's Fig. 6 set-up
+// (427 constraints, 8^3 lattice, handle basis, serial and OpenMP) is benchPaper's
+// performance section (benchmarks/paper/performance.cpp, run by deformationBenchmarks).
 //
 // Usage: deform_benchmarks [--benchmark_filter=<regex>]
 #include <benchmark/benchmark.h>
@@ -13,9 +14,8 @@
 #include <cmath>
 #include <random>
 
-#include "meshmorph/deform/dmffd_deformation.h"
+#include "meshmorph/deform/ffd_deformation.h"
 #include "meshmorph/deform/greedy_rbf_deformation.h"
-#include "meshmorph/deform/handle_basis.h"
 #include "meshmorph/deform/rbf_deformation.h"
 
 extern "C" void dgemm_(const char* transa, const char* transb, const int* m, const int* n,
@@ -142,107 +142,6 @@ BENCHMARK(BM_rbf_evaluate)
     ->Args({4000, 1000000, 2})
     ->Args({16000, 100000, 1})
     ->Args({16000, 100000, 2})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-
-//! Paper Fig. 6: 427 handles on a sphere, k deformable points in the unit box; the precomputed
-//! handle basis B (k x 427) for RBF, DM-FFD (8^3 lattice) and FFD (8^3: B = M), on 1 or 2
-//! threads. range(0): method (0 RBF, 1 DM-FFD, 2 FFD), range(1): threads.
-void BM_fig6_handle_basis(benchmark::State& state)
-{
-    const int method = static_cast<int>(state.range(0));
-    const int threads = static_cast<int>(state.range(1));
-    const Eigen::Index m = 427, k = 20000;
-    Points h(m, 3);
-    const double golden = M_PI * (3.0 - std::sqrt(5.0));
-    for (Eigen::Index i = 0; i < m; ++i)
-    {
-        const double z = 1.0 - 2.0 * (double(i) + 0.5) / double(m);
-        const double r = std::sqrt(1.0 - z * z);
-        h.row(i) = Eigen::RowVector3d(0.5 + 0.4 * r * std::cos(golden * i),
-                                      0.5 + 0.4 * r * std::sin(golden * i), 0.5 + 0.4 * z);
-    }
-    const Points d = field(h);
-    const Points x = random_points(k, 3);
-    meshmorph::DmffdSettings ds;
-    ds.lattice.control_points = {8, 8, 8};
-    ds.lattice.box = meshmorph::FfdBox{};
-    const int saved = omp_get_max_threads();
-    omp_set_num_threads(threads);
-    for (auto _ : state)
-    {
-        if (method == 0)
-        {
-            meshmorph::RbfDeformation rbf;
-            rbf.fit(h, d);
-            const meshmorph::HandleBasis B = meshmorph::HandleBasis::compute(rbf, x);
-            benchmark::DoNotOptimize(B.matrix().data());
-        }
-        else if (method == 1)
-        {
-            meshmorph::DmffdDeformation dm(ds);
-            dm.fit(h, d);
-            const meshmorph::HandleBasis B = meshmorph::HandleBasis::compute(dm, x);
-            benchmark::DoNotOptimize(B.matrix().data());
-        }
-        else
-        {
-            const meshmorph::FfdLattice lattice(meshmorph::FfdBox{}, {8, 8, 8});
-            const meshmorph::FfdDeformation ffd(lattice);
-            const meshmorph::HandleBasis B = meshmorph::HandleBasis::compute(ffd, x);
-            benchmark::DoNotOptimize(B.matrix().data());
-        }
-    }
-    omp_set_num_threads(saved);
-    state.SetLabel(method == 0 ? "RBF" : method == 1 ? "DM-FFD 8^3" : "FFD 8^3");
-}
-BENCHMARK(BM_fig6_handle_basis)
-    ->ArgsProduct({{0, 1, 2}, {1, 2}})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-
-//! Fig. 6 deformation by fit + evaluate (no basis) on 1e5 points. range(0): method, (1) threads.
-void BM_fig6_fit_evaluate(benchmark::State& state)
-{
-    const int method = static_cast<int>(state.range(0));
-    const int threads = static_cast<int>(state.range(1));
-    const Points h = random_points(427, 5) * 0.8 + Points::Constant(427, 3, 0.1);
-    const Points d = field(h);
-    const Points x = random_points(100000, 6);
-    Points out(x.rows(), 3);
-    meshmorph::DmffdSettings ds;
-    ds.lattice.control_points = {8, 8, 8};
-    ds.lattice.box = meshmorph::FfdBox{};
-    const int saved = omp_get_max_threads();
-    omp_set_num_threads(threads);
-    for (auto _ : state)
-    {
-        if (method == 0)
-        {
-            meshmorph::RbfDeformation rbf;
-            rbf.fit(h, d);
-            rbf.evaluate(x, out);
-        }
-        else if (method == 1)
-        {
-            meshmorph::DmffdDeformation dm(ds);
-            dm.fit(h, d);
-            dm.evaluate(x, out);
-        }
-        else
-        {
-            const meshmorph::FfdLattice lattice(meshmorph::FfdBox{}, {8, 8, 8});
-            meshmorph::FfdDeformation ffd(lattice);
-            ffd.set_control_displacements(field(lattice.control_points()));
-            ffd.evaluate(x, out);
-        }
-        benchmark::DoNotOptimize(out.data());
-    }
-    omp_set_num_threads(saved);
-    state.SetLabel(method == 0 ? "RBF" : method == 1 ? "DM-FFD 8^3" : "FFD 8^3");
-}
-BENCHMARK(BM_fig6_fit_evaluate)
-    ->ArgsProduct({{0, 1, 2}, {1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

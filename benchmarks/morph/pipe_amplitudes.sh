@@ -4,7 +4,8 @@
 # the mesh, and what does meshMorph's morphMesh make of 1.5 times that motion?
 #
 # Usage: pipe_amplitudes.sh [-out DIR] [-morphMesh PATH] [-search coarse|full]
-#                           [-factor F] [-meshes "hex tet"] [-motions "squeeze shift"] [-help]
+#                           [-factor F] [-meshes "hex tet"] [-motions "squeeze shift"]
+#                           [-casesOnly] [-help]
 #   -out DIR          results and scratch cases (default build/bench/pipe); the script
 #                     replaces its own cases/ and runs/ there and writes results.md,
 #                     trials.tsv and verify.txt
@@ -16,6 +17,8 @@
 #   -factor F         morphMesh amplitude = F x the larger of the two moveMesh breaking
 #                     amplitudes (default 1.5; 0.95 is used when moveMesh never broke)
 #   -meshes, -motions restrict the runs (default all)
+#   -casesOnly        only make the meshes (OUT/cases/<mesh>, checked by checkMesh) and stop
+#                     (benchmarks/paper/deformationBenchmarks -quick uses them)
 #
 # Meshes (both a pipe of radius R = 0.5 and length 2 along z, patches inlet, outlet, wall):
 #   hex  tutorials/pipe's blockMesh O-grid (system/blockMeshDict, run by OpenFOAM's blockMesh)
@@ -59,6 +62,7 @@ search=coarse
 factor=1.5
 meshes="hex tet"
 motions="squeeze shift"
+cases_only=0
 while [[ $# -gt 0 ]]; do
     case $1 in
         -out) out=${2:?-out needs a directory}; shift 2 ;;
@@ -67,6 +71,7 @@ while [[ $# -gt 0 ]]; do
         -factor) factor=${2:?-factor needs a number}; shift 2 ;;
         -meshes) meshes=${2:?-meshes needs a list}; shift 2 ;;
         -motions) motions=${2:?-motions needs a list}; shift 2 ;;
+        -casesOnly) cases_only=1; shift ;;
         -h | -help | --help) usage; exit 0 ;;
         *) echo "$foam_script_name: unknown argument '$1'" >&2; usage >&2; exit 2 ;;
     esac
@@ -212,6 +217,10 @@ for mesh in $meshes; do
     log "$mesh: ${mesh_size[$mesh]}, checkMesh: Mesh OK (max non-orthogonality $o)"
     awk '/^patch/ { printf "    patch %-7s type %-6s %5d faces %5d points\n", $2, $3, $4, $5 }' <<<"$info"
 done
+if ((cases_only)); then
+    log "meshes in $out/cases (-casesOnly: no moveMesh or morphMesh runs)"
+    exit 0
+fi
 
 # ---------------------------------------------------------------------------------------
 # moveMesh trials.

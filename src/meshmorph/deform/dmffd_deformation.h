@@ -78,7 +78,8 @@ public:
     //! box stays the first lattice's; the final, generally non-uniform lattice is ffd().lattice()
     //! (settings() are not changed). report().iterations counts insertions; refinement_history()
     //! has one step per fit. \throw InvalidInput (as fit(), tolerance < 0, no axis enabled),
-    //! SolverError.
+    //! SolverError. Used by benchAdaptivity (paper Sec. 3.4, run by benchmarks/paper/
+    //! deformationBenchmarks).
     void fit_refined(const Eigen::Ref<const Points>& handles,
                      const Eigen::Ref<const Points>& displacements,
                      const DmffdRefinement& refinement);
@@ -86,7 +87,8 @@ public:
     const std::vector<DmffdRefinementStep>& refinement_history() const { return history_; }
     //! Whether the last fit_refined() met its tolerance (false when the budget stopped it).
     bool refinement_converged() const { return converged_; }
-    //! New displacements for the same handles, reusing the SVD (O((m + n) r)).
+    //! New displacements for the same handles, reusing the SVD (O((m + n) r)). Timed against
+    //! the handle basis in benchmarks/paper/performance.cpp (paper Sec. 3.1).
     void refit(const Eigen::Ref<const Points>& displacements);
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     const FitReport& report() const override { return report_; }

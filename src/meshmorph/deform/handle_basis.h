@@ -2,6 +2,8 @@
 //! \file Precomputed handle basis (paper Sec. 3.1): B (k x m) with X = B H for k fixed
 //! evaluation points and any displacements H (m x 3) of m fixed handles; B = M Phi^-1 (RBF)
 //! or M Phi^+ (DM-FFD), B = M (FFD, handles = control points). Saved in a small binary file.
+//! Used by the paper benchmark's Sec. 3.1 (benchmarks/paper/performance.cpp: compute, apply,
+//! save and load against refit and fit for a new design).
 #pragma once
 
 #include <cstdint>

@@ -91,7 +91,8 @@ public:
     void fit(const Eigen::Ref<const Points>& handles,
              const Eigen::Ref<const Points>& displacements) override;
     //! \brief New displacements (m x 3, same handles as the last fit) reusing the
-    //! factorisation: O(m^2) instead of O(m^3). \throw InvalidInput.
+    //! factorisation: O(m^2) instead of O(m^3). Timed against the handle basis in
+    //! benchmarks/paper/performance.cpp (paper Sec. 3.1). \throw InvalidInput.
     void refit(const Eigen::Ref<const Points>& displacements);
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     const FitReport& report() const override;

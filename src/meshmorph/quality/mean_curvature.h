@@ -9,6 +9,8 @@
 //! Voronoi area inside non-obtuse triangles; half or a quarter of the triangle area for
 //! obtuse ones). Δx_i = −2 H n, so |Δx_i| / 2 is the unsigned mean curvature (1/R on a sphere
 //! of radius R, 1/(2R) on a cylinder, 0 on a plane).
+//! Used by the paper benchmark's Sec. 3.2 and 3.3 (benchmarks/paper/quality.cpp,
+//! robustness.cpp) and by benchVtkExport.
 #pragma once
 
 #include <vector>
