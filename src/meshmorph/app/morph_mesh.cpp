@@ -165,15 +165,13 @@ fs::path processor_case(const fs::path& case_dir, const parallel::Communicator& 
 morph::Decomposition read_decomposition(const io::FoamPolyMesh& foam,
                                         const parallel::Communicator& comm)
 {
-    morph::Decomposition d;
-    d.comm = &comm;
     const fs::path file = foam.faces_dir / "pointProcAddressing";
-    d.global_point = io::read_label_list_file(file, "pointProcAddressing");
-    if (Index(d.global_point.size()) != foam.mesh.n_points())
-        throw InvalidInput(file.string() + " has " + std::to_string(d.global_point.size()) +
+    std::vector<Index> labels = io::read_label_list_file(file, "pointProcAddressing");
+    if (Index(labels.size()) != foam.mesh.n_points())
+        throw InvalidInput(file.string() + " has " + std::to_string(labels.size()) +
                            " labels for " + std::to_string(foam.mesh.n_points()) +
                            " points: decompose the case again");
-    return d;
+    return morph::make_decomposition(foam.mesh, std::move(labels), comm);
 }
 
 //! A count over the whole mesh: cells are split between the ranks; points are shared, and
@@ -199,10 +197,11 @@ void set_global_patch_points(const PolyMesh& mesh, const morph::Decomposition& d
         for (Index point : patch_points(mesh, mesh.patches[p]))
             mine.push_back({Index(p), d.global_point[std::size_t(point)]});
     std::vector<Index> counts(patches.size(), 0);
+    const auto gathered = d.comm->gather_values(mine); // on the master only
     if (d.comm->master())
     {
         std::vector<std::array<Index, 2>> all;
-        for (const auto& rank : d.comm->gather_values(mine))
+        for (const auto& rank : gathered)
             all.insert(all.end(), rank.begin(), rank.end());
         std::sort(all.begin(), all.end());
         all.erase(std::unique(all.begin(), all.end()), all.end());
@@ -210,8 +209,6 @@ void set_global_patch_points(const PolyMesh& mesh, const morph::Decomposition& d
             if (std::size_t(patch) < counts.size())
                 ++counts[std::size_t(patch)];
     }
-    else
-        d.comm->gather_values(mine);
     for (std::size_t p = 0; p < patches.size(); ++p)
         patches[p].n_points = counts[p];
 }

@@ -9,23 +9,6 @@
 namespace meshmorph::morph
 {
 
-namespace
-{
-
-Vector3 lower_corner(const PolyMesh& mesh)
-{
-    return mesh.n_points() > 0 ? Vector3(mesh.points.colwise().minCoeff().transpose())
-                               : Vector3::Zero();
-}
-
-Vector3 upper_corner(const PolyMesh& mesh)
-{
-    return mesh.n_points() > 0 ? Vector3(mesh.points.colwise().maxCoeff().transpose())
-                               : Vector3::Zero();
-}
-
-} // namespace
-
 Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
                               const ConstraintInputs& inputs)
 {
@@ -35,7 +18,9 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
     out.conflict_rule = setup.conflicts;
     out.patches = inputs.patches != nullptr ? *inputs.patches : assign_patches(mesh, setup);
     out.empty_planes = find_empty_planes(mesh);
-    const double agree_tol = detail::agreement_tolerance(lower_corner(mesh), upper_corner(mesh));
+    const Points corners = bounding_corners(mesh.points);
+    const double agree_tol =
+        detail::agreement_tolerance(corners.row(0).transpose(), corners.row(1).transpose());
 
     const std::vector<Claim> claims =
         collect_claims(mesh, setup, out.patches, inputs, out.empty_planes, out.rotations);

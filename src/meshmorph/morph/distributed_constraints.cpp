@@ -199,22 +199,6 @@ std::optional<EmptyPlanes> agreed_empty_planes(const PolyMesh& mesh,
     return EmptyPlanes{Vector3(chosen[0], chosen[1], chosen[2]), chosen[3]};
 }
 
-double global_agreement_tolerance(const PolyMesh& mesh, const parallel::Communicator& comm)
-{
-    Vector3 lo = Vector3::Constant(constants::vgreat), hi = Vector3::Constant(-constants::vgreat);
-    if (mesh.n_points() > 0)
-    {
-        lo = mesh.points.colwise().minCoeff().transpose();
-        hi = mesh.points.colwise().maxCoeff().transpose();
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-        lo[k] = comm.min(lo[k]);
-        hi[k] = comm.max(hi[k]);
-    }
-    return detail::agreement_tolerance(lo, hi);
-}
-
 } // namespace
 
 Constraints build_distributed_constraints(const PolyMesh& mesh, const MorphSetup& setup,
@@ -231,7 +215,9 @@ Constraints build_distributed_constraints(const PolyMesh& mesh, const MorphSetup
                                                : assign_patches(mesh, setup, true);
                          });
     out.empty_planes = agreed_empty_planes(mesh, comm);
-    const double agree_tol = global_agreement_tolerance(mesh, comm);
+    const Points corners = bounding_corners(mesh.points, &decomposition);
+    const double agree_tol =
+        detail::agreement_tolerance(corners.row(0).transpose(), corners.row(1).transpose());
 
     std::vector<Claim> claims;
     parallel::collective(comm,

@@ -46,9 +46,19 @@ bool distributed(const Decomposition* d)
     return d != nullptr && d->is_distributed();
 }
 
+//! The lowest global label among this rank's points at `distance`, over every rank.
+Index lowest_label_at(const Eigen::VectorXd& dist, double distance, const Decomposition& d)
+{
+    std::int64_t mine = std::numeric_limits<std::int64_t>::max();
+    for (Index p = 0; p < dist.size(); ++p)
+        if (dist[p] == distance)
+            mine = std::min<std::int64_t>(mine, d.global_point[std::size_t(p)]);
+    return static_cast<Index>(-d.comm->max(-mine));
+}
+
 //! The mesh point nearest to x (the lowest label among equally near ones); in a 2D case every
 //! point within `tolerance` of the nearest distance in the plane of the case (one per empty
-//! plane). Decomposed: the nearest over every rank, found where it lies.
+//! plane). Decomposed: the nearest over every rank, selected where it lies.
 std::vector<Index> nearest_points(const PolyMesh& mesh, const Vector3& x,
                                   const std::optional<EmptyPlanes>& planes, double tolerance,
                                   const Decomposition* decomposition)
@@ -61,26 +71,20 @@ std::vector<Index> nearest_points(const PolyMesh& mesh, const Vector3& x,
     double closest =
         dist.size() > 0 ? dist.minCoeff(&nearest) : std::numeric_limits<double>::infinity();
     if (distributed(decomposition))
-    {
-        const parallel::Communicator& comm = *decomposition->comm;
-        const double global = comm.min(closest);
-        const std::int64_t mine = closest == global && dist.size() > 0
-                                      ? decomposition->global_point[std::size_t(nearest)]
-                                      : std::numeric_limits<std::int64_t>::max();
-        const std::int64_t label = -comm.max(-mine);
-        closest = global;
-        nearest = -1;
-        for (Index p = 0; p < mesh.n_points() && !planes; ++p)
-            if (decomposition->global_point[std::size_t(p)] == label)
-                nearest = p;
-        if (!planes)
-            return nearest < 0 ? std::vector<Index>{} : std::vector<Index>{Index(nearest)};
-    }
-    if (!planes)
-        return {static_cast<Index>(nearest)};
+        closest = decomposition->comm->min(closest);
     std::vector<Index> out;
+    if (planes)
+    {
+        for (Index p = 0; p < mesh.n_points(); ++p)
+            if (dist[p] <= closest + tolerance)
+                out.push_back(p);
+        return out;
+    }
+    if (!distributed(decomposition))
+        return {static_cast<Index>(nearest)};
+    const Index label = lowest_label_at(dist, closest, *decomposition);
     for (Index p = 0; p < mesh.n_points(); ++p)
-        if (dist[p] <= closest + tolerance)
+        if (decomposition->global_point[std::size_t(p)] == label)
             out.push_back(p);
     return out;
 }

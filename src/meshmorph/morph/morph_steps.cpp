@@ -132,19 +132,6 @@ InvalidCells global_invalid_cells(const PolyMesh& mesh, const MeshGeometry& geom
             Index(comm.sum(std::int64_t(local.wrong_pyramids)))};
 }
 
-//! The corners of the bounding box of every rank's points (2 x 3): what a deformation's
-//! lattice is sized from, alike on every rank.
-Points bounding_corners(const Points& x, const parallel::Communicator& comm)
-{
-    Points corners(2, 3);
-    for (int k = 0; k < 3; ++k)
-    {
-        corners(0, k) = comm.min(x.rows() > 0 ? x.col(k).minCoeff() : constants::vgreat);
-        corners(1, k) = comm.max(x.rows() > 0 ? x.col(k).maxCoeff() : -constants::vgreat);
-    }
-    return corners;
-}
-
 //! Untangle the step's new invalid cells in place and recount them.
 void repair(PolyMesh& current, const CompactList& cell_faces, MeshGeometry& geometry,
             OriginalState& original, StepRecord& record, const parallel::Communicator& comm)
@@ -202,7 +189,7 @@ void measure_constraint_error(const Constraints& c, const Points& x0, PointMorph
 {
     const parallel::Communicator& comm = communicator(decomposition);
     const Points prescribed = prescribed_at(c, x0, 1.0);
-    const Points corners = bounding_corners(x0, comm);
+    const Points corners = bounding_corners(x0, decomposition);
     const double diag = x0.rows() > 0 ? (corners.row(1) - corners.row(0)).norm() : 1.0;
     m.max_prescribed = 0.0;
     m.max_constraint_error = 0.0;
@@ -246,7 +233,7 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
             record.to = stuck ? 1.0 : std::min(1.0, done + length);
         const Constraints step = step_constraints(c, mesh.points, current.points, record.to);
         std::unique_ptr<SpaceDeformation> deformation =
-            make(bounding_corners(current.points, comm));
+            make(bounding_corners(current.points, decomposition));
         PointMorph m = morph_points(current, step, *deformation, fit, false, decomposition);
         record.centres = m.report.num_centres;
         record.max_global_residual =

@@ -318,28 +318,13 @@ double diagonal(const Points& x)
     return x.rows() > 0 ? (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm() : 1.0;
 }
 
-//! Points on processor patches, shared with other ranks.
-std::vector<Index> processor_points(const PolyMesh& mesh)
-{
-    std::vector<char> on(static_cast<std::size_t>(mesh.n_points()), 0);
-    for (const Patch& patch : mesh.patches)
-        if (is_processor_patch(patch))
-            for (Index p : patch_points(mesh, patch))
-                on[std::size_t(p)] = 1;
-    std::vector<Index> out;
-    for (Index p = 0; p < mesh.n_points(); ++p)
-        if (on[std::size_t(p)])
-            out.push_back(p);
-    return out;
-}
-
 //! A point shared by ranks gets one displacement: that of the lowest rank holding it. Its
 //! ranks evaluate the same field at the same position, but a field's evaluation may depend
 //! on the other points evaluated with it (IDW groups nearby queries), so copies could differ
 //! in the last bits, and OpenFOAM needs the two sides of a processor face to coincide.
 void synchronise_shared_points(const PolyMesh& mesh, const Decomposition& d, Points& displacement)
 {
-    const std::vector<Index> shared = processor_points(mesh);
+    const std::vector<Index>& shared = d.shared_points;
     const auto data = [&](std::size_t i, double* v)
     {
         for (int k = 0; k < 3; ++k)
@@ -416,16 +401,12 @@ PointMorph morph_points_distributed(const PolyMesh& mesh, const Constraints& c,
     synchronise_shared_points(mesh, d, result.displacement);
     result.evaluate_seconds = eval_clock.seconds();
 
-    Vector3 lo = Vector3::Zero(), hi = Vector3::Zero();
-    for (int k = 0; k < 3 && mesh.n_points() > 0; ++k)
-    {
-        lo[k] = comm.min(mesh.points.col(k).minCoeff());
-        hi[k] = comm.max(mesh.points.col(k).maxCoeff());
-    }
+    const Points corners = bounding_corners(mesh.points, &d);
     result.max_prescribed = counts[2];
     result.max_fit_residual = counts[3];
     result.max_constraint_error = counts[3];
-    const double scale = std::max(result.max_prescribed, 1e-12 * (hi - lo).norm());
+    const double scale =
+        std::max(result.max_prescribed, 1e-12 * (corners.row(1) - corners.row(0)).norm());
     result.relative_fit_residual = result.max_fit_residual / scale;
     result.relative_constraint_error = result.max_constraint_error / scale;
     return result;

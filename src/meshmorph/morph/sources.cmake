@@ -15,6 +15,7 @@ set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/claims.cpp
     meshmorph/morph/conflict_resolution.cpp
     meshmorph/morph/handle_selection.cpp
+    meshmorph/morph/decomposition.cpp
     meshmorph/morph/constraint_steps.cpp
     meshmorph/morph/constraints.cpp
     meshmorph/morph/distributed_constraints.cpp
