@@ -99,7 +99,9 @@ TEST(MeshQualityChecks, each_criterion_counts_the_faces_it_adds)
     MeshQualitySettings q;
     q.max_non_ortho = 30; // flags the 24 internal x- and y-faces (45 degrees)
     q.min_area = 1e9;     // flags every face, but only the others are new
-    const CheckResult r = check_mesh_quality(mesh, cell_faces(mesh), g, q, face_skewness(mesh, g));
+    const CoupledFaces coupled = coupled_faces(mesh, g, {});
+    const CheckResult r =
+        check_mesh_quality(mesh, cell_faces(mesh), g, q, face_skewness(mesh, g), coupled);
     const Statistic::Counts& counts = r.counts("meshQualityFailures");
     ASSERT_EQ(counts.size(), 2u);
     EXPECT_EQ(counts[0], (std::pair<std::string, Index>{"maxNonOrtho", 24}));

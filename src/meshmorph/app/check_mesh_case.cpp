@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "meshmorph/app/banner.h"
+#include "meshmorph/app/decomposed_case.h"
 #include "meshmorph/app/options.h"
 #include "meshmorph/core/config.h"
 #include "meshmorph/core/exceptions.h"
@@ -17,6 +18,8 @@
 #include "meshmorph/io/foam_dictionary.h"
 #include "meshmorph/io/foam_file.h"
 #include "meshmorph/io/read_poly_mesh.h"
+#include "meshmorph/parallel/collective.h"
+#include "meshmorph/quality/parallel_report.h"
 #include "meshmorph/quality/quality_json.h"
 #if MESHMORPH_WITH_VTK
 #include "meshmorph/io/vtk_writer.h"
@@ -201,31 +204,11 @@ fs::path write_cell_to_region(const std::vector<Index>& cell_to_region, const fs
 namespace
 {
 
-//! checkMeshQuality after its options are parsed; throws on errors (run_guarded reports
-//! them).
-int check_mesh_quality_main(const Options& options, std::ostream& out)
+//! The settings of the checks: the options, controlDict's writePrecision and, with
+//! -meshQuality, meshQualityDict (read from the case, also in a -parallel run).
+CheckMeshSettings check_settings(const Options& options, const fs::path& case_dir,
+                                 const std::string& region)
 {
-    if (options.found("time") && options.found("latestTime"))
-        throw UsageError("-time and -latestTime are mutually exclusive");
-    fs::path case_dir = fs::absolute(options.value_or("case", ".")).lexically_normal();
-    if (!case_dir.has_filename() && case_dir.has_parent_path())
-        case_dir = case_dir.parent_path();
-    if (!fs::is_directory(case_dir))
-        throw IoError("case directory " + case_dir.string() + " does not exist");
-    const bool quiet = options.found("quiet");
-    if (quiet)
-        log::set_level(log::Level::warning); // restored by run_check_mesh_quality's SinkScope
-    std::ostringstream discard;
-    std::ostream& info = quiet ? discard : out;
-    print_banner(info, {"checkMeshQuality", options.command_line(), case_dir.string()});
-    StageTimer timer;
-
-    io::PolyMeshReadOptions read_options;
-    read_options.region = region_option(options);
-    if (options.found("latestTime"))
-        read_options.time = io::TimeSelection::latest_time();
-    else if (const std::optional<std::string> t = options.get("time"))
-        read_options.time = io::TimeSelection::at(*t);
     CheckMeshSettings settings;
     settings.all_geometry = options.found("allGeometry");
     settings.all_topology = options.found("allTopology");
@@ -236,68 +219,170 @@ int check_mesh_quality_main(const Options& options, std::ostream& out)
     settings.write_precision = read_write_precision(case_dir);
     if (options.found("meshQuality"))
         settings.mesh_quality =
-            read_mesh_quality_dict(case_dir / "system" / read_options.region / "meshQualityDict");
+            read_mesh_quality_dict(case_dir / "system" / region / "meshQualityDict");
+    return settings;
+}
 
-    const io::FoamPolyMesh foam = io::read_poly_mesh(case_dir, read_options);
-    const PolyMesh& mesh = foam.mesh;
-    settings.time_name = foam.time;
-    timer.lap("Read mesh (" + std::to_string(mesh.n_cells) + " cells)");
+io::PolyMeshReadOptions read_options_of(const Options& options)
+{
+    io::PolyMeshReadOptions read_options;
+    read_options.region = region_option(options);
+    if (options.found("latestTime"))
+        read_options.time = io::TimeSelection::latest_time();
+    else if (const std::optional<std::string> t = options.get("time"))
+        read_options.time = io::TimeSelection::at(*t);
+    return read_options;
+}
 
-    const CompactList cf = cell_faces(mesh);
-    const MeshGeometry geometry = compute_geometry(mesh, cf);
-    QualityReport report = check_mesh(mesh, cf, geometry, settings);
-    out << "Time = " << foam.time << "\n\n" << report.text;
+//! The mesh, its geometry and its report (in a -parallel run: this rank's part, and the
+//! report of the whole mesh on the master).
+struct CheckedMesh
+{
+    io::FoamPolyMesh foam;
+    CompactList cell_faces;
+    MeshGeometry geometry;
+    QualityReport local;  //!< this rank's sets and fields
+    QualityReport report; //!< the report to print (the whole mesh)
+};
+
+void check(const CheckMeshSettings& settings, const parallel::Communicator* comm, CheckedMesh& m)
+{
+    m.cell_faces = cell_faces(m.foam.mesh);
+    m.geometry = compute_geometry(m.foam.mesh, m.cell_faces);
+    if (!comm)
+    {
+        m.local = check_mesh(m.foam.mesh, m.cell_faces, m.geometry, settings);
+        m.report = m.local;
+        return;
+    }
+    ProcessorFaces processors = exchange_processor_faces(m.foam.mesh, m.geometry, *comm);
+    std::vector<Index> addressing;
+    parallel::collective(*comm, [&] { addressing = read_point_addressing(m.foam); });
+    const Index global_points = global_point_count(addressing, *comm);
+    m.local = check_mesh(m.foam.mesh, m.cell_faces, m.geometry, settings, &processors);
+    m.report = reduce_report(m.local, m.foam.mesh, settings, processors, global_points);
+}
+
+//! -writeSets: the offending sets (and cellToRegion) of this rank, where checkMesh writes
+//! them (in a -parallel run, in the processor directory).
+void write_sets(const CheckedMesh& m, const fs::path& mesh_case, const std::string& region,
+                StageTimer& timer)
+{
+    const std::vector<fs::path> files =
+        write_mesh_sets(m.local.sets, mesh_case, m.foam.points_instance, region);
+    std::string written =
+        "Wrote " + std::to_string(files.size()) + " sets to " +
+        (mesh_case / m.foam.points_instance / region / "polyMesh" / "sets").string();
+    // One timing line for all that -writeSets writes.
+    if (!m.local.cell_to_region.empty())
+        written +=
+            " and " +
+            write_cell_to_region(m.local.cell_to_region, mesh_case, m.foam.time, region).string();
+    timer.lap(written);
+}
+
+void write_vtk(const Options& options, const CheckedMesh& m, const fs::path& case_dir,
+               const std::string& region, StageTimer& timer)
+{
+#if MESHMORPH_WITH_VTK
+    fs::path vtk = vtk_file_argument(options);
+    if (vtk.empty())
+        vtk = default_vtk_file(case_dir, "checkMeshQuality", region, m.foam.time);
+    const QualityReport& r = m.local;
+    std::vector<io::VtkField> fields;
+    fields.emplace_back("nonOrthogonality", r.cell_non_orthogonality);
+    fields.emplace_back("skewness", r.cell_skewness);
+    fields.emplace_back("aspectRatio", r.cell_aspect_ratio);
+    fields.emplace_back("volume", m.geometry.cell_volumes);
+    fields.emplace_back("determinant", r.cell_determinant);
+    if (r.cell_scaled_jacobian.size() == m.foam.mesh.n_cells)
+        fields.emplace_back("scaledJacobian", r.cell_scaled_jacobian);
+    fs::create_directories(vtk.parent_path());
+    io::write_vtu(vtk, m.foam.mesh, {}, fields);
+    timer.lap("Wrote " + vtk.string());
+#else
+    (void)options, (void)m, (void)case_dir, (void)region, (void)timer;
+    throw UsageError("-vtk: this build has no VTK support (MESHMORPH_WITH_VTK=OFF)");
+#endif
+}
+
+void write_json(const std::string& json_path, const CheckedMesh& m, const fs::path& case_dir,
+                const std::string& region, int ranks, StageTimer& timer)
+{
+    nlohmann::json j = quality_json(m.report);
+    j["case"] = case_dir.string();
+    j["time"] = m.foam.time;
+    j["region"] = region;
+    if (ranks > 1)
+        j["parallel"] = ranks;
+    io::write_file_atomic(fs::absolute(json_path), j.dump(2) + "\n");
+    timer.lap("Wrote " + json_path);
+}
+
+fs::path case_directory(const Options& options)
+{
+    fs::path case_dir = fs::absolute(options.value_or("case", ".")).lexically_normal();
+    if (!case_dir.has_filename() && case_dir.has_parent_path())
+        case_dir = case_dir.parent_path();
+    if (!fs::is_directory(case_dir))
+        throw IoError("case directory " + case_dir.string() + " does not exist");
+    return case_dir;
+}
+
+//! checkMeshQuality after its options are parsed; throws on errors (run_guarded reports
+//! them). With -parallel every rank runs it; the master prints and writes the JSON.
+int check_mesh_quality_main(const Options& options, std::ostream& out)
+{
+    if (options.found("time") && options.found("latestTime"))
+        throw UsageError("-time and -latestTime are mutually exclusive");
+    const bool parallel_run = options.found("parallel");
+    if (parallel_run && vtk_requested(options))
+        throw UsageError("-vtk is not available with -parallel yet (reconstructPar, then "
+                         "checkMeshQuality -vtk)");
+    const parallel::Communicator& comm = parallel::Communicator::world();
+    const fs::path case_dir = case_directory(options);
+    const bool quiet = options.found("quiet");
+    if (quiet)
+        log::set_level(log::Level::warning); // restored by run_check_mesh_quality's SinkScope
+    std::ostringstream discard;
+    std::ostream& info = quiet || !comm.master() ? discard : out;
+    std::ostream& report_out = comm.master() ? out : discard;
+    print_banner(info, {"checkMeshQuality", options.command_line(), case_dir.string()});
+    StageTimer timer;
+
+    const io::PolyMeshReadOptions read_options = read_options_of(options);
+    const std::string& region = read_options.region;
+    CheckMeshSettings settings;
+    CheckedMesh m;
+    const fs::path mesh_case =
+        parallel_run ? processor_case(case_dir, comm, "checkMeshQuality") : case_dir;
+    parallel::collective(comm,
+                         [&]
+                         {
+                             settings = check_settings(options, case_dir, region);
+                             m.foam = io::read_poly_mesh(mesh_case, read_options);
+                         });
+    settings.time_name = m.foam.time;
+    timer.lap("Read mesh (" + std::to_string(m.foam.mesh.n_cells) + " cells" +
+              (parallel_run ? " on processor0" : "") + ")");
+
+    check(settings, parallel_run ? &comm : nullptr, m);
+    report_out << "Time = " << m.foam.time << "\n\n" << m.report.text;
     info << "\n";
     timer.lap("Checked mesh");
 
     if (settings.report_sets)
-    {
-        const std::vector<fs::path> files =
-            write_mesh_sets(report.sets, case_dir, foam.points_instance, read_options.region);
-        std::string written =
-            "Wrote " + std::to_string(files.size()) + " sets to " +
-            (case_dir / foam.points_instance / read_options.region / "polyMesh" / "sets").string();
-        // One timing line for all that -writeSets writes.
-        if (!report.cell_to_region.empty())
-            written += " and " + write_cell_to_region(report.cell_to_region, case_dir, foam.time,
-                                                      read_options.region)
-                                     .string();
-        timer.lap(written);
-    }
+        parallel::collective(comm, [&] { write_sets(m, mesh_case, region, timer); });
     if (vtk_requested(options))
-    {
-#if MESHMORPH_WITH_VTK
-        fs::path vtk = vtk_file_argument(options);
-        if (vtk.empty())
-            vtk = default_vtk_file(case_dir, "checkMeshQuality", read_options.region, foam.time);
-        std::vector<io::VtkField> fields;
-        fields.emplace_back("nonOrthogonality", report.cell_non_orthogonality);
-        fields.emplace_back("skewness", report.cell_skewness);
-        fields.emplace_back("aspectRatio", report.cell_aspect_ratio);
-        fields.emplace_back("volume", geometry.cell_volumes);
-        fields.emplace_back("determinant", report.cell_determinant);
-        if (report.cell_scaled_jacobian.size() == mesh.n_cells)
-            fields.emplace_back("scaledJacobian", report.cell_scaled_jacobian);
-        fs::create_directories(vtk.parent_path());
-        io::write_vtu(vtk, mesh, {}, fields);
-        timer.lap("Wrote " + vtk.string());
-#else
-        throw UsageError("-vtk: this build has no VTK support (MESHMORPH_WITH_VTK=OFF)");
-#endif
-    }
+        write_vtk(options, m, case_dir, region, timer);
     if (const std::optional<std::string> json_path = options.get("json"))
-    {
-        nlohmann::json j = quality_json(report);
-        j["case"] = case_dir.string();
-        j["time"] = foam.time;
-        j["region"] = read_options.region;
-        const std::string text = j.dump(2) + "\n";
-        io::write_file_atomic(fs::absolute(*json_path), text);
-        timer.lap("Wrote " + *json_path);
-    }
+        parallel::on_master(comm, [&]
+                            { write_json(*json_path, m, case_dir, region, comm.size(), timer); });
     if (!quiet)
-        print_end(out);
-    return report.mesh_ok() ? exit_ok : exit_checks_failed;
+        print_end(info);
+    // Every rank exits with the master's verdict on the whole mesh.
+    const Index failed = Index(comm.max(std::int64_t(comm.master() ? m.report.failed_checks : 0)));
+    return failed == 0 ? exit_ok : exit_checks_failed;
 }
 
 } // namespace
@@ -327,6 +412,9 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
           "Write the offending faces/cells/points as OpenFOAM sets to "
           "<instance>/polyMesh/sets"},
          {"json", "FILE", "Write the results as JSON (path relative to the working directory)"},
+         {"parallel", "",
+          "Check the decomposed case (processor*/) under mpirun, one rank per processor "
+          "directory; the report is that of the whole mesh"},
          {"quiet", "", "Print only the report (no banner or timings)"}},
         {{exit_ok, "the mesh passed every check (\"Mesh OK.\")"},
          {exit_checks_failed, "some checks failed (\"Failed N mesh checks.\")"},
@@ -335,6 +423,16 @@ int run_check_mesh_quality(int argc, const char* const argv[], std::ostream& out
          {exit_internal_error, "unexpected internal error"}});
     if (const std::optional<int> code = parse_command_line(options, argc, argv, out))
         return *code;
+    std::optional<ParallelRun> run; // -parallel: MPI for the whole run
+    try
+    {
+        run.emplace(options.found("parallel"));
+    }
+    catch (const Error& e)
+    {
+        log::error() << e.what();
+        return exit_input_error;
+    }
     return run_guarded([&] { return check_mesh_quality_main(options, out); }, false);
 }
 

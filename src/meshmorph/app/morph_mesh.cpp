@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "meshmorph/app/banner.h"
+#include "meshmorph/app/decomposed_case.h"
 #include "meshmorph/app/deformation_factory.h"
 #include "meshmorph/app/options.h"
 #include "meshmorph/core/config.h"
@@ -118,60 +119,11 @@ void warn_if_replacing(const fs::path& case_dir, const std::string& instance,
                               "keep it)";
 }
 
-//! <case>/processor<rank>: this rank's part of a decomposed case. Every rank checks its own;
-//! the master checks that there is one per rank (OpenFOAM's rule for -parallel).
-fs::path processor_case(const fs::path& case_dir, const parallel::Communicator& comm)
-{
-    const fs::path dir = case_dir / ("processor" + std::to_string(comm.rank()));
-    parallel::collective(comm,
-                         [&]
-                         {
-                             if (!fs::is_directory(dir))
-                                 throw IoError(dir.string() +
-                                               " does not exist: -parallel needs a decomposed case "
-                                               "(decomposePar) with one processor directory per "
-                                               "rank");
-                         });
-    parallel::on_master(comm,
-                        [&]
-                        {
-                            std::size_t n = 0;
-                            for (const fs::directory_entry& e : fs::directory_iterator(case_dir))
-                            {
-                                const std::string name = e.path().filename().string();
-                                if (!e.is_directory() || name.rfind("processor", 0) != 0)
-                                    continue;
-                                if (name.rfind("processors", 0) == 0)
-                                    throw InvalidInput(
-                                        (case_dir / name).string() +
-                                        " is the collated layout (decomposePar -fileHandler "
-                                        "collated), which morphMesh does not read yet: "
-                                        "decompose with -fileHandler uncollated");
-                                ++n;
-                            }
-                            if (n != std::size_t(comm.size()))
-                                throw InvalidInput("the case has " + std::to_string(n) +
-                                                   " processor directories but the run has " +
-                                                   std::to_string(comm.size()) +
-                                                   " ranks: run mpirun -np " + std::to_string(n) +
-                                                   " (or "
-                                                   "decompose again for " +
-                                                   std::to_string(comm.size()) + ")");
-                        });
-    return dir;
-}
-
 //! This rank's point labels in the undecomposed mesh (decomposePar's pointProcAddressing).
 morph::Decomposition read_decomposition(const io::FoamPolyMesh& foam,
                                         const parallel::Communicator& comm)
 {
-    const fs::path file = foam.faces_dir / "pointProcAddressing";
-    std::vector<Index> labels = io::read_label_list_file(file, "pointProcAddressing");
-    if (Index(labels.size()) != foam.mesh.n_points())
-        throw InvalidInput(file.string() + " has " + std::to_string(labels.size()) +
-                           " labels for " + std::to_string(foam.mesh.n_points()) +
-                           " points: decompose the case again");
-    return morph::make_decomposition(foam.mesh, std::move(labels), comm);
+    return morph::make_decomposition(foam.mesh, read_point_addressing(foam), comm);
 }
 
 //! A count over the whole mesh: cells are split between the ranks; points are shared, and
@@ -182,10 +134,7 @@ Index global_count(const morph::Decomposition& d, Index local, bool points)
         return local;
     if (!points)
         return Index(d.comm->sum(std::int64_t(local)));
-    std::int64_t largest = -1;
-    for (Index g : d.global_point)
-        largest = std::max<std::int64_t>(largest, g);
-    return Index(d.comm->max(largest) + 1);
+    return global_point_count(d.global_point, *d.comm);
 }
 
 //! The patches' point counts over every rank (a shared point once), for the set-up lines.
@@ -228,18 +177,6 @@ QualityReport invalid_cells_report(const PolyMesh& mesh, const MeshGeometry& geo
 double max_norm(const Points& d)
 {
     return d.rows() > 0 ? d.rowwise().norm().maxCoeff() : 0.0;
-}
-
-//! processor0, processor1, ... (decomposePar's uncollated layout) and processors<N> (the
-//! collated one) in the case.
-std::vector<std::string> processor_directories(const fs::path& case_dir)
-{
-    std::vector<std::string> dirs;
-    for (const fs::directory_entry& e : fs::directory_iterator(case_dir))
-        if (e.is_directory() && e.path().filename().string().starts_with("processor"))
-            dirs.push_back(e.path().filename().string());
-    std::sort(dirs.begin(), dirs.end());
-    return dirs;
 }
 
 //! A decomposed case keeps its own copy of the mesh in every processor directory: a serial
@@ -419,7 +356,8 @@ MorphResult morph_case(const MorphOptions& options)
     result.method = to_string(settings.method);
 
     const parallel::Communicator& comm = parallel::Communicator::world();
-    const fs::path mesh_case = options.parallel ? processor_case(case_dir, comm) : case_dir;
+    const fs::path mesh_case =
+        options.parallel ? processor_case(case_dir, comm, "morphMesh") : case_dir;
     io::PolyMeshReadOptions read_options;
     read_options.time = options.time;
     read_options.region = options.region;
@@ -766,24 +704,18 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
     if (const std::optional<int> code = parse_command_line(options, argc, argv, out))
         return *code;
     // -parallel: MPI for the whole run; only the master prints and writes the report.
-    std::optional<parallel::ParallelSession> session;
-    std::optional<log::SinkScope> quiet; // the other ranks print nothing (as OpenFOAM's)
-    std::ostringstream discarded;
-    if (options.found("parallel"))
+    std::optional<ParallelRun> run;
+    try
     {
-        try
-        {
-            session.emplace();
-        }
-        catch (const Error& e)
-        {
-            log::error() << e.what();
-            return exit_input_error;
-        }
-        if (!parallel::Communicator::world().master())
-            quiet.emplace([](log::Level, const std::string&) {});
+        run.emplace(options.found("parallel"));
     }
-    const bool master = parallel::Communicator::world().master();
+    catch (const Error& e)
+    {
+        log::error() << e.what();
+        return exit_input_error;
+    }
+    std::ostringstream discarded;
+    const bool master = run->master();
     std::ostream& report_out = master ? out : discarded;
     fs::path json_path; // set as soon as known: a failure replaces any earlier report
     if (const std::optional<std::string> j = options.get("json"))

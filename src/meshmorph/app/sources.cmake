@@ -5,6 +5,7 @@ set(MESHMORPH_APP_SOURCES
     meshmorph/app/exit_status.cpp
     meshmorph/app/banner.cpp
     meshmorph/app/check_mesh_case.cpp
+    meshmorph/app/decomposed_case.cpp
     meshmorph/app/morph_mesh.cpp
     meshmorph/app/deformation_factory.cpp
 )

@@ -139,6 +139,35 @@ std::string Communicator::scatter(const std::vector<std::string>& per_rank) cons
     return out;
 }
 
+std::vector<std::string>
+Communicator::exchange(const std::vector<std::pair<int, std::string>>& sends) const
+{
+    const std::size_t n = sends.size();
+    // Sizes first (so that receives can be sized), then the bytes; non-blocking both ways so
+    // the order in which ranks list their neighbours cannot deadlock.
+    std::vector<std::int64_t> out_sizes(n), in_sizes(n);
+    std::vector<MPI_Request> requests(2 * n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        out_sizes[i] = static_cast<std::int64_t>(sends[i].second.size());
+        MPI_Irecv(&in_sizes[i], 1, MPI_INT64_T, sends[i].first, 0, MPI_COMM_WORLD, &requests[i]);
+        MPI_Isend(&out_sizes[i], 1, MPI_INT64_T, sends[i].first, 0, MPI_COMM_WORLD,
+                  &requests[n + i]);
+    }
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    std::vector<std::string> received(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        received[i].assign(static_cast<std::size_t>(in_sizes[i]), '\0');
+        MPI_Irecv(received[i].data(), checked_count(received[i].size()), MPI_CHAR, sends[i].first,
+                  1, MPI_COMM_WORLD, &requests[i]);
+        MPI_Isend(sends[i].second.data(), checked_count(sends[i].second.size()), MPI_CHAR,
+                  sends[i].first, 1, MPI_COMM_WORLD, &requests[n + i]);
+    }
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    return received;
+}
+
 ParallelSession::ParallelSession()
 {
     int provided = 0;
@@ -193,6 +222,19 @@ std::vector<std::string> Communicator::gather(const std::string& bytes) const
 std::string Communicator::scatter(const std::vector<std::string>& per_rank) const
 {
     return per_rank.empty() ? std::string() : per_rank.front();
+}
+
+std::vector<std::string>
+Communicator::exchange(const std::vector<std::pair<int, std::string>>& sends) const
+{
+    std::vector<std::string> received;
+    for (const auto& [peer, bytes] : sends)
+    {
+        if (peer != 0)
+            throw InvalidInput("parallel: no rank " + std::to_string(peer) + " in a serial run");
+        received.push_back(bytes);
+    }
+    return received;
 }
 
 ParallelSession::ParallelSession()

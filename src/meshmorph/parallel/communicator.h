@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace meshmorph::parallel
@@ -43,6 +44,10 @@ public:
     std::vector<std::string> gather(const std::string& bytes) const;
     //! Bytes for each rank (given on the master, by rank) to that rank.
     std::string scatter(const std::vector<std::string>& per_rank) const;
+    //! Neighbour exchange: sends[i].second to rank sends[i].first and returns, in the same
+    //! order, what that rank sent here (every rank in `sends` must list this rank once). Used
+    //! across processor patches; a rank may list itself (the bytes come back).
+    std::vector<std::string> exchange(const std::vector<std::pair<int, std::string>>& sends) const;
 
     //! Trivially copyable values: gathered on the master, by rank.
     template <class T> std::vector<std::vector<T>> gather_values(const std::vector<T>& mine) const

@@ -45,7 +45,8 @@ double aspect_ratio_of(const FoamVector& sum_mag, double volume, const MeshDirec
 
 } // namespace
 
-Vector3 boundary_openness(const PolyMesh& mesh, const MeshGeometry& g)
+Vector3 boundary_openness(const PolyMesh& mesh, const MeshGeometry& g,
+                          const parallel::Communicator* comm)
 {
     FoamVector sum;
     double sum_mag = 0;
@@ -54,6 +55,11 @@ Vector3 boundary_openness(const PolyMesh& mesh, const MeshGeometry& g)
         const FoamVector a = row(g.face_areas, f);
         sum += a;
         sum_mag += detail::mag(a);
+    }
+    if (comm)
+    {
+        sum = {comm->sum(sum.x), comm->sum(sum.y), comm->sum(sum.z)};
+        sum_mag = comm->sum(sum_mag);
     }
     const FoamVector o = sum / (sum_mag + constants::vsmall);
     return {o.x, o.y, o.z};

@@ -13,7 +13,9 @@ namespace meshmorph
 
 //! \brief The boundary's openness: the sum of the boundary area vectors over the sum of
 //! their magnitudes (0 for a closed boundary).
-Vector3 boundary_openness(const PolyMesh& mesh, const MeshGeometry& geometry);
+//! \param comm in a -parallel run, sums over every rank (a collective).
+Vector3 boundary_openness(const PolyMesh& mesh, const MeshGeometry& geometry,
+                          const parallel::Communicator* comm = nullptr);
 
 //! Per-cell closedness fields (nCells each).
 struct CellClosedness

@@ -30,6 +30,7 @@
 #include "meshmorph/quality/mesh_quality_checks.h"
 #include "meshmorph/quality/point_faces.h"
 #include "meshmorph/quality/point_nearness.h"
+#include "meshmorph/quality/processor_regions.h"
 #include "meshmorph/quality/report_text.h"
 #include "meshmorph/quality/scaled_jacobian.h"
 #include "meshmorph/quality/topology_checks.h"
@@ -106,8 +107,16 @@ double min_finite(const Eigen::VectorXd& values)
     return min;
 }
 
+//! The cell regions; in a -parallel run, joined across processor faces.
+std::vector<std::vector<Index>> regions_of(const PolyMesh& mesh, const ProcessorFaces* processors)
+{
+    std::vector<std::vector<Index>> regions = cell_regions(mesh);
+    return processors ? global_cell_regions(mesh, regions, *processors) : regions;
+}
+
 void run_topology_checks(const PolyMesh& mesh, const CompactList& cell_faces, const MeshGeometry& g,
-                         const CompactList& point_faces, bool all_topology, QualityReport& r)
+                         const CompactList& point_faces, bool all_topology,
+                         const ProcessorFaces* processors, QualityReport& r)
 {
     std::vector<CheckResult>& checks = r.checks;
     checks.push_back(check_boundary_definition(mesh));
@@ -120,9 +129,9 @@ void run_topology_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
     {
         checks.push_back(check_cells_zip_up(cell_edge_usage(mesh, cell_faces)));
         checks.push_back(check_face_faces(face_face_connectivity(mesh, point_faces)));
-        checks.push_back(check_internal_face_cells(mesh));
+        checks.push_back(check_internal_face_cells(mesh, processors));
     }
-    const std::vector<std::vector<Index>> regions = cell_regions(mesh);
+    const std::vector<std::vector<Index>> regions = regions_of(mesh, processors);
     checks.push_back(check_regions(mesh, regions, all_topology));
     if (regions.size() > 1)
         r.cell_to_region = region_of_cells(regions, mesh.n_cells);
@@ -131,9 +140,11 @@ void run_topology_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
     r.cell_zones = cell_zone_summaries(mesh, cell_faces, g);
 }
 
-void bounding_box(const PolyMesh& mesh, QualityReport& r)
+//! The domain's bounding box; in a -parallel run, of every rank's points.
+void bounding_box(const PolyMesh& mesh, const parallel::Communicator* comm, QualityReport& r)
 {
-    if (mesh.n_points() == 0)
+    const Index n_points = comm ? comm->sum(std::int64_t{mesh.n_points()}) : mesh.n_points();
+    if (n_points == 0)
         return; // (0 0 0) (0 0 0)
     r.bounding_box_min = Eigen::Vector3d::Constant(constants::vgreat);
     r.bounding_box_max = Eigen::Vector3d::Constant(-constants::vgreat);
@@ -142,6 +153,12 @@ void bounding_box(const PolyMesh& mesh, QualityReport& r)
         {
             r.bounding_box_min[k] = std::min(r.bounding_box_min[k], mesh.points(p, k));
             r.bounding_box_max[k] = std::max(r.bounding_box_max[k], mesh.points(p, k));
+        }
+    if (comm)
+        for (int k = 0; k < 3; ++k)
+        {
+            r.bounding_box_min[k] = comm->min(r.bounding_box_min[k]);
+            r.bounding_box_max[k] = comm->max(r.bounding_box_max[k]);
         }
 }
 
@@ -167,11 +184,13 @@ void run_all_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces
 }
 
 void run_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces, const MeshGeometry& g,
-                         const CheckMeshSettings& settings, QualityReport& r)
+                         const CheckMeshSettings& settings, const ProcessorFaces* processors,
+                         QualityReport& r)
 {
-    bounding_box(mesh, r);
+    const parallel::Communicator* comm = processors ? processors->comm : nullptr;
+    bounding_box(mesh, comm, r);
     const std::vector<WedgeGeometry> wedges = wedge_geometries(mesh);
-    r.directions = mesh_directions(mesh, g.face_areas, wedges);
+    r.directions = mesh_directions(mesh, g.face_areas, wedges, comm);
     const MeshDirections& dirs = r.directions;
     std::vector<CheckResult>& checks = r.checks;
     // As checkGeometry.C: the wedge check where wedges knock out a direction the solution
@@ -180,34 +199,42 @@ void run_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
         checks.push_back(check_wedges(mesh, wedges, wedge_findings(mesh, wedges, dirs)));
     else if (dirs.n_geometric() < 3)
         checks.push_back(check_edge_alignment(non_aligned_edges(mesh, dirs)));
-    checks.push_back(check_closed_boundary(boundary_openness(mesh, g)));
+    // v1912 sums every boundary face, processor faces too (their area vectors cancel over
+    // the ranks, their magnitudes do not: the openness of a parallel run is smaller).
+    checks.push_back(check_closed_boundary(boundary_openness(mesh, g, comm)));
     CellClosedness closedness = cell_closedness(mesh, cell_faces, g, dirs);
     checks.push_back(check_closed_cells(closedness.openness, closedness.aspect_ratio));
     r.cell_aspect_ratio = std::move(closedness.aspect_ratio);
     const Eigen::VectorXd mag_area = face_area_magnitudes(g);
     checks.push_back(check_face_areas(mag_area));
     checks.push_back(check_cell_volumes(g.cell_volumes));
-    // checkMesh measures cyclic faces against the cell across them (polyMeshCheck.C).
+    // checkMesh measures cyclic and processor faces against the cell across them
+    // (polyMeshCheck.C).
     const std::vector<CyclicPatch> cyclics = cyclic_patches(mesh, g);
-    const CoupledFaces coupled = coupled_faces(mesh, g, cyclics);
+    const CoupledFaces coupled = coupled_faces(mesh, g, cyclics, processors);
     const Eigen::VectorXd ortho = face_orthogonality(mesh, g, coupled);
     checks.push_back(check_face_orthogonality(ortho, coupled.statistics_faces()));
     checks.push_back(check_face_pyramids(face_pyramid_errors(mesh, g)));
     const Eigen::VectorXd skewness = face_skewness(mesh, g, coupled);
     checks.push_back(check_face_skewness(skewness, coupled.master));
-    checks.push_back(check_coupled_points(coupled_point_match(mesh, g, cyclics)));
+    checks.push_back(check_coupled_points(coupled_point_match(mesh, g, cyclics, processors)));
     r.cell_non_orthogonality = cell_non_orthogonality(cell_faces, ortho);
     r.cell_skewness = cell_skewness(cell_faces, skewness);
     r.cell_determinant = cell_determinant(mesh, cell_faces, g, dirs, mag_area, coupled);
     if (settings.all_geometry)
         run_all_geometry_checks(mesh, cell_faces, g, mag_area, coupled, r);
     if (settings.mesh_quality)
-        checks.push_back(check_mesh_quality(mesh, cell_faces, g, *settings.mesh_quality, skewness));
+        checks.push_back(
+            check_mesh_quality(mesh, cell_faces, g, *settings.mesh_quality, skewness, coupled));
 }
 
-//! The verdict, the offender sets and the headline numbers, from the check results.
-void summarise(QualityReport& r)
+} // namespace
+
+void summarise_checks(QualityReport& r)
 {
+    r.failed_checks = 0;
+    r.failed_check_names.clear();
+    r.sets.clear();
     for (const CheckResult& c : r.checks)
     {
         if (c.failed())
@@ -236,8 +263,6 @@ void summarise(QualityReport& r)
             r.*field = std::get<double>(s->value);
 }
 
-} // namespace
-
 const Statistic* QualityReport::statistic(std::string_view key) const
 {
     for (const CheckResult& c : checks)
@@ -247,7 +272,8 @@ const Statistic* QualityReport::statistic(std::string_view key) const
 }
 
 QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
-                         const MeshGeometry& geometry, const CheckMeshSettings& settings)
+                         const MeshGeometry& geometry, const CheckMeshSettings& settings,
+                         const ProcessorFaces* processors)
 {
     validate(mesh);
     if (cell_faces.size() != mesh.n_cells)
@@ -262,9 +288,10 @@ QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
         report.cell_scaled_jacobian = scaled_jacobian(mesh, cell_faces, shapes);
     report.min_scaled_jacobian = min_finite(report.cell_scaled_jacobian);
     if (!settings.no_topology)
-        run_topology_checks(mesh, cell_faces, geometry, pf, settings.all_topology, report);
-    run_geometry_checks(mesh, cell_faces, geometry, settings, report);
-    summarise(report);
+        run_topology_checks(mesh, cell_faces, geometry, pf, settings.all_topology, processors,
+                            report);
+    run_geometry_checks(mesh, cell_faces, geometry, settings, processors, report);
+    summarise_checks(report);
     report.text = report_text(report, settings);
     return report;
 }

@@ -27,6 +27,7 @@
 #include "meshmorph/quality/check_result.h"
 #include "meshmorph/quality/mesh_edges.h"
 #include "meshmorph/quality/mesh_geometry.h"
+#include "meshmorph/quality/processor_faces.h"
 #include "meshmorph/quality/zone_topology.h"
 
 namespace meshmorph
@@ -74,7 +75,20 @@ struct QualityReport
 {
     std::string text; //!< checkMesh's report, "Mesh stats" .. "Mesh OK."/"Failed N mesh checks."
 
-    // "Mesh stats" and the cell types.
+    //! In a -parallel run (reduce_report()), what checkMesh -parallel prints in "Mesh stats":
+    //! the ranks' counts summed (shared points and processor faces once per rank), and the
+    //! patches without the processor patches (with the range of patches per rank).
+    struct ParallelStats
+    {
+        int ranks = 1;
+        Index summed_points = 0, summed_faces = 0, summed_internal_faces = 0;
+        Index non_processor_patches = 0, min_patches = 0, max_patches = 0;
+        Index processor_faces = 0; //!< summed: each processor face twice
+    };
+    std::optional<ParallelStats> parallel;
+
+    // "Mesh stats" and the cell types (in a -parallel run, of the undecomposed mesh: points
+    // and faces shared by ranks count once, processor faces are internal faces).
     Index n_points = 0, n_faces = 0, n_internal_faces = 0, n_cells = 0, n_patches = 0;
     Index n_point_zones = 0, n_face_zones = 0, n_cell_zones = 0;
     Index n_internal_points = -1;    //!< -1 when the boundary points do not come last
@@ -127,11 +141,19 @@ struct QualityReport
 //! \param mesh a mesh with valid addressing (face vertex labels in [0, nPoints), owner and
 //!        neighbour in [0, nCells)); the topology checks report everything else.
 //! \param geometry compute_geometry(mesh) (passed in so callers can reuse it).
+//! \param processors in a -parallel run (a collective then), this rank's processor faces
+//!        (exchange_processor_faces): they are checked as coupled faces, and the regions, the
+//!        bounding box, the directions and the boundary openness are global; the rest of the
+//!        report is this rank's, reduce_report() (parallel_report.h) combines the ranks.
 //! \throw InvalidInput if labels are out of range (files are validated by the reader).
 QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
-                         const MeshGeometry& geometry, const CheckMeshSettings& settings);
+                         const MeshGeometry& geometry, const CheckMeshSettings& settings,
+                         const ProcessorFaces* processors = nullptr);
 //! Convenience overload computing cell_faces and the geometry.
 QualityReport check_mesh(const PolyMesh& mesh, const CheckMeshSettings& settings);
+
+//! \brief From r.checks: the failed checks, the offender sets and the headline numbers.
+void summarise_checks(QualityReport& r);
 
 //! \brief Format a scalar like OpenFOAM's Ostream with `precision` (C's %.{p}g).
 std::string format_scalar(double value, int precision);

@@ -27,6 +27,11 @@ void CheckResult::add(std::string key, Statistic::Value value, bool in_json)
     statistics.push_back({std::move(key), std::move(value), in_json});
 }
 
+void CheckResult::add_average(std::string key, double value, double sum, Index count, bool in_json)
+{
+    statistics.push_back({std::move(key), value, in_json, sum, count});
+}
+
 void CheckResult::add_set(std::string name, MeshSet::Kind kind, std::vector<Index> labels,
                           std::string description)
 {

@@ -39,6 +39,10 @@ struct OffenderSet
     //! checkMesh's "  <<Writing N <description> to set <name>" (printed with -writeSets);
     //! empty when the check's own text announces the set (regions).
     std::string description;
+    //! The set's size over every rank of a -parallel run (-1: set.labels.size()); each rank
+    //! writes its own labels.
+    Index total = -1;
+    Index size() const { return total >= 0 ? total : static_cast<Index>(set.labels.size()); }
 };
 
 //! A number a check reports.
@@ -53,6 +57,10 @@ struct Statistic
     std::string key; //!< the JSON key (camelCase)
     Value value;
     bool in_json = true; //!< false: only the text report prints it
+    //! An average's parts (its sum and number of values), so that a -parallel run combines
+    //! the ranks as checkMesh does: sums and counts reduced, then divided. 0 otherwise.
+    double parts_sum = 0;
+    Index parts_count = 0;
 };
 
 //! What one check found: its numbers, whether it failed, and the offending elements.
@@ -71,6 +79,8 @@ struct CheckResult
     bool failed() const { return !failure.empty(); }
     //! Append a statistic (integers are counts: Index, never int or size_t).
     void add(std::string key, Statistic::Value value, bool in_json = true);
+    //! Append an average `value` computed from `sum` over `count` values.
+    void add_average(std::string key, double value, double sum, Index count, bool in_json = true);
     //! Append the set of `labels` (sorted and made distinct here) unless it is empty.
     void add_set(std::string name, MeshSet::Kind kind, std::vector<Index> labels,
                  std::string description);

@@ -333,8 +333,30 @@ std::vector<CyclicPatch> cyclic_patches(const PolyMesh& mesh, const MeshGeometry
     return cyclics;
 }
 
+namespace
+{
+
+void add_processor_faces(const PolyMesh& mesh, const ProcessorFaces& processors, CoupledFaces& c)
+{
+    const Index n_int = mesh.n_internal_faces();
+    for (std::size_t b = 0; b < processors.on_processor_patch.size(); ++b)
+        if (processors.on_processor_patch[b])
+        {
+            const std::size_t f = static_cast<std::size_t>(n_int) + b;
+            c.internal_or_coupled[f] = 1;
+            c.master[f] = processors.owner_side[b];
+            c.neighbour_cell_centres.row(static_cast<Index>(b)) =
+                processors.neighbour_cell_centres.row(static_cast<Index>(b));
+            c.neighbour_cell_volumes[static_cast<Index>(b)] =
+                processors.neighbour_cell_volumes[static_cast<Index>(b)];
+        }
+}
+
+} // namespace
+
 CoupledFaces coupled_faces(const PolyMesh& mesh, const MeshGeometry& g,
-                           const std::vector<CyclicPatch>& cyclics)
+                           const std::vector<CyclicPatch>& cyclics,
+                           const ProcessorFaces* processors)
 {
     const Index n_int = mesh.n_internal_faces();
     const Index n_boundary = mesh.n_faces() - n_int;
@@ -366,6 +388,8 @@ CoupledFaces coupled_faces(const PolyMesh& mesh, const MeshGeometry& g,
             c.neighbour_cell_volumes[f - n_int] = g.cell_volumes[across];
         }
     }
+    if (processors)
+        add_processor_faces(mesh, *processors, c);
     return c;
 }
 

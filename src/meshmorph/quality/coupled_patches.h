@@ -13,6 +13,7 @@
 
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/quality/mesh_geometry.h"
+#include "meshmorph/quality/processor_faces.h"
 
 namespace meshmorph
 {
@@ -57,10 +58,12 @@ std::vector<double> face_tolerances(const PolyMesh& mesh, const MeshGeometry& ge
 //! getInternalOrCoupledFaces, getMasterFaces and swapBoundaryCellPositions/-List).
 struct CoupledFaces
 {
-    std::vector<char> internal_or_coupled; //!< per face: internal or on a cyclic patch
-    std::vector<char> master;              //!< per face: not on the non-owner side of a cyclic
-    //! per boundary face (face - nInternalFaces): the cell centre across a cyclic face,
-    //! transformed to this side; the owner's centre on other boundary faces.
+    //! per face: internal, or on a cyclic or processor patch
+    std::vector<char> internal_or_coupled;
+    //! per face: not on the non-owner side of a cyclic or processor patch
+    std::vector<char> master;
+    //! per boundary face (face - nInternalFaces): the cell centre across a cyclic face
+    //! (transformed to this side) or processor face; the owner's centre on other faces.
     Points neighbour_cell_centres;
     Eigen::VectorXd neighbour_cell_volumes; //!< per boundary face, likewise (no transform)
 
@@ -73,8 +76,10 @@ struct CoupledFaces
     std::vector<char> statistics_faces() const;
 };
 
-//! \brief The coupled faces of `cyclics` (cyclic_patches(mesh, geometry)).
+//! \brief The coupled faces of `cyclics` (cyclic_patches(mesh, geometry)) and, in a -parallel
+//! run, of the processor patches (`processors`, their owner side is the lower rank).
 CoupledFaces coupled_faces(const PolyMesh& mesh, const MeshGeometry& geometry,
-                           const std::vector<CyclicPatch>& cyclics);
+                           const std::vector<CyclicPatch>& cyclics,
+                           const ProcessorFaces* processors = nullptr);
 
 } // namespace meshmorph

@@ -24,7 +24,9 @@ struct CoupledPointMatch
 //! \brief Compare every owner-side cyclic face with its coupled face, point by point.
 //! \param cyclics cyclic_patches(mesh, geometry).
 //! \throws InvalidInput if a face and its coupled face differ in size.
+//! \param processors in a -parallel run, the processor faces (compared on the owner side).
 CoupledPointMatch coupled_point_match(const PolyMesh& mesh, const MeshGeometry& geometry,
-                                      const std::vector<CyclicPatch>& cyclics);
+                                      const std::vector<CyclicPatch>& cyclics,
+                                      const ProcessorFaces* processors = nullptr);
 
 } // namespace meshmorph

@@ -37,15 +37,15 @@ Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& g, 
 }
 
 Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& g,
-                                   const CoupledFaces& coupled)
+                                   const CoupledFaces& coupled, double eps)
 {
-    Eigen::VectorXd ortho = face_orthogonality(mesh, g, constants::rootvsmall);
+    Eigen::VectorXd ortho = face_orthogonality(mesh, g, eps);
     const Index n_int = mesh.n_internal_faces();
     for (Index f = n_int; f < mesh.n_faces(); ++f)
         if (coupled.coupled_boundary(mesh, f))
             ortho[f] = orthogonality(row(g.cell_centres, mesh.owner[f]),
                                      row(coupled.neighbour_cell_centres, f - n_int),
-                                     row(g.face_areas, f), constants::rootvsmall);
+                                     row(g.face_areas, f), eps);
     return ortho;
 }
 

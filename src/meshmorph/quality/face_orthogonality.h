@@ -18,10 +18,10 @@ namespace meshmorph
 Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& geometry,
                                    double eps = constants::rootvsmall);
 
-//! \brief checkMesh's (polyMeshTools::faceOrthogonality): as above with ROOTVSMALL, and
-//! cyclic faces measured against the cell across them. \return nFaces values.
+//! \brief checkMesh's (polyMeshTools::faceOrthogonality): as above, with cyclic and processor
+//! faces measured against the cell across them. \return nFaces values.
 Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& geometry,
-                                   const CoupledFaces& coupled);
+                                   const CoupledFaces& coupled, double eps = constants::rootvsmall);
 
 //! \brief Per cell, the largest non-orthogonality [deg] of its faces: acos of the smallest
 //! face_orthogonality, clamped to [-1, 1] (0 for a cell without faces).

@@ -23,13 +23,23 @@ struct FaceTets
     std::span<const Index> face;
     FoamVector cf, co, cn;
     bool internal;
+    //! The base point must suit the tets on both sides: internal and coupled faces
+    //! (findSharedBasePoint, with the cell centre across a coupled face).
+    bool shared_base;
 
-    FaceTets(const PolyMesh& mesh, const MeshGeometry& g, Index f)
+    FaceTets(const PolyMesh& mesh, const MeshGeometry& g, Index f,
+             const CoupledFaces* coupled = nullptr)
         : points(mesh.points), face(mesh.faces[f]), cf(row(g.face_centres, f)),
-          co(row(g.cell_centres, mesh.owner[f])), cn(co), internal(f < mesh.n_internal_faces())
+          co(row(g.cell_centres, mesh.owner[f])), cn(co), internal(f < mesh.n_internal_faces()),
+          shared_base(internal)
     {
         if (internal)
             cn = row(g.cell_centres, mesh.neighbour[f]);
+        else if (coupled && coupled->coupled_boundary(mesh, f))
+        {
+            cn = row(coupled->neighbour_cell_centres, f - mesh.n_internal_faces());
+            shared_base = true;
+        }
     }
     FoamVector p(std::size_t i) const { return row(points, face[i]); }
     //! The point after the i-th (cyclic).
@@ -49,7 +59,7 @@ struct FaceTets
                 const std::size_t i = (b + t) % n;
                 const FoamVector pi = p(i), pj = next(i);
                 double q = tet_quality(co, pb, pi, pj);
-                if (internal)
+                if (shared_base)
                     q = std::min(q, tet_quality(cn, pb, pj, pi));
                 min_q = std::min(min_q, q);
             }
@@ -109,10 +119,11 @@ std::vector<char> face_tet_errors(const PolyMesh& mesh, const MeshGeometry& g)
 }
 
 std::vector<char> faces_with_tet_quality_below(const PolyMesh& mesh, const MeshGeometry& g,
-                                               double min_quality)
+                                               double min_quality, const CoupledFaces* coupled)
 {
-    return detail::per_face_flags(mesh.n_faces(), [&](Index f)
-                                  { return tet_quality_below(FaceTets(mesh, g, f), min_quality); });
+    return detail::per_face_flags(
+        mesh.n_faces(),
+        [&](Index f) { return tet_quality_below(FaceTets(mesh, g, f, coupled), min_quality); });
 }
 
 } // namespace meshmorph

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/quality/coupled_patches.h"
 #include "meshmorph/quality/mesh_geometry.h"
 
 namespace meshmorph
@@ -22,6 +23,7 @@ std::vector<char> face_tet_errors(const PolyMesh& mesh, const MeshGeometry& geom
 //! has a tet of quality < min_quality, or no decomposition base point with all tets above
 //! it. OpenMP over faces. \return nFaces flags.
 std::vector<char> faces_with_tet_quality_below(const PolyMesh& mesh, const MeshGeometry& geometry,
-                                               double min_quality);
+                                               double min_quality,
+                                               const CoupledFaces* coupled = nullptr);
 
 } // namespace meshmorph

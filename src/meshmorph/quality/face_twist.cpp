@@ -35,14 +35,25 @@ struct FaceFan
     std::size_t size() const { return face.size(); }
 };
 
-bool twist_below(const PolyMesh& mesh, const MeshGeometry& g, Index f, double min_twist)
+//! The centre the twist is measured towards: the neighbour cell's, across a coupled face the
+//! cell's on the other side, on other boundary faces the face's.
+FoamVector across(const PolyMesh& mesh, const MeshGeometry& g, const CoupledFaces* coupled, Index f)
+{
+    if (f < mesh.n_internal_faces())
+        return row(g.cell_centres, mesh.neighbour[f]);
+    if (coupled && coupled->coupled_boundary(mesh, f))
+        return row(coupled->neighbour_cell_centres, f - mesh.n_internal_faces());
+    return row(g.face_centres, f);
+}
+
+bool twist_below(const PolyMesh& mesh, const MeshGeometry& g, const CoupledFaces* coupled, Index f,
+                 double min_twist)
 {
     const FaceFan fan(mesh, g, f);
     if (fan.size() <= 3)
         return false;
     const FoamVector own = row(g.cell_centres, mesh.owner[f]);
-    FoamVector nf = f < mesh.n_internal_faces() ? row(g.cell_centres, mesh.neighbour[f]) - own
-                                                : fan.centre - own;
+    FoamVector nf = across(mesh, g, coupled, f) - own;
     nf /= detail::mag(nf) + vsmall;
     if (nf.x == 0 && nf.y == 0 && nf.z == 0)
         return false;
@@ -99,10 +110,10 @@ bool triangle_twist_below(const PolyMesh& mesh, const MeshGeometry& g, Index f, 
 } // namespace
 
 std::vector<char> faces_with_twist_below(const PolyMesh& mesh, const MeshGeometry& g,
-                                         double min_twist)
+                                         double min_twist, const CoupledFaces* coupled)
 {
-    return detail::per_face_flags(mesh.n_faces(),
-                                  [&](Index f) { return twist_below(mesh, g, f, min_twist); });
+    return detail::per_face_flags(mesh.n_faces(), [&](Index f)
+                                  { return twist_below(mesh, g, coupled, f, min_twist); });
 }
 
 std::vector<char> faces_with_triangle_twist_below(const PolyMesh& mesh, const MeshGeometry& g,

@@ -88,7 +88,7 @@ CheckResult check_low_values(const LowValueCheck& spec, const Eigen::VectorXd& v
     }
     CheckResult r(spec.id);
     r.add(spec.min_key, n > 0 ? range.min : 0.0);
-    r.add(spec.avg_key, n > 0 ? range.sum / static_cast<double>(n) : 0.0);
+    r.add_average(spec.avg_key, n > 0 ? range.sum / static_cast<double>(n) : 0.0, range.sum, n);
     r.add("summedFaces", n, false);
     r.add(spec.count_key, size_of(range.below));
     if (!range.below.empty())
@@ -245,7 +245,9 @@ CheckResult check_face_orthogonality(const Eigen::VectorXd& ortho, const std::ve
     const double avg_cos = sum_cos / static_cast<double>(std::max<Index>(n_summed, 1));
     CheckResult r("faceOrthogonality");
     r.add("maxNonOrthogonality", n_summed > 0 ? non_orthogonality_degrees(min_cos) : 0.0);
-    r.add("avgNonOrthogonality", n_summed > 0 ? non_orthogonality_degrees(avg_cos) : 0.0);
+    // The parts are of the cosines: the average angle is that of the average cosine.
+    r.add_average("avgNonOrthogonality", n_summed > 0 ? non_orthogonality_degrees(avg_cos) : 0.0,
+                  sum_cos, n_summed);
     r.add("summedFaces", n_summed, false);
     r.add("severelyNonOrthogonalFaces", severe);
     r.add("nonOrthogonalityErrors", errors);
@@ -370,7 +372,8 @@ CheckResult check_face_flatness(const PolyMesh& mesh, const Eigen::VectorXd& mag
     CheckResult r("faceFlatness");
     r.add("minFaceFlatness", n_summed > 0 ? min_flat : 1.0);
     r.add("warpedFaces", size_of(faces));
-    r.add("avgFaceFlatness", n_summed > 0 ? sum_flat / n_summed : 1.0, false);
+    r.add_average("avgFaceFlatness", n_summed > 0 ? sum_flat / n_summed : 1.0, sum_flat, n_summed,
+                  false);
     r.add("flatnessFaces", n_summed, false);
     r.add_set("warpedFaces", MeshSet::Kind::face, std::move(faces), "warped faces");
     return r;
@@ -390,7 +393,7 @@ CheckResult check_cell_determinant(const Eigen::VectorXd& det)
     }
     CheckResult r("cellDeterminant");
     r.add("minDeterminant", min_det);
-    r.add("avgDeterminant", n_cells > 0 ? sum_det / n_cells : 0.0);
+    r.add_average("avgDeterminant", n_cells > 0 ? sum_det / n_cells : 0.0, sum_det, n_cells);
     r.add("smallDeterminantCells", size_of(cells));
     if (!cells.empty())
         r.failure = "cellDeterminant";

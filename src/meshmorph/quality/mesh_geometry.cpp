@@ -141,7 +141,8 @@ Eigen::VectorXd face_area_magnitudes(const MeshGeometry& g)
 }
 
 MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas,
-                               const std::vector<WedgeGeometry>& wedges)
+                               const std::vector<WedgeGeometry>& wedges,
+                               const parallel::Communicator* comm)
 {
     MeshDirections d;
     FoamVector empty_sum;
@@ -153,6 +154,11 @@ MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas,
             for (Index f = patch.start_face; f < patch.start_face + patch.n_faces; ++f)
                 empty_sum += detail::cmpt_mag(row(face_areas, f));
         }
+    if (comm)
+    {
+        has_empty = comm->any(has_empty);
+        empty_sum = {comm->sum(empty_sum.x), comm->sum(empty_sum.y), comm->sum(empty_sum.z)};
+    }
     if (has_empty)
     {
         const double m = detail::mag(empty_sum);
@@ -162,7 +168,7 @@ MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas,
                 d.solution[k] = -1;
     }
     d.geometric = d.solution;
-    d.has_wedges = !wedges.empty();
+    d.has_wedges = comm ? comm->any(!wedges.empty()) : !wedges.empty();
     if (d.has_wedges)
     {
         // The wedges' coordinate planes (centreNormal), not their tilted mean normals.
@@ -170,6 +176,8 @@ MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas,
         for (const WedgeGeometry& w : wedges)
             wedge_sum +=
                 detail::cmpt_mag({w.centre_normal.x(), w.centre_normal.y(), w.centre_normal.z()});
+        if (comm)
+            wedge_sum = {comm->sum(wedge_sum.x), comm->sum(wedge_sum.y), comm->sum(wedge_sum.z)};
         const double m = detail::mag(wedge_sum);
         const FoamVector unit = m >= constants::rootvsmall ? wedge_sum / m : FoamVector{};
         for (int k = 0; k < 3; ++k)

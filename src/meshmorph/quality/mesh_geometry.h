@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/parallel/communicator.h"
 #include "meshmorph/quality/wedge_geometry.h"
 
 namespace meshmorph
@@ -71,8 +72,10 @@ struct MeshDirections
 //! empty where the summed |area| of the empty patches' faces has a unit component above
 //! 1e-6; geometricD also drops the directions of the wedges' centre normals.
 //! \param wedges wedge_geometries(mesh).
+//! \param comm in a -parallel run, sums the empty faces' areas over every rank (a collective).
 MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas,
-                               const std::vector<WedgeGeometry>& wedges);
+                               const std::vector<WedgeGeometry>& wedges,
+                               const parallel::Communicator* comm = nullptr);
 //! Convenience overload computing wedge_geometries(mesh).
 MeshDirections mesh_directions(const PolyMesh& mesh, const Points& face_areas);
 

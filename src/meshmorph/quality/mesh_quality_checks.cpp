@@ -31,6 +31,13 @@ struct Input
     const MeshGeometry& g;
     const MeshQualitySettings& q;
     const Eigen::VectorXd& skewness;
+    const CoupledFaces& coupled;
+
+    //! Internal, or coupled to a cell across (polyMeshGeometry measures both alike).
+    bool two_sided(Index f) const
+    {
+        return coupled.internal_or_coupled[static_cast<std::size_t>(f)];
+    }
 };
 
 using Flags = std::vector<char>;
@@ -47,9 +54,9 @@ template <typename Test> Flags faces_where(const PolyMesh& mesh, Index n, Test&&
 Flags non_ortho(const Input& in)
 {
     const double threshold = std::cos(detail::deg_to_rad(in.q.max_non_ortho));
-    const Eigen::VectorXd ortho = face_orthogonality(in.mesh, in.g, constants::vsmall);
-    return faces_where(in.mesh, in.mesh.n_internal_faces(),
-                       [&](Index f) { return ortho[f] < threshold; });
+    const Eigen::VectorXd ortho = face_orthogonality(in.mesh, in.g, in.coupled, constants::vsmall);
+    return faces_where(in.mesh, in.mesh.n_faces(),
+                       [&](Index f) { return in.two_sided(f) && ortho[f] < threshold; });
 }
 
 Flags pyramid_volume(const Input& in)
@@ -72,26 +79,31 @@ Flags area(const Input& in)
 
 Flags skewness(const Input& in)
 {
-    const Index n_int = in.mesh.n_internal_faces();
     return faces_where(in.mesh, in.mesh.n_faces(),
-                       [&](Index f) {
-                           return in.skewness[f] > (f < n_int ? in.q.max_internal_skewness
-                                                              : in.q.max_boundary_skewness);
+                       [&](Index f)
+                       {
+                           return in.skewness[f] > (in.two_sided(f) ? in.q.max_internal_skewness
+                                                                    : in.q.max_boundary_skewness);
                        });
 }
 
 Flags face_weight(const Input& in)
 {
-    const Eigen::VectorXd weights = face_weights(in.mesh, in.g);
-    return faces_where(in.mesh, in.mesh.n_internal_faces(),
-                       [&](Index f) { return weights[f] < in.q.min_face_weight; });
+    const Eigen::VectorXd weights = face_weights(in.mesh, in.g, in.coupled);
+    return faces_where(in.mesh, in.mesh.n_faces(),
+                       [&](Index f)
+                       { return in.two_sided(f) && weights[f] < in.q.min_face_weight; });
 }
 
 Flags volume_ratio(const Input& in)
 {
-    const Eigen::VectorXd ratio = face_volume_ratio(in.mesh, in.g.cell_volumes.cwiseAbs());
-    return faces_where(in.mesh, in.mesh.n_internal_faces(),
-                       [&](Index f) { return ratio[f] < in.q.min_vol_ratio; });
+    // Of the volumes' magnitudes, on both sides.
+    CoupledFaces magnitudes = in.coupled;
+    magnitudes.neighbour_cell_volumes = magnitudes.neighbour_cell_volumes.cwiseAbs();
+    const Eigen::VectorXd ratio =
+        face_volume_ratio(in.mesh, in.g.cell_volumes.cwiseAbs(), magnitudes);
+    return faces_where(in.mesh, in.mesh.n_faces(),
+                       [&](Index f) { return in.two_sided(f) && ratio[f] < in.q.min_vol_ratio; });
 }
 
 Flags flatness(const Input& in)
@@ -119,7 +131,7 @@ Flags determinant(const Input& in)
 
 Flags tet_quality(const Input& in)
 {
-    return faces_with_tet_quality_below(in.mesh, in.g, in.q.min_tet_quality);
+    return faces_with_tet_quality_below(in.mesh, in.g, in.q.min_tet_quality, &in.coupled);
 }
 
 Flags concavity(const Input& in)
@@ -129,7 +141,7 @@ Flags concavity(const Input& in)
 
 Flags twist(const Input& in)
 {
-    return faces_with_twist_below(in.mesh, in.g, in.q.min_twist);
+    return faces_with_twist_below(in.mesh, in.g, in.q.min_twist, &in.coupled);
 }
 
 Flags triangle_twist(const Input& in)
@@ -171,9 +183,9 @@ const Criterion criteria[] = {
 
 CheckResult check_mesh_quality(const PolyMesh& mesh, const CompactList& cell_faces,
                                const MeshGeometry& g, const MeshQualitySettings& q,
-                               const Eigen::VectorXd& skewness)
+                               const Eigen::VectorXd& skewness, const CoupledFaces& coupled)
 {
-    const Input in{mesh, cell_faces, g, q, skewness};
+    const Input in{mesh, cell_faces, g, q, skewness, coupled};
     std::vector<char> in_error(static_cast<std::size_t>(mesh.n_faces()), 0);
     Statistic::Counts failures;
     for (const Criterion& c : criteria)

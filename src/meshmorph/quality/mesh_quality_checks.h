@@ -8,6 +8,7 @@
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/quality/check_mesh.h"
 #include "meshmorph/quality/check_result.h"
+#include "meshmorph/quality/coupled_patches.h"
 #include "meshmorph/quality/mesh_geometry.h"
 
 namespace meshmorph
@@ -17,9 +18,13 @@ namespace meshmorph
 //! it adds to the cumulative set of faces in error (OpenFOAM's "faces in error" lines).
 //! Fails "meshQuality" when any face is in error. Statistics meshQualityFailures
 //! (criterion key -> faces newly flagged), meshQualityFaces; set meshQualityFaces.
-//! \param skewness face_skewness(mesh, geometry) (maxInternalSkewness uses checkMesh's).
+//! Coupled faces (cyclic, processor) are measured against the cell across them where
+//! polyMeshGeometry does: non-orthogonality, skewness (with the internal limit), weights,
+//! volume ratio, twist and the tets' shared base point.
+//! \param skewness face_skewness(mesh, geometry, coupled) (maxInternalSkewness uses checkMesh's).
+//! \param coupled coupled_faces(mesh, geometry, ...).
 CheckResult check_mesh_quality(const PolyMesh& mesh, const CompactList& cell_faces,
                                const MeshGeometry& geometry, const MeshQualitySettings& settings,
-                               const Eigen::VectorXd& skewness);
+                               const Eigen::VectorXd& skewness, const CoupledFaces& coupled);
 
 } // namespace meshmorph

@@ -164,8 +164,7 @@ void regions(const CheckResult& c, Writer& t)
             t.out << (std::get<Statistic::Counts>(disconnected->value).at(i).second
                           ? " (fully disconnected)"
                           : " (point connected)");
-        t.out << " with " << c.sets[i].set.labels.size() << " cells to cellSet "
-              << c.sets[i].set.name << "\n";
+        t.out << " with " << c.sets[i].size() << " cells to cellSet " << c.sets[i].set.name << "\n";
     }
 }
 
@@ -323,7 +322,7 @@ void near_points(const CheckResult& c, Writer& t)
 {
     for (const OffenderSet& s : c.sets)
         if (s.set.name == "nearPoints")
-            t.out << "  <<Writing " << s.set.labels.size() << " near (closer than "
+            t.out << "  <<Writing " << s.size() << " near (closer than "
                   << t.s(c.real("nearPointDistance")) << " apart) points to set nearPoints\n";
 }
 
@@ -523,19 +522,33 @@ void print_checks(Section section, Writer& t)
             continue;
         for (const OffenderSet& s : c.sets)
             if (!s.description.empty())
-                t.out << "  <<Writing " << s.set.labels.size() << " " << s.description << " to set "
+                t.out << "  <<Writing " << s.size() << " " << s.description << " to set "
                       << s.set.name << "\n";
         if (format.after_sets)
             format.after_sets(c, t);
     }
 }
 
+//! "boundary patches: N", or in parallel "N (min max)" with the range of patches per rank.
+std::string boundary_patches(const QualityReport& r)
+{
+    if (!r.parallel)
+        return std::to_string(r.n_patches);
+    return std::to_string(r.parallel->non_processor_patches) + " (" +
+           std::to_string(r.parallel->min_patches) + " " + std::to_string(r.parallel->max_patches) +
+           ")";
+}
+
 void mesh_stats(Writer& t)
 {
     const QualityReport& r = t.report;
     std::ostringstream& out = t.out;
+    // checkMesh -parallel prints the ranks' counts summed.
+    const Index n_points = r.parallel ? r.parallel->summed_points : r.n_points;
+    const Index n_faces = r.parallel ? r.parallel->summed_faces : r.n_faces;
+    const Index n_internal = r.parallel ? r.parallel->summed_internal_faces : r.n_internal_faces;
     out << "Mesh stats\n"
-        << "    points:           " << r.n_points << "\n";
+        << "    points:           " << n_points << "\n";
     if (r.n_internal_points >= 0)
         out << "    internal points:  " << r.n_internal_points << "\n";
     if (r.edges)
@@ -545,12 +558,12 @@ void mesh_stats(Writer& t)
             << r.edges->internal_edges_one_boundary_point << "\n"
             << "    internal edges using two boundary points:  "
             << r.edges->internal_edges_two_boundary_points << "\n";
-    out << "    faces:            " << r.n_faces << "\n"
-        << "    internal faces:   " << r.n_internal_faces << "\n"
+    out << "    faces:            " << n_faces << "\n"
+        << "    internal faces:   " << n_internal << "\n"
         << "    cells:            " << r.n_cells << "\n"
         << "    faces per cell:   "
-        << t.s(double(r.n_faces + r.n_internal_faces) / std::max<Index>(1, r.n_cells)) << "\n"
-        << "    boundary patches: " << r.n_patches << "\n"
+        << t.s(double(n_faces + n_internal) / std::max<Index>(1, r.n_cells)) << "\n"
+        << "    boundary patches: " << boundary_patches(r) << "\n"
         << "    point zones:      " << r.n_point_zones << "\n"
         << "    face zones:       " << r.n_face_zones << "\n"
         << "    cell zones:       " << r.n_cell_zones << "\n\n";
@@ -578,15 +591,18 @@ void cell_types(Writer& t)
     out << "\n";
 }
 
+//! A patch or faceZone table; checkMesh -parallel leaves out the surface topology column.
 void surface_table(const std::string& what, const std::vector<SurfaceTopology>& rows, Writer& t)
 {
     const bool all_geometry = t.settings.all_geometry;
+    const bool topology = !t.report.parallel;
     t.out << "    " << t.w(what, 20) << t.w("Faces", 9) << t.w("Points", 9)
-          << t.w("Surface topology", 34) << (all_geometry ? " Bounding box" : "") << "\n";
+          << (topology ? t.w("Surface topology", 34) : "") << (all_geometry ? " Bounding box" : "")
+          << "\n";
     for (const SurfaceTopology& s : rows)
     {
         t.out << "    " << t.w(s.name, 20) << t.w(std::to_string(s.n_faces), 9)
-              << t.w(std::to_string(s.n_points), 9) << t.w(s.type, 34);
+              << t.w(std::to_string(s.n_points), 9) << (topology ? t.w(s.type, 34) : "");
         if (all_geometry && s.n_points > 0)
             t.out << ' ' << t.v(s.bb_min) << " " << t.v(s.bb_max);
         t.out << "\n";
@@ -596,9 +612,13 @@ void surface_table(const std::string& what, const std::vector<SurfaceTopology>& 
 void topology_tables(Writer& t)
 {
     const QualityReport& r = t.report;
-    t.out << "\nChecking patch topology for multiply connected surfaces...\n";
+    // checkMesh -parallel checks the addressing only: a surface split over ranks has no
+    // topology to classify.
+    t.out << (r.parallel ? "\nChecking basic patch addressing...\n"
+                         : "\nChecking patch topology for multiply connected surfaces...\n");
     surface_table("Patch", r.patch_topology, t);
-    t.out << "\nChecking faceZone topology for multiply connected surfaces...\n";
+    t.out << (r.parallel ? "\nChecking basic faceZone addressing...\n"
+                         : "\nChecking faceZone topology for multiply connected surfaces...\n");
     if (r.face_zone_topology.empty())
         t.out << "    No faceZones found.\n";
     else

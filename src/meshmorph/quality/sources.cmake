@@ -27,6 +27,10 @@ set(MESHMORPH_QUALITY_SOURCES
     meshmorph/quality/face_weights.cpp
     meshmorph/quality/coupled_patches.cpp
     meshmorph/quality/coupled_points.cpp
+    meshmorph/quality/processor_faces.cpp
+    meshmorph/quality/processor_regions.cpp
+    meshmorph/quality/check_reduction.cpp
+    meshmorph/quality/parallel_report.cpp
     meshmorph/quality/mesh_edges.cpp
     meshmorph/quality/point_faces.cpp
     meshmorph/quality/point_nearness.cpp
@@ -43,7 +47,7 @@ set(MESHMORPH_QUALITY_SOURCES
 )
 meshmorph_add_component(quality
     SOURCES ${MESHMORPH_QUALITY_SOURCES}
-    DEPENDS meshmorph::core nlohmann_json::nlohmann_json)
+    DEPENDS meshmorph::core meshmorph::parallel nlohmann_json::nlohmann_json)
 if(MESHMORPH_QUALITY_SOURCES)
     # Bit-level agreement with OpenFOAM's checkMesh: never contract a*b+c into an FMA.
     target_compile_options(meshmorph_quality PRIVATE -ffp-contract=off)

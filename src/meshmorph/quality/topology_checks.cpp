@@ -231,7 +231,7 @@ CheckResult check_face_faces(const FaceFaceConnectivity& c)
     return r;
 }
 
-CheckResult check_internal_face_cells(const PolyMesh& mesh)
+CheckResult check_internal_face_cells(const PolyMesh& mesh, const ProcessorFaces* processors)
 {
     std::vector<Index> n_internal(static_cast<std::size_t>(mesh.n_cells), 0);
     for (Index f = 0; f < mesh.n_internal_faces(); ++f)
@@ -244,6 +244,10 @@ CheckResult check_internal_face_cells(const PolyMesh& mesh)
         if (is_coupled_patch(p))
             for (Index f = p.start_face; f < p.start_face + p.n_faces; ++f)
                 ++n_internal[mesh.owner[f]];
+    if (processors)
+        for (std::size_t b = 0; b < processors->on_processor_patch.size(); ++b)
+            if (processors->on_processor_patch[b])
+                ++n_internal[mesh.owner[mesh.n_internal_faces() + static_cast<Index>(b)]];
     std::vector<Index> one, two;
     for (Index cell = 0; cell < mesh.n_cells; ++cell)
     {

@@ -11,6 +11,7 @@
 #include "meshmorph/quality/cell_edge_usage.h"
 #include "meshmorph/quality/check_result.h"
 #include "meshmorph/quality/face_face_connectivity.h"
+#include "meshmorph/quality/processor_faces.h"
 
 namespace meshmorph
 {
@@ -50,8 +51,10 @@ CheckResult check_cells_zip_up(const CellEdgeUsage& usage);
 CheckResult check_face_faces(const FaceFaceConnectivity& connectivity);
 
 //! \brief -allTopology: cells with zero or one, and with two, internal or coupled faces (sets
-//! oneInternalFaceCells, twoInternalFacesCells). Never fails.
-CheckResult check_internal_face_cells(const PolyMesh& mesh);
+//! oneInternalFaceCells, twoInternalFacesCells); processor faces are coupled faces. Never
+//! fails.
+CheckResult check_internal_face_cells(const PolyMesh& mesh,
+                                      const ProcessorFaces* processors = nullptr);
 
 //! \brief The number of cell regions. Never fails. Statistic "regions"; with several, sets
 //! region0, region1, ... (announced by the report's own lines), and with all_topology (as
