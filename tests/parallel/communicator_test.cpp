@@ -64,6 +64,22 @@ TEST(Communicator, gather_broadcast_and_scatter_move_bytes_by_rank)
     EXPECT_EQ(comm().scatter_values(parts), std::vector<int>(std::size_t(r), r));
 }
 
+TEST(Communicator, exchange_swaps_bytes_with_each_listed_rank)
+{
+    // Every rank sends "r>k" to every rank k (itself included) and gets "k>r" back from each.
+    const int n = comm().size();
+    const int r = comm().rank();
+    std::vector<std::pair<int, std::string>> sends;
+    for (int k = 0; k < n; ++k)
+        sends.emplace_back(k, std::to_string(r) + ">" + std::to_string(k) +
+                                  std::string(std::size_t(k), 'x'));
+    const std::vector<std::string> received = comm().exchange(sends);
+    ASSERT_EQ(received.size(), std::size_t(n));
+    for (int k = 0; k < n; ++k)
+        EXPECT_EQ(received[std::size_t(k)],
+                  std::to_string(k) + ">" + std::to_string(r) + std::string(std::size_t(r), 'x'));
+}
+
 TEST(Collective, an_error_on_one_rank_is_thrown_on_every_rank)
 {
     const int last = comm().size() - 1;
