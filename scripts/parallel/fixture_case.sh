@@ -1,0 +1,48 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# The -parallel applications on the committed decomposed fixture tests/data/parallel/duct
+# (no OpenFOAM needed, only mpirun): on a copy of it,
+#   - mpirun -np 2 checkMeshQuality -parallel -allGeometry -allTopology prints the report
+#     checkMesh -parallel printed (checkMesh.parallel.report), line by line;
+#   - mpirun -np 2 morphMesh -parallel equals the serial morph of the undecomposed mesh
+#     (compare_decomposed.py: 1e-12 of the extent, shared points bit-identical).
+#
+#   fixture_case.sh -morphMesh FILE -checkMeshQuality FILE -out DIR
+#
+# Exit 0 when both hold, 77 when mpirun is missing (a skip), 1 otherwise.
+set -u
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+fixture=$(cd "$here/../../tests/data/parallel/duct" && pwd)
+morph="" check="" out=""
+while [ $# -gt 0 ]; do
+    case "$1" in
+        -morphMesh) morph=$2; shift 2 ;;
+        -checkMeshQuality) check=$2; shift 2 ;;
+        -out) out=$2; shift 2 ;;
+        -help|-h) sed -n '3,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        *) echo "fixture_case.sh: unknown option '$1' (try -help)" >&2; exit 2 ;;
+    esac
+done
+[ -n "$morph" ] && [ -n "$check" ] && [ -n "$out" ] ||
+    { echo "fixture_case.sh: -morphMesh, -checkMeshQuality and -out are required" >&2; exit 2; }
+command -v mpirun >/dev/null || { echo "skipped: mpirun (openmpi-bin) is not installed"; exit 77; }
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
+
+rm -rf "$out" && mkdir -p "$out" && cp -r "$fixture" "$out/serial" && cp -r "$fixture" "$out/parallel" || exit 1
+out=$(cd "$out" && pwd)
+mpirun -np 2 --oversubscribe "$check" -case "$out/parallel" -parallel -allGeometry -allTopology \
+    > "$out/log.checkMeshQuality" 2>&1 ||
+    { echo "checkMeshQuality -parallel failed (see $out/log.checkMeshQuality)"; exit 1; }
+sed -n '/^Mesh stats/,/^\(Mesh OK\.\|Failed [0-9]* mesh checks\.\)$/p' "$out/log.checkMeshQuality" \
+    > "$out/report"
+if ! diff "$fixture/checkMesh.parallel.report" "$out/report" > "$out/report.diff"; then
+    echo "checkMeshQuality -parallel's report differs from checkMesh -parallel's ($out/report.diff):"
+    head -20 "$out/report.diff"
+    exit 1
+fi
+echo "report: $(wc -l < "$out/report") lines equal to checkMesh -parallel's"
+"$morph" -case "$out/serial" > "$out/log.serial" 2>&1 ||
+    { echo "serial morphMesh failed (see $out/log.serial)"; exit 1; }
+mpirun -np 2 --oversubscribe "$morph" -case "$out/parallel" -parallel > "$out/log.parallel" 2>&1 ||
+    { echo "morphMesh -parallel failed (see $out/log.parallel)"; exit 1; }
+/usr/bin/python3 "$here/compare_decomposed.py" "$out/parallel" 1 2 "$out/serial/1/polyMesh/points"
