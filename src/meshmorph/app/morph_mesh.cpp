@@ -33,6 +33,7 @@
 #include "meshmorph/io/write_poly_mesh.h"
 #include "meshmorph/parallel/collective.h"
 #include "meshmorph/quality/cell_validity.h"
+#include "meshmorph/quality/parallel_report.h"
 #include "meshmorph/quality/quality_json.h"
 #if MESHMORPH_WITH_VTK
 #include "meshmorph/io/vtk_writer.h"
@@ -162,16 +163,31 @@ void set_global_patch_points(const PolyMesh& mesh, const morph::Decomposition& d
         patches[p].n_points = counts[p];
 }
 
-//! The two checks a morph is judged by, counted over every rank (the other fields stay 0):
-//! a cell lives on one rank only, so the sums are those of the whole mesh.
-QualityReport invalid_cells_report(const PolyMesh& mesh, const MeshGeometry& geometry,
-                                   const parallel::Communicator& comm)
+//! The check of a -parallel run (as checkMeshQuality -parallel's): every rank checks its
+//! part with the processor faces coupled; the master holds the report of the whole mesh.
+//! The two counts a morph is judged by are summed on every rank, so that all refuse alike.
+QualityReport distributed_check(const PolyMesh& mesh, const CompactList& cf,
+                                const MeshGeometry& geometry, const CheckMeshSettings& settings,
+                                const morph::Decomposition& d)
 {
-    const InvalidCells local = count_invalid_cells(mesh, geometry);
-    QualityReport r;
+    const parallel::Communicator& comm = *d.comm;
+    const ProcessorFaces processors = exchange_processor_faces(mesh, geometry, comm);
+    const QualityReport local = check_mesh(mesh, cf, geometry, settings, &processors);
+    QualityReport r = reduce_report(local, mesh, settings, processors,
+                                    global_point_count(d.global_point, comm));
     r.negative_volume_cells = Index(comm.sum(std::int64_t(local.negative_volume_cells)));
-    r.incorrectly_oriented_face_pyramids = Index(comm.sum(std::int64_t(local.wrong_pyramids)));
+    r.incorrectly_oriented_face_pyramids =
+        Index(comm.sum(std::int64_t(local.incorrectly_oriented_face_pyramids)));
     return r;
+}
+
+//! check_mesh, or distributed_check in a -parallel run.
+QualityReport check_morph_mesh(const PolyMesh& mesh, const CompactList& cf,
+                               const MeshGeometry& geometry, const CheckMeshSettings& settings,
+                               const morph::Decomposition& d)
+{
+    return d.is_distributed() ? distributed_check(mesh, cf, geometry, settings, d)
+                              : check_mesh(mesh, cf, geometry, settings);
 }
 
 double max_norm(const Points& d)
@@ -433,9 +449,8 @@ MorphResult morph_case(const MorphOptions& options)
     check_settings.scaled_jacobian = !options.json.empty() || options.vtk;
     // The topology does not change: one cell->faces addressing serves both checks.
     const CompactList cf = cell_faces(mesh);
-    result.before = options.parallel
-                        ? invalid_cells_report(mesh, compute_geometry(mesh, cf), comm)
-                        : check_mesh(mesh, cf, compute_geometry(mesh, cf), check_settings);
+    result.before =
+        check_morph_mesh(mesh, cf, compute_geometry(mesh, cf), check_settings, decomposition);
     result.timings.check = stage.seconds();
 
     // Fit and evaluate, in steps.
@@ -477,18 +492,9 @@ MorphResult morph_case(const MorphOptions& options)
                                : "a step creates invalid cells (try more steps, or steps auto)");
     PolyMesh moved = mesh;
     moved.points = std::move(stepped.points); // exactly the points stepped.geometry is of
-    result.after = options.parallel ? invalid_cells_report(moved, stepped.geometry, comm)
-                                    : check_mesh(moved, cf, stepped.geometry, check_settings);
+    result.after = check_morph_mesh(moved, cf, stepped.geometry, check_settings, decomposition);
     result.timings.check += stage.seconds();
-    if (options.parallel)
-        log::info() << "Invalid cells before and after the morph: "
-                    << result.before.negative_volume_cells << " -> "
-                    << result.after.negative_volume_cells << " negative-volume cells, "
-                    << result.before.incorrectly_oriented_face_pyramids << " -> "
-                    << result.after.incorrectly_oriented_face_pyramids
-                    << " wrongly oriented pyramids (the other checks need the reconstructed "
-                       "mesh: reconstructPar, then checkMeshQuality)";
-    else
+    if (comm.master()) // in a -parallel run, the other ranks hold only their part's report
     {
         std::ostringstream summary;
         print_quality_summary(summary, quality_json(result.before), quality_json(result.after));
@@ -579,18 +585,10 @@ std::string morph_json(const MorphResult& result, int exit_status)
     j["timings"] = {{"read", result.timings.read},         {"fit", result.timings.fit},
                     {"evaluate", result.timings.evaluate}, {"check", result.timings.check},
                     {"untangle", result.timings.untangle}, {"write", result.timings.write}};
-    if (result.parallel) // only the invalid cells are counted in a -parallel run
-    {
-        for (const auto& [key, q] : {std::pair{"before", &result.before}, {"after", &result.after}})
-            j[key] = {{"negativeVolumeCells", q->negative_volume_cells},
-                      {"incorrectlyOrientedFacePyramids", q->incorrectly_oriented_face_pyramids}};
+    j["before"] = quality_json(result.before);
+    j["after"] = quality_json(result.after);
+    if (result.parallel)
         j["parallel"] = parallel::Communicator::world().size();
-    }
-    else
-    {
-        j["before"] = quality_json(result.before);
-        j["after"] = quality_json(result.after);
-    }
     j["instance"] = result.instance;
     j["region"] = result.region;
     j["outputInstance"] = result.output_instance;
