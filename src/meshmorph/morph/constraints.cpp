@@ -2,6 +2,8 @@
 // Boundary claims and handle claims, each resolved, then merged into one constraint set.
 #include "meshmorph/morph/constraints.h"
 
+#include "meshmorph/morph/cyclic_coupling.h"
+
 #include "meshmorph/morph/constraint_steps.h"
 #include "meshmorph/morph/distributed_constraints.h"
 #include "meshmorph/morph/handle_selection.h"
@@ -29,6 +31,9 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
     const std::vector<Vector3> values = detail::resolve_and_merge(
         mesh, setup, claims, detail::shortest_boundary_edges(mesh), handle_claims, agree_tol, out);
     detail::fill_displacements(values, out);
+    couple_cyclic_prescriptions(mesh, cyclic_point_pairs(mesh), agree_tol, out);
+    out.n_prescribed_points = static_cast<Index>(out.points.size());
+    out.n_slip_points = static_cast<Index>(out.slip_points.size());
     return out;
 }
 

@@ -17,6 +17,7 @@
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/core/types.h"
 #include "meshmorph/morph/claims.h"
+#include "meshmorph/morph/cyclic_point_pair.h"
 #include "meshmorph/morph/empty_planes.h"
 #include "meshmorph/morph/morph_setup.h"
 #include "meshmorph/morph/patch_assignment.h"
@@ -39,6 +40,9 @@ struct Constraints
     //! normals of the slip/wedge planes they lie on), decided after a first fit.
     std::vector<Index> slip_points;
     std::vector<Eigen::Matrix3d> slip_projectors;
+    //! Point pairs of cyclic patches that no prescription moves: their fitted displacements
+    //! are averaged so that the sides stay a cyclic pair (cyclic_coupling.h).
+    std::vector<CyclicPointPair> cyclic_pairs;
     //! 2D cases: the empty planes.
     std::optional<EmptyPlanes> empty_planes;
 

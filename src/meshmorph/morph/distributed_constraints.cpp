@@ -6,6 +6,7 @@
 #include <array>
 
 #include "meshmorph/morph/constraint_steps.h"
+#include "meshmorph/morph/cyclic_coupling.h"
 #include "meshmorph/morph/handle_selection.h"
 #include "meshmorph/parallel/collective.h"
 
@@ -249,10 +250,17 @@ Constraints build_distributed_constraints(const PolyMesh& mesh, const MorphSetup
                         });
     const Index prescribed = out.n_prescribed_points, slip = out.n_slip_points;
     set_local(comm.scatter_values(per_rank), out);
+    // Each rank couples the cyclics it holds (whole: processorCyclic is refused). The totals
+    // grow by the points coupled (a point shared by ranks counts once per rank here).
+    const auto before = std::array{out.points.size(), out.slip_points.size()};
+    parallel::collective(
+        comm, [&] { couple_cyclic_prescriptions(mesh, cyclic_point_pairs(mesh), agree_tol, out); });
+    const Index added = Index(comm.sum(std::int64_t(out.points.size() - before[0])));
+    const Index unslipped = Index(comm.sum(std::int64_t(before[1] - out.slip_points.size())));
     if (comm.master()) // set_local counted this rank's points
     {
-        out.n_prescribed_points = prescribed;
-        out.n_slip_points = slip;
+        out.n_prescribed_points = prescribed + added;
+        out.n_slip_points = slip - unslipped;
     }
     return out;
 }

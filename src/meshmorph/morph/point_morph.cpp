@@ -2,6 +2,8 @@
 // One fit of a space deformation to the constraints and its evaluation at every mesh point.
 #include "meshmorph/morph/point_morph.h"
 
+#include "meshmorph/morph/cyclic_coupling.h"
+
 #include <algorithm>
 #include <limits>
 #include <numeric>
@@ -398,6 +400,7 @@ PointMorph morph_points_distributed(const PolyMesh& mesh, const Constraints& c,
     const Stopwatch eval_clock;
     evaluate_with_progress(*field, x_eval, result.displacement, "evaluate");
     remove_empty_normal(result.displacement, c);
+    coupled_mean(c.cyclic_pairs, result.displacement);
     synchronise_shared_points(mesh, d, result.displacement);
     result.evaluate_seconds = eval_clock.seconds();
 
@@ -432,6 +435,7 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
     const Stopwatch eval_clock;
     evaluate_with_progress(deformation, x_eval, result.displacement, "evaluate");
     remove_empty_normal(result.displacement, c);
+    coupled_mean(c.cyclic_pairs, result.displacement);
     result.evaluate_seconds = eval_clock.seconds();
 
     // The fitted field's residual at the constrained points, then the error of the field

@@ -17,6 +17,19 @@ namespace meshmorph::parallel
 namespace
 {
 
+//! One rank: the bytes sent to itself come back; any other rank is an error.
+std::vector<std::string> exchange_alone(const std::vector<std::pair<int, std::string>>& sends)
+{
+    std::vector<std::string> received;
+    for (const auto& [peer, bytes] : sends)
+    {
+        if (peer != 0)
+            throw InvalidInput("parallel: no rank " + std::to_string(peer) + " in a serial run");
+        received.push_back(bytes);
+    }
+    return received;
+}
+
 #if MESHMORPH_WITH_MPI
 //! MPI counts and displacements are int: a message above 2 GiB is refused, not truncated.
 int checked_count(std::size_t bytes)
@@ -142,6 +155,8 @@ std::string Communicator::scatter(const std::vector<std::string>& per_rank) cons
 std::vector<std::string>
 Communicator::exchange(const std::vector<std::pair<int, std::string>>& sends) const
 {
+    if (!parallel_)
+        return exchange_alone(sends);
     const std::size_t n = sends.size();
     // Sizes first (so that receives can be sized), then the bytes; non-blocking both ways so
     // the order in which ranks list their neighbours cannot deadlock.
@@ -227,14 +242,7 @@ std::string Communicator::scatter(const std::vector<std::string>& per_rank) cons
 std::vector<std::string>
 Communicator::exchange(const std::vector<std::pair<int, std::string>>& sends) const
 {
-    std::vector<std::string> received;
-    for (const auto& [peer, bytes] : sends)
-    {
-        if (peer != 0)
-            throw InvalidInput("parallel: no rank " + std::to_string(peer) + " in a serial run");
-        received.push_back(bytes);
-    }
-    return received;
+    return exchange_alone(sends);
 }
 
 ParallelSession::ParallelSession()
