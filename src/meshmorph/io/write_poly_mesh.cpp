@@ -3,6 +3,7 @@
 #include "meshmorph/io/write_poly_mesh.h"
 
 #include <system_error>
+#include <vector>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
@@ -157,13 +158,31 @@ fs::path write_points(const Points& points, const FoamFileInfo& like, const fs::
                       const PolyMeshWriteOptions& options)
 {
     const fs::path dir = poly_mesh_dir(case_dir, instance, region);
-    create_dirs(dir);
-    if (foam_file_exists(dir / "tetBasePtIs"))
-        log::warning() << (dir / "tetBasePtIs").string()
-                       << " depends on the point positions and is now stale; remove it if "
-                          "OpenFOAM reports tet decomposition problems";
-    return write_points_file(points, like, dir / "points", poly_mesh_location(instance, region),
-                             options);
+    // A failed write (full disk, read-only case) leaves the case as it was: no empty
+    // <time>/polyMesh directories that the next run or OpenFOAM would take for a time.
+    std::vector<fs::path> created;
+    for (fs::path d = dir; d != case_dir && d.has_relative_path() && !fs::exists(d);
+         d = d.parent_path())
+        created.push_back(d);
+    try
+    {
+        create_dirs(dir);
+        if (foam_file_exists(dir / "tetBasePtIs"))
+            log::warning() << (dir / "tetBasePtIs").string()
+                           << " depends on the point positions and is now stale; remove it if "
+                              "OpenFOAM reports tet decomposition problems";
+        return write_points_file(points, like, dir / "points",
+                                 poly_mesh_location(instance, region), options);
+    }
+    catch (const Error&)
+    {
+        for (const fs::path& d : created) // deepest first; only empty ones go
+        {
+            std::error_code ignored;
+            fs::remove(d, ignored);
+        }
+        throw;
+    }
 }
 
 fs::path write_poly_mesh_dir(const PolyMesh& mesh, const FoamPolyMesh& like, const fs::path& dir,
