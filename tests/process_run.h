@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -102,5 +103,77 @@ inline ProcessRun run_process(const std::vector<std::string>& argv,
     run.status = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -WTERMSIG(wstatus);
     return run;
 }
+
+//! A child process whose stdout is read as it runs, to act at a given moment (SIGKILL).
+class SpawnedProcess
+{
+public:
+    //! Starts `argv`; stderr goes to /dev/null.
+    explicit SpawnedProcess(const std::vector<std::string>& argv)
+    {
+        int out_pipe[2];
+        if (::pipe(out_pipe) != 0)
+            std::abort();
+        std::vector<char*> args;
+        for (const std::string& a : argv)
+            args.push_back(const_cast<char*>(a.c_str()));
+        args.push_back(nullptr);
+        pid_ = ::fork();
+        if (pid_ == 0)
+        {
+            ::dup2(out_pipe[1], 1);
+            ::close(out_pipe[0]);
+            ::close(out_pipe[1]);
+            std::FILE* null = std::freopen("/dev/null", "w", stderr);
+            (void)null;
+            ::execv(args[0], args.data());
+            ::_exit(127);
+        }
+        ::close(out_pipe[1]);
+        out_ = out_pipe[0];
+    }
+    SpawnedProcess(const SpawnedProcess&) = delete;
+    SpawnedProcess& operator=(const SpawnedProcess&) = delete;
+    ~SpawnedProcess()
+    {
+        if (pid_ > 0)
+        {
+            ::kill(pid_, SIGKILL);
+            wait();
+        }
+    }
+
+    //! Reads stdout until it holds `text` (true) or ends (false).
+    bool wait_for_output(const std::string& text)
+    {
+        while (output_.find(text) == std::string::npos)
+            if (!detail::drain(out_, output_))
+                return false;
+        return true;
+    }
+
+    void kill(int signal) { ::kill(pid_, signal); }
+
+    //! Waits for the end; exit status, or -N when killed by signal N.
+    int wait()
+    {
+        std::string rest;
+        while (detail::drain(out_, rest))
+            ;
+        output_ += rest;
+        ::close(out_);
+        int wstatus = 0;
+        ::waitpid(pid_, &wstatus, 0);
+        pid_ = -1;
+        return WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -WTERMSIG(wstatus);
+    }
+
+    const std::string& output() const { return output_; }
+
+private:
+    pid_t pid_ = -1;
+    int out_ = -1;
+    std::string output_;
+};
 
 } // namespace meshmorph::test

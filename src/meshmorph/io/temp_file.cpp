@@ -84,8 +84,8 @@ int remove_stale_temps(const fs::path& target)
         // kill(pid, 0) fails with ESRCH only when no such process exists.
         if (pid > 0 && ::kill(pid, 0) != 0 && errno == ESRCH)
         {
-            std::error_code ignored;
-            removed += fs::remove(it->path(), ignored) ? 1 : 0;
+            std::error_code ignored; // a file, or the staging directory of a new time
+            removed += fs::remove_all(it->path(), ignored) > 0 ? 1 : 0;
         }
     }
     return removed;
