@@ -32,6 +32,7 @@ struct ProcessOptions
 {
     std::size_t address_space_bytes = 0; //!< RLIMIT_AS of the child; 0: unchanged
     double timeout_seconds = 120;        //!< SIGKILL after this long
+    std::vector<std::string> environment; //!< "NAME=value" set in the child
 };
 
 namespace detail
@@ -65,6 +66,8 @@ inline ProcessRun run_process(const std::vector<std::string>& argv,
         ::dup2(err_pipe[1], 2);
         for (int fd : {out_pipe[0], out_pipe[1], err_pipe[0], err_pipe[1]})
             ::close(fd);
+        for (const std::string& e : options.environment)
+            ::putenv(const_cast<char*>(e.c_str()));
         if (options.address_space_bytes > 0)
         {
             const rlimit limit{options.address_space_bytes, options.address_space_bytes};

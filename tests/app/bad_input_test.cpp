@@ -9,6 +9,8 @@
 #include <sys/mount.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <random>
 
 #include "fault_case.h"
@@ -340,4 +342,85 @@ TEST(BadInput, zero_area_faces_and_duplicate_points_are_failed_checks)
     test::expect_rejected(App::morph_mesh, dir, app::exit_input_error,
                           {(dir / "constant/polyMesh/points").string() + ": points ",
                            "are duplicates at"});
+}
+
+namespace
+{
+
+//! A tmpfs at `dir` for one test (needs root or CAP_SYS_ADMIN); unmounted at the end.
+class TmpfsMount
+{
+public:
+    TmpfsMount(const fs::path& dir, const std::string& options) : dir_(dir)
+    {
+        fs::create_directories(dir);
+        mounted_ = ::mount("tmpfs", dir.c_str(), "tmpfs", 0, options.c_str()) == 0;
+        why_ = mounted_ ? "" : std::strerror(errno);
+    }
+    TmpfsMount(const TmpfsMount&) = delete;
+    TmpfsMount& operator=(const TmpfsMount&) = delete;
+    ~TmpfsMount()
+    {
+        if (mounted_)
+            ::umount2(dir_.c_str(), MNT_DETACH);
+    }
+    bool mounted() const { return mounted_; }
+    const std::string& why_not() const { return why_; }
+    bool remount_read_only() const
+    {
+        return ::mount(nullptr, dir_.c_str(), nullptr, MS_REMOUNT | MS_RDONLY, nullptr) == 0;
+    }
+
+private:
+    fs::path dir_;
+    bool mounted_ = false;
+    std::string why_;
+};
+
+} // namespace
+
+TEST(BadInput, a_read_only_case_is_checked_but_not_written)
+{
+    const fs::path mount_point = test::scratch_dir("faults/read_only_mount");
+    const TmpfsMount tmpfs(mount_point, "size=4m");
+    if (!tmpfs.mounted())
+        GTEST_SKIP() << "cannot mount a tmpfs to make a read-only file system (" << tmpfs.why_not()
+                     << "; needs root): as root, file permissions would not stop the writes";
+    const fs::path dir = mount_point / "case";
+    fs::copy(test::make_fault_case("read_only_source"), dir, fs::copy_options::recursive);
+    ASSERT_TRUE(tmpfs.remount_read_only()) << std::strerror(errno);
+    test::expect_rejected(App::morph_mesh, dir, app::exit_input_error,
+                          {(dir / "1/polyMesh").string(), "Read-only file system"});
+    test::expect_rejected(App::morph_mesh, dir, app::exit_input_error,
+                          {(dir / "constant/polyMesh/points.orig").string(),
+                           "Read-only file system"},
+                          {"-overwrite"});
+    // checkMeshQuality only reads, unless asked to write into the case.
+    const test::ProcessRun check = test::run_app(App::check_mesh_quality, dir);
+    EXPECT_EQ(check.status, app::exit_ok) << check.err;
+    test::expect_rejected(App::check_mesh_quality, dir, app::exit_input_error,
+                          {(dir / "VTK").string(), "Read-only file system"}, {"-vtk"});
+}
+
+TEST(BadInput, a_full_disk_leaves_the_case_as_it_was)
+{
+    const fs::path mount_point = test::scratch_dir("faults/full_disk_mount");
+    const TmpfsMount tmpfs(mount_point, "size=512k");
+    if (!tmpfs.mounted())
+        GTEST_SKIP() << "cannot mount a small tmpfs to fill (" << tmpfs.why_not()
+                     << "; needs root)";
+    const fs::path dir = mount_point / "case";
+    fs::copy(test::make_fault_case("full_disk_source"), dir, fs::copy_options::recursive);
+    { // fill what is left
+        std::ofstream filler(mount_point / "filler", std::ios::binary);
+        const std::string block(4096, 'x');
+        while (filler.write(block.data(), block.size()))
+            filler.flush();
+    }
+    test::expect_rejected(App::morph_mesh, dir, app::exit_input_error,
+                          {(dir / "1/polyMesh/points").string(), "No space left on device"});
+    test::expect_rejected(App::morph_mesh, dir, app::exit_input_error,
+                          {(dir / "constant/polyMesh/points.orig").string(),
+                           "No space left on device"},
+                          {"-overwrite"});
 }

@@ -181,7 +181,14 @@ fs::path write_points(const Points& points, const FoamFileInfo& like, const fs::
     const fs::path staged_dir = staging / fs::relative(dir, top);
     try
     {
-        create_dirs(staged_dir);
+        try
+        {
+            create_dirs(staged_dir);
+        }
+        catch (const IoError& e)
+        {
+            throw IoError("Cannot write " + (dir / "points").string() + ": " + e.what());
+        }
         const fs::path written =
             write_points_file(points, like, staged_dir / "points", location, options);
         std::error_code ec;
