@@ -22,16 +22,16 @@ namespace meshmorph::test
 
 struct ProcessRun
 {
-    int status = -1;  //!< exit status; -N when killed by signal N
-    std::string out;  //!< stdout
-    std::string err;  //!< stderr
+    int status = -1; //!< exit status; -N when killed by signal N
+    std::string out; //!< stdout
+    std::string err; //!< stderr
     bool timed_out = false;
 };
 
 struct ProcessOptions
 {
-    std::size_t address_space_bytes = 0; //!< RLIMIT_AS of the child; 0: unchanged
-    double timeout_seconds = 120;        //!< SIGKILL after this long
+    std::size_t address_space_bytes = 0;  //!< RLIMIT_AS of the child; 0: unchanged
+    double timeout_seconds = 120;         //!< SIGKILL after this long
     std::vector<std::string> environment; //!< "NAME=value" set in the child
 };
 
@@ -80,8 +80,8 @@ inline ProcessRun run_process(const std::vector<std::string>& argv,
     ::close(err_pipe[1]);
     ProcessRun run;
     pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
-    const auto deadline = std::chrono::steady_clock::now() +
-                          std::chrono::duration<double>(options.timeout_seconds);
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(options.timeout_seconds);
     int open = 2;
     while (open > 0)
     {

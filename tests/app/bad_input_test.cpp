@@ -169,17 +169,17 @@ TEST(BadInput, nan_and_inf_coordinates_are_named_with_their_line)
         const fs::path dir = test::make_fault_case("non_finite_" + bad);
         const int line = edit_mesh_file(dir, "points", "(0.2 0 0)", "(0.2 " + bad + " 0)");
         for (App app : both_apps)
-            test::expect_rejected(app, dir, app::exit_input_error,
-                                  {"constant/polyMesh/points:" + std::to_string(line) + ":",
-                                   "non-finite"});
+            test::expect_rejected(
+                app, dir, app::exit_input_error,
+                {"constant/polyMesh/points:" + std::to_string(line) + ":", "non-finite"});
     }
 }
 
 TEST(BadInput, boundary_patches_that_overlap_or_leave_faces_out_are_named)
 {
     const fs::path overlap = test::make_fault_case("boundary_overlap");
-    const int line = edit_mesh_file(overlap, "boundary", "startFace       24;",
-                                    "startFace       22;");
+    const int line =
+        edit_mesh_file(overlap, "boundary", "startFace       24;", "startFace       22;");
     (void)line;
     for (App app : both_apps)
         test::expect_rejected(app, overlap, app::exit_input_error,
@@ -202,7 +202,8 @@ TEST(BadInput, morph_dict_errors_name_file_line_and_entry)
     };
     const std::vector<Case> cases{
         {"unknown_key", "method rbf;\nstepz 2;\nboundary {}\n", {"morphDict:3:", "stepz"}},
-        {"unknown_type", "boundary\n{\n    outlet { type glide; }\n}\n",
+        {"unknown_type",
+         "boundary\n{\n    outlet { type glide; }\n}\n",
          {"morphDict:4:", "glide", "outlet"}},
         {"wrong_value_type", "steps many;\nboundary {}\n", {"morphDict:2:", "steps"}},
         {"unknown_method", "method spline;\n", {"morphDict:2:", "spline"}},
@@ -230,14 +231,12 @@ TEST(BadInput, conflicting_constraints_with_rule_error_name_the_patches)
 
 TEST(BadInput, a_target_surface_that_is_missing_or_empty_is_named)
 {
-    const std::string dict =
-        "conflicts last;\nboundary\n{\n    outlet { type surface; file "
-        "\"constant/triSurface/target.stl\"; }\n}\n";
+    const std::string dict = "conflicts last;\nboundary\n{\n    outlet { type surface; file "
+                             "\"constant/triSurface/target.stl\"; }\n}\n";
     const fs::path missing = test::make_fault_case("surface_missing", "ascii", dict);
     test::expect_rejected(App::morph_mesh, missing, app::exit_input_error,
                           {"constant/triSurface/target.stl", "outlet"});
-    for (const auto& [name, text] :
-         std::vector<std::pair<std::string, std::string>>{
+    for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
              {"empty_file", ""}, {"no_facets", "solid target\nendsolid target\n"}})
     {
         const fs::path dir = test::make_fault_case("surface_" + name, "ascii", dict);
@@ -251,10 +250,10 @@ TEST(BadInput, a_target_surface_far_from_its_patch_is_a_warning_naming_it)
 {
     // The outlet (x = 0.2, 0.1 across) projected onto the plane x = 50. A large motion may
     // be meant, so the morph goes on (and writes), but a warning names the entry and file.
-    const fs::path dir = test::make_fault_case(
-        "surface_far", "ascii",
-        "conflicts last;\nboundary\n{\n    outlet { type surface; file "
-        "\"constant/triSurface/far.stl\"; }\n}\n");
+    const fs::path dir =
+        test::make_fault_case("surface_far", "ascii",
+                              "conflicts last;\nboundary\n{\n    outlet { type surface; file "
+                              "\"constant/triSurface/far.stl\"; }\n}\n");
     test::write_file(dir / "constant/triSurface/far.stl",
                      "solid far\n facet normal 1 0 0\n  outer loop\n   vertex 50 -9 -9\n"
                      "   vertex 50 9 -9\n   vertex 50 0 9\n  endloop\n endfacet\nendsolid far\n");
@@ -271,9 +270,9 @@ TEST(BadInput, a_target_surface_far_from_its_patch_is_a_warning_naming_it)
 
 TEST(BadInput, a_lattice_below_4_per_axis_is_named)
 {
-    const fs::path ffd = test::make_fault_case(
-        "lattice_ffd", "ascii",
-        "method ffd;\nffd\n{\n    lattice (3 4 4);\n    displacements ( ((1 1 1) (0 0 0.01)) );\n}\n");
+    const fs::path ffd = test::make_fault_case("lattice_ffd", "ascii",
+                                               "method ffd;\nffd\n{\n    lattice (3 4 4);\n    "
+                                               "displacements ( ((1 1 1) (0 0 0.01)) );\n}\n");
     test::expect_rejected(App::morph_mesh, ffd, app::exit_input_error,
                           {"morphDict:5:", "lattice", "at least 4"});
     const fs::path dmffd =
@@ -286,9 +285,9 @@ TEST(BadInput, a_lattice_below_4_per_axis_is_named)
 TEST(BadInput, a_deformation_that_inverts_cells_is_refused)
 {
     // The outlet (x = 0.2) pushed past the inlet (x = 0).
-    const fs::path dir = test::make_fault_case(
-        "inverts", "ascii",
-        "conflicts last;\nsteps 1;\nboundary\n{\n    outlet { type translate; vector (-0.5 0 0); }\n}\n");
+    const fs::path dir = test::make_fault_case("inverts", "ascii",
+                                               "conflicts last;\nsteps 1;\nboundary\n{\n    outlet "
+                                               "{ type translate; vector (-0.5 0 0); }\n}\n");
     test::expect_rejected(App::morph_mesh, dir, app::exit_refused, {"negative-volume", "-force"});
 }
 
@@ -333,15 +332,14 @@ TEST(BadInput, zero_area_faces_and_duplicate_points_are_failed_checks)
         test::run_app(App::check_mesh_quality, dir, {"-allGeometry", "-allTopology"});
     EXPECT_EQ(r.status, app::exit_checks_failed) << r.out << r.err;
     EXPECT_NE(r.out.find("***Zero or negative face area detected"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("***Zero or negative cell volume detected"), std::string::npos)
-        << r.out;
+    EXPECT_NE(r.out.find("***Zero or negative cell volume detected"), std::string::npos) << r.out;
     EXPECT_EQ(test::tree_diff(before, test::snapshot_tree(dir)), "");
 
     // morphMesh: the lifted top and the fixed middle share positions, which no deformation
     // can honour; the error names the points file and the duplicate points' labels.
-    test::expect_rejected(App::morph_mesh, dir, app::exit_input_error,
-                          {(dir / "constant/polyMesh/points").string() + ": points ",
-                           "are duplicates at"});
+    test::expect_rejected(
+        App::morph_mesh, dir, app::exit_input_error,
+        {(dir / "constant/polyMesh/points").string() + ": points ", "are duplicates at"});
 }
 
 namespace
@@ -391,10 +389,10 @@ TEST(BadInput, a_read_only_case_is_checked_but_not_written)
     ASSERT_TRUE(tmpfs.remount_read_only()) << std::strerror(errno);
     test::expect_rejected(App::morph_mesh, dir, app::exit_input_error,
                           {(dir / "1/polyMesh").string(), "Read-only file system"});
-    test::expect_rejected(App::morph_mesh, dir, app::exit_input_error,
-                          {(dir / "constant/polyMesh/points.orig").string(),
-                           "Read-only file system"},
-                          {"-overwrite"});
+    test::expect_rejected(
+        App::morph_mesh, dir, app::exit_input_error,
+        {(dir / "constant/polyMesh/points.orig").string(), "Read-only file system"},
+        {"-overwrite"});
     // checkMeshQuality only reads, unless asked to write into the case.
     const test::ProcessRun check = test::run_app(App::check_mesh_quality, dir);
     EXPECT_EQ(check.status, app::exit_ok) << check.err;
@@ -419,8 +417,8 @@ TEST(BadInput, a_full_disk_leaves_the_case_as_it_was)
     }
     test::expect_rejected(App::morph_mesh, dir, app::exit_input_error,
                           {(dir / "1/polyMesh/points").string(), "No space left on device"});
-    test::expect_rejected(App::morph_mesh, dir, app::exit_input_error,
-                          {(dir / "constant/polyMesh/points.orig").string(),
-                           "No space left on device"},
-                          {"-overwrite"});
+    test::expect_rejected(
+        App::morph_mesh, dir, app::exit_input_error,
+        {(dir / "constant/polyMesh/points.orig").string(), "No space left on device"},
+        {"-overwrite"});
 }

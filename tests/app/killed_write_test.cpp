@@ -70,7 +70,7 @@ std::vector<std::string> temporaries(const fs::path& dir)
 
 struct Reference
 {
-    std::string bytes;     //!< the complete new points file
+    std::string bytes;    //!< the complete new points file
     double write_seconds; //!< how long the write stage took
 };
 
@@ -92,8 +92,7 @@ struct Tally
 //! One kill at a random moment of the write stage (uniform over 1.5 times its duration
 //! after the marker line); checks the destination; returns what it found.
 void kill_once(const fs::path& dir, bool overwrite, const fs::path& destination,
-               const std::string& old_bytes, const Reference& ref, std::mt19937& rng,
-               Tally& tally)
+               const std::string& old_bytes, const Reference& ref, std::mt19937& rng, Tally& tally)
 {
     std::uniform_real_distribution<double> delay(0.0, 1.5 * ref.write_seconds + 0.002);
     test::SpawnedProcess p(morph_argv(dir, overwrite));

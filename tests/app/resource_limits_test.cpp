@@ -54,13 +54,13 @@ TEST(ResourceLimits, a_points_file_declaring_a_trillion_points_fails_before_allo
 TEST(ResourceLimits, an_ffd_lattice_of_ten_thousand_per_axis_is_named)
 {
     // 10^12 control points: more than a label counts (and than any machine holds).
-    const fs::path dir = test::make_fault_case(
-        "huge_ffd", "ascii",
-        "method ffd;\nffd\n{\n    lattice (10000 10000 10000);\n"
-        "    displacements ( ((1 1 1) (0 0 0.01)) );\n}\n");
-    expect_memory_error(App::morph_mesh, dir, 0,
-                        {(dir / "system/morphDict").string() + ":5:", "lattice",
-                         "1000000000000 control points"});
+    const fs::path dir =
+        test::make_fault_case("huge_ffd", "ascii",
+                              "method ffd;\nffd\n{\n    lattice (10000 10000 10000);\n"
+                              "    displacements ( ((1 1 1) (0 0 0.01)) );\n}\n");
+    expect_memory_error(
+        App::morph_mesh, dir, 0,
+        {(dir / "system/morphDict").string() + ":5:", "lattice", "1000000000000 control points"});
     // 1.7 10^9: countable, but 83 GB; refused under a 2 GB address space.
     test::write_morph_dict(dir, "method ffd;\nffd\n{\n    lattice (1200 1200 1200);\n"
                                 "    displacements ( ((1 1 1) (0 0 0.01)) );\n}\n");
@@ -73,13 +73,13 @@ TEST(ResourceLimits, a_dmffd_lattice_too_large_for_the_address_space_is_named)
 {
     // 200^3 control points fitted to 34 constraints: a 34 x 8e6 basis, about 4 GB with its
     // SVD factors, refused under a 1 GB address space before anything is allocated.
-    const fs::path dir = test::make_fault_case(
-        "huge_dmffd", "ascii",
-        std::string(test::base_morph_dict) + "dmffd { lattice (200 200 200); }\n");
-    expect_memory_error(App::morph_mesh, dir, gigabyte,
-                        {(dir / "system/morphDict").string() + ":8:", "dmffd.lattice",
-                         "needs about", "ulimit -v"},
-                        {"-method", "dmffd"});
+    const fs::path dir = test::make_fault_case("huge_dmffd", "ascii",
+                                               std::string(test::base_morph_dict) +
+                                                   "dmffd { lattice (200 200 200); }\n");
+    expect_memory_error(
+        App::morph_mesh, dir, gigabyte,
+        {(dir / "system/morphDict").string() + ":8:", "dmffd.lattice", "needs about", "ulimit -v"},
+        {"-method", "dmffd"});
 }
 
 TEST(ResourceLimits, an_rbf_with_more_centres_than_memory_allows_is_named)
@@ -119,8 +119,7 @@ TEST(ResourceLimits, running_out_of_memory_anyway_is_reported_not_an_internal_er
         bool out_of_memory = false;
         for (std::size_t mb = 160; mb >= 30; mb -= 10)
         {
-            SCOPED_TRACE(std::string(test::app_name(app)) + " under " + std::to_string(mb) +
-                         " MB");
+            SCOPED_TRACE(std::string(test::app_name(app)) + " under " + std::to_string(mb) + " MB");
             test::ProcessOptions options;
             options.address_space_bytes = mb << 20;
             options.timeout_seconds = 60;

@@ -59,9 +59,9 @@ struct ControlDisplacement
 //! Where a dictionary entry that sets the memory of a fit was given, for messages.
 struct SizeEntry
 {
-    std::string path;  //!< the dictionary file ("" when the entry is absent: a default)
+    std::string path; //!< the dictionary file ("" when the entry is absent: a default)
     std::size_t line = 0;
-    std::string name;  //!< dotted keyword, e.g. "dmffd.lattice"
+    std::string name; //!< dotted keyword, e.g. "dmffd.lattice"
 };
 
 //! Everything the factory needs.
@@ -78,7 +78,7 @@ struct DeformationSettings
     DmffdSettings dmffd;
     FfdSettings ffd;
     std::vector<ControlDisplacement> ffd_displacements;
-    SizeEntry dmffd_lattice{"", 0, "dmffd.lattice"}; //!< sets the DM-FFD basis size
+    SizeEntry dmffd_lattice{"", 0, "dmffd.lattice"};          //!< sets the DM-FFD basis size
     SizeEntry greedy_centres{"", 0, "rbf.greedy.maxCentres"}; //!< sets the greedy RBF size
 };
 

@@ -45,8 +45,8 @@ SizeSource size_source(const DeformationSettings& s, Index n_constraints)
     switch (s.method)
     {
     case DeformationMethod::dmffd:
-        return {&s.dmffd_lattice, "a lattice of " + format_count(lattice_count(
-                                                        s.dmffd.lattice.control_points)) +
+        return {&s.dmffd_lattice, "a lattice of " +
+                                      format_count(lattice_count(s.dmffd.lattice.control_points)) +
                                       " control points fitted to " + m};
     case DeformationMethod::rbf:
         if (s.greedy || n_constraints > s.direct_limit)
@@ -78,8 +78,7 @@ double fit_bytes(const DeformationSettings& s, Index n_constraints)
     {
         if (!s.greedy && n_constraints <= s.direct_limit)
             return 2 * word * m * m; // the system and its factor
-        const double centres =
-            std::min(m, double(s.greedy.value_or(GreedySettings{}).max_centres));
+        const double centres = std::min(m, double(s.greedy.value_or(GreedySettings{}).max_centres));
         return 2 * word * centres * centres; // the centres' system and its factor
     }
     case DeformationMethod::ffd:

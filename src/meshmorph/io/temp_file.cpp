@@ -67,9 +67,9 @@ std::string errno_text()
 fs::path temp_path_for(const fs::path& target)
 {
     const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-    return dir / ("." + target.filename().string() + "." + host_name() + "." +
-                  std::to_string(::getpid()) + "." + std::to_string(temp_counter.fetch_add(1)) +
-                  ".tmp");
+    return dir /
+           ("." + target.filename().string() + "." + host_name() + "." +
+            std::to_string(::getpid()) + "." + std::to_string(temp_counter.fetch_add(1)) + ".tmp");
 }
 
 int remove_stale_temps(const fs::path& target)

@@ -17,9 +17,9 @@ namespace meshmorph::io
 //! \brief A fresh temporary name for `target` (see the file comment).
 std::filesystem::path temp_path_for(const std::filesystem::path& target);
 
-//! \brief Remove the temporaries of `target` (files, or directories staged whole) whose writer, a process of this host, is dead
-//! (a run killed while writing). Those of other hosts (a shared file system) and of live
-//! processes are left alone. Returns how many were removed; never throws.
+//! \brief Remove the temporaries of `target` (files, or directories staged whole) whose writer, a
+//! process of this host, is dead (a run killed while writing). Those of other hosts (a shared file
+//! system) and of live processes are left alone. Returns how many were removed; never throws.
 int remove_stale_temps(const std::filesystem::path& target);
 
 //! \brief Create `path` (it must not exist), write `bytes`, fsync and close it.

@@ -194,8 +194,8 @@ fs::path write_points(const Points& points, const FoamFileInfo& like, const fs::
         std::error_code ec;
         fs::rename(staging, top, ec);
         if (ec)
-            throw IoError("Cannot write " + (dir / written.filename()).string() +
-                          ": rename of " + staging.string() + " failed: " + ec.message());
+            throw IoError("Cannot write " + (dir / written.filename()).string() + ": rename of " +
+                          staging.string() + " failed: " + ec.message());
         sync_directory(top.parent_path());
         return dir / written.filename();
     }

@@ -145,8 +145,8 @@ void add_closed_form_claims(const PolyMesh& mesh, const std::optional<EmptyPlane
 
 //! A target much farther from its points than their own extent is most likely the wrong
 //! file, units or position: the morph goes on (large motions are legitimate) but says so.
-void warn_if_far(const MorphSetup& setup, const SurfaceRequests& requests,
-                 const std::string& file, const Points& query, const Points& closest)
+void warn_if_far(const MorphSetup& setup, const SurfaceRequests& requests, const std::string& file,
+                 const Points& query, const Points& closest)
 {
     if (query.rows() == 0)
         return;
@@ -154,8 +154,9 @@ void warn_if_far(const MorphSetup& setup, const SurfaceRequests& requests,
     const double distance = (closest - query).rowwise().norm().maxCoeff();
     if (extent > 0 && distance > extent)
         log::warning() << setup.dict_path << ":" << requests.line << ": " << requests.what
-                       << ": the surface \"" << file << "\" is far from its points: they move up to "
-                       << distance << ", more than their own extent " << extent
+                       << ": the surface \"" << file
+                       << "\" is far from its points: they move up to " << distance
+                       << ", more than their own extent " << extent
                        << " (is it the right surface, in the right units and position?)";
 }
 
