@@ -278,7 +278,13 @@ int check_mesh_quality_main(const Options& options, std::ostream& out)
         fields.emplace_back("determinant", report.cell_determinant);
         if (report.cell_scaled_jacobian.size() == mesh.n_cells)
             fields.emplace_back("scaledJacobian", report.cell_scaled_jacobian);
-        fs::create_directories(vtk.parent_path());
+        { // a read-only or full file system is an input error naming the directory
+            std::error_code ec;
+            fs::create_directories(vtk.parent_path(), ec);
+            if (ec)
+                throw IoError("Cannot create directory " + vtk.parent_path().string() + ": " +
+                              ec.message());
+        }
         io::write_vtu(vtk, mesh, {}, fields);
         timer.lap("Wrote " + vtk.string());
 #else

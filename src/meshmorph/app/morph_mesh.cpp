@@ -426,7 +426,13 @@ void write_vtk(const fs::path& case_dir, const MorphOptions& options, const Poly
         options.vtk_file.empty()
             ? default_vtk_file(case_dir, "morphMesh", options.region, result.output_instance)
             : options.vtk_file;
-    fs::create_directories(result.vtk_file.parent_path());
+    { // a read-only or full file system is an input error naming the directory
+        std::error_code ec;
+        fs::create_directories(result.vtk_file.parent_path(), ec);
+        if (ec)
+            throw IoError("Cannot create directory " + result.vtk_file.parent_path().string() +
+                          ": " + ec.message());
+    }
     std::vector<io::VtkField> point_data;
     point_data.emplace_back("displacement", result.morph.displacement);
     std::vector<io::VtkField> cell_data;

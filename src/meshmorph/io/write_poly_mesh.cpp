@@ -189,8 +189,15 @@ fs::path write_points(const Points& points, const FoamFileInfo& like, const fs::
         {
             throw IoError("Cannot write " + (dir / "points").string() + ": " + e.what());
         }
-        const fs::path written =
-            write_points_file(points, like, staged_dir / "points", location, options);
+        fs::path written;
+        try
+        {
+            written = write_points_file(points, like, staged_dir / "points", location, options);
+        }
+        catch (const IoError& e)
+        {
+            throw IoError("Cannot write " + (dir / "points").string() + ": " + e.what());
+        }
         std::error_code ec;
         fs::rename(staging, top, ec);
         if (ec)
