@@ -297,7 +297,13 @@ void write_vtk(const Options& options, const CheckedMesh& m, const fs::path& cas
     fields.emplace_back("determinant", r.cell_determinant);
     if (r.cell_scaled_jacobian.size() == m.foam.mesh.n_cells)
         fields.emplace_back("scaledJacobian", r.cell_scaled_jacobian);
-    fs::create_directories(vtk.parent_path());
+    { // a read-only or full file system is an input error naming the directory
+        std::error_code ec;
+        fs::create_directories(vtk.parent_path(), ec);
+        if (ec)
+            throw IoError("Cannot create directory " + vtk.parent_path().string() + ": " +
+                          ec.message());
+    }
     io::write_vtu(vtk, m.foam.mesh, {}, fields);
     timer.lap("Wrote " + vtk.string());
 #else

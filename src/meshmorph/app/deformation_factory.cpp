@@ -3,9 +3,12 @@
 #include "meshmorph/app/deformation_factory.h"
 
 #include <algorithm>
+#include <limits>
 #include <sstream>
 
+#include "meshmorph/app/fit_memory.h"
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/memory_budget.h"
 #include "meshmorph/deform/corrected_deformation.h"
 #include "meshmorph/io/foam_dictionary.h"
 
@@ -26,7 +29,19 @@ std::array<int, 3> read_lattice(const io::FoamDictionary& d)
             throw e.error("a cubic B-spline lattice needs at least 4 control points per "
                           "direction, got " +
                           std::to_string(v));
+    // Checked before anything is sized by it: the count overflows a label long before a
+    // lattice stops fitting in memory.
+    const double count = double(n[0]) * double(n[1]) * double(n[2]);
+    if (count > double(std::numeric_limits<Index>::max()))
+        throw e.error(format_count(count) + " control points, more than a label counts");
+    if (const std::optional<std::string> shortfall = memory_shortfall(ffd_lattice_bytes(count)))
+        throw e.error(format_count(count) + " control points " + *shortfall);
     return {n[0], n[1], n[2]};
+}
+
+SizeEntry size_entry(const io::FoamEntry& e, const std::string& name)
+{
+    return {e.path(), e.line(), name};
 }
 
 std::optional<FfdBox> read_bounds(const io::FoamDictionary& d)
@@ -226,6 +241,8 @@ DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
                 throw g.entry("tolerance").error("tolerance must be > 0");
             if (gs.max_centres < 1)
                 throw g.entry("maxCentres").error("maxCentres must be >= 1");
+            if (const io::FoamEntry* e = g.find("maxCentres"))
+                s.greedy_centres = size_entry(*e, "rbf.greedy.maxCentres");
             s.greedy = gs;
         }
     }
@@ -235,7 +252,10 @@ DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
     {
         d->check_keywords({"lattice", "clamping", "bounds"}, "dmffd");
         if (d->found("lattice"))
+        {
             s.dmffd.lattice.control_points = read_lattice(*d);
+            s.dmffd_lattice = size_entry(d->entry("lattice"), "dmffd.lattice");
+        }
         s.dmffd.clamping = d->get_or<double>("clamping", s.dmffd.clamping);
         if (!(s.dmffd.clamping >= 0.0 && s.dmffd.clamping < 1.0))
             throw d->entry("clamping").error("clamping must be in [0, 1)");
@@ -276,6 +296,7 @@ std::unique_ptr<SpaceDeformation> make_deformation(const DeformationSettings& s,
                                                    const Eigen::Ref<const Points>& points,
                                                    Index n_constraints)
 {
+    check_fit_memory(s, n_constraints);
     switch (s.method)
     {
     case DeformationMethod::rbf:

@@ -56,6 +56,14 @@ struct ControlDisplacement
     Vector3 displacement = Vector3::Zero();
 };
 
+//! Where a dictionary entry that sets the memory of a fit was given, for messages.
+struct SizeEntry
+{
+    std::string path; //!< the dictionary file ("" when the entry is absent: a default)
+    std::size_t line = 0;
+    std::string name; //!< dotted keyword, e.g. "dmffd.lattice"
+};
+
 //! Everything the factory needs.
 struct DeformationSettings
 {
@@ -70,6 +78,8 @@ struct DeformationSettings
     DmffdSettings dmffd;
     FfdSettings ffd;
     std::vector<ControlDisplacement> ffd_displacements;
+    SizeEntry dmffd_lattice{"", 0, "dmffd.lattice"};          //!< sets the DM-FFD basis size
+    SizeEntry greedy_centres{"", 0, "rbf.greedy.maxCentres"}; //!< sets the greedy RBF size
 };
 
 //! \brief Read `method` (or `method_override`, the -method option) and the sub-dictionary of

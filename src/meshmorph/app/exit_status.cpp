@@ -2,6 +2,8 @@
 // The one catch ladder of the applications.
 #include "meshmorph/app/exit_status.h"
 
+#include <new>
+
 #include "meshmorph/app/options.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
@@ -35,6 +37,14 @@ int run_guarded(const std::function<int()>& body, bool nothing_written,
     catch (const Error& e)
     {
         return fail(exit_input_error, e.what() + written);
+    }
+    catch (const std::bad_alloc&)
+    {
+        // The last resort: the up-front estimates (memory_budget.h) did not foresee it.
+        return fail(exit_input_error,
+                    "out of memory: the mesh or the dictionary asks for more memory than this "
+                    "process may allocate (MemAvailable, ulimit -v)" +
+                        written);
     }
     catch (const std::exception& e)
     {

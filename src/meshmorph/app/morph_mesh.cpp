@@ -31,6 +31,7 @@
 #include "meshmorph/io/read_poly_mesh.h"
 #include "meshmorph/io/surface_io.h"
 #include "meshmorph/io/write_poly_mesh.h"
+#include "meshmorph/morph/duplicate_points.h"
 #include "meshmorph/parallel/collective.h"
 #include "meshmorph/quality/cell_validity.h"
 #include "meshmorph/quality/parallel_report.h"
@@ -84,28 +85,72 @@ private:
 
 //! -overwrite replaces the mesh's own points: the first time, they are kept beside them as
 //! points.orig (points.orig.gz), byte for byte, so a user can always go back; later
-//! overwrites say that they compound the motion.
-void keep_original_points(const fs::path& points_file)
+//! overwrites say that they compound the motion. Returns the file it created (empty: none),
+//! which a failed write removes again.
+fs::path keep_original_points(const fs::path& points_file)
 {
     const bool gz = points_file.extension() == ".gz";
     const fs::path orig = points_file.parent_path() / (gz ? "points.orig.gz" : "points.orig");
+    const auto read_bytes = [](const fs::path& path)
+    {
+        std::ifstream in(path, std::ios::binary);
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        if (!in.good() && !in.eof())
+            throw IoError("cannot read " + path.string());
+        return bytes.str();
+    };
+    const std::string bytes = read_bytes(points_file);
     if (fs::exists(orig))
     {
-        log::warning() << "-overwrite: " << points_file.string() << " was morphed before ("
-                       << orig.filename().string()
-                       << " exists): this morph adds to that one. The original points are in "
-                       << orig.string();
-        return;
+        // A run killed between the two writes leaves an orig equal to the points: nothing
+        // was morphed, and the orig is already what it should be.
+        if (read_bytes(orig) != bytes)
+            log::warning() << "-overwrite: " << points_file.string() << " was morphed before ("
+                           << orig.filename().string()
+                           << " exists): this morph adds to that one. The original points are in "
+                           << orig.string();
+        return {};
     }
-    std::ifstream in(points_file, std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    if (!in.good() && !in.eof())
-        throw IoError("cannot read " + points_file.string() + " to keep it as " + orig.string());
-    io::write_file_atomic(orig, bytes.str());
+    io::write_file_atomic(orig, bytes);
     log::info() << "-overwrite: the original points are kept in " << orig.string()
                 << " (to undo: mv " << orig.filename().string() << " "
                 << points_file.filename().string() << ")";
+    return orig;
+}
+
+//! The morphed points, and with -overwrite the original kept first; a failure removes what
+//! this run created, so a failed write leaves the case as it was.
+fs::path write_morphed_points(const MorphOptions& options, const Points& points,
+                              const io::FoamPolyMesh& foam, const fs::path& mesh_case,
+                              const std::string& instance)
+{
+    const fs::path orig = options.overwrite ? keep_original_points(foam.points.path) : fs::path();
+    try
+    {
+        return io::write_points(points, foam.points, mesh_case, instance, foam.region);
+    }
+    catch (const Error&)
+    {
+        std::error_code ignored;
+        if (!orig.empty())
+            fs::remove(orig, ignored);
+        throw;
+    }
+}
+
+//! A mesh that already fails checks (open cells, zero-area faces, ...) is morphed (only new
+//! invalid cells refuse a morph), but the user hears that the result inherits the damage.
+void warn_if_broken(const QualityReport& before, const fs::path& mesh_dir)
+{
+    if (before.failed_checks == 0)
+        return;
+    std::string names;
+    for (const std::string& n : before.failed_check_names)
+        names += (names.empty() ? "" : ", ") + n;
+    log::warning() << "the mesh in " << mesh_dir.string() << " fails " << before.failed_checks
+                   << " mesh checks before the morph (" << names
+                   << "); the morphed mesh keeps these defects (checkMeshQuality shows them)";
 }
 
 //! Without -overwrite a re-run replaces the points an earlier run wrote: say so.
@@ -334,7 +379,13 @@ void write_vtk(const fs::path& case_dir, const MorphOptions& options, const Poly
         options.vtk_file.empty()
             ? default_vtk_file(case_dir, "morphMesh", options.region, result.output_instance)
             : options.vtk_file;
-    fs::create_directories(result.vtk_file.parent_path());
+    { // a read-only or full file system is an input error naming the directory
+        std::error_code ec;
+        fs::create_directories(result.vtk_file.parent_path(), ec);
+        if (ec)
+            throw IoError("Cannot create directory " + result.vtk_file.parent_path().string() +
+                          ": " + ec.message());
+    }
     std::vector<io::VtkField> point_data;
     point_data.emplace_back("displacement", result.morph.displacement);
     std::vector<io::VtkField> cell_data;
@@ -419,6 +470,7 @@ MorphResult morph_case(const MorphOptions& options)
     if (options.parallel)
         set_global_patch_points(mesh, decomposition, result.constraints.patches);
     const morph::Constraints& c = result.constraints;
+    morph::check_duplicate_prescribed_points(mesh, c, foam.points.path.string());
 
     if (options.overwrite)
         result.output_instance = foam.points_instance;
@@ -452,6 +504,7 @@ MorphResult morph_case(const MorphOptions& options)
     result.before =
         check_morph_mesh(mesh, cf, compute_geometry(mesh, cf), check_settings, decomposition);
     result.timings.check = stage.seconds();
+    warn_if_broken(result.before, foam.points_dir);
 
     // Fit and evaluate, in steps.
     const Index n_fit = c.n_prescribed_points + c.n_slip_points;
@@ -518,15 +571,12 @@ MorphResult morph_case(const MorphOptions& options)
     parallel::collective(comm,
                          [&]
                          {
-                             if (options.overwrite)
-                                 keep_original_points(foam.points.path);
-                             else
+                             if (!options.overwrite)
                                  warn_if_replacing(mesh_case, result.output_instance, foam.region);
                              if (!options.parallel)
                                  warn_if_decomposed(case_dir);
-                             result.points_file =
-                                 io::write_points(moved.points, foam.points, mesh_case,
-                                                  result.output_instance, foam.region);
+                             result.points_file = write_morphed_points(
+                                 options, moved.points, foam, mesh_case, result.output_instance);
                          });
     result.written = true;
     if (options.vtk)

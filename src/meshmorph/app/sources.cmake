@@ -8,6 +8,7 @@ set(MESHMORPH_APP_SOURCES
     meshmorph/app/decomposed_case.cpp
     meshmorph/app/morph_mesh.cpp
     meshmorph/app/deformation_factory.cpp
+    meshmorph/app/fit_memory.cpp
 )
 meshmorph_add_component(app
     SOURCES ${MESHMORPH_APP_SOURCES}

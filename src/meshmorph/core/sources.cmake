@@ -8,5 +8,6 @@ meshmorph_add_component(core
         meshmorph/core/stopwatch.cpp
         meshmorph/core/cell_shapes.cpp
         meshmorph/core/triangle_surface.cpp
+        meshmorph/core/memory_budget.cpp
         # (one file per line)
     DEPENDS Eigen3::Eigen OpenMP::OpenMP_CXX)

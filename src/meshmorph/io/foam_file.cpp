@@ -3,7 +3,6 @@
 #include "meshmorph/io/foam_file.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -19,6 +18,7 @@
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
+#include "meshmorph/io/temp_file.h"
 
 namespace meshmorph::io
 {
@@ -92,8 +92,6 @@ std::string read_raw_file(const fs::path& path)
     }
     return data;
 }
-
-std::atomic<unsigned> temp_counter{0};
 
 } // namespace
 
@@ -358,24 +356,9 @@ fs::path write_file_atomic(const fs::path& path, std::string_view data,
     const std::string_view bytes = options.compress ? std::string_view(compressed) : data;
 
     const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-    const fs::path temp =
-        dir / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()) + "_" +
-               std::to_string(temp_counter.fetch_add(1)));
-    {
-        FilePtr file(std::fopen(temp.c_str(), "wb"));
-        if (!file)
-            throw IoError("Cannot write " + target.string() + ": cannot create temporary " +
-                          temp.string() + ": " + errno_text());
-        const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), file.get()) == bytes.size() &&
-                        std::fflush(file.get()) == 0;
-        const std::string why = errno_text();
-        if (!ok || std::fclose(file.release()) != 0)
-        {
-            std::error_code ec;
-            fs::remove(temp, ec);
-            throw IoError("Cannot write " + target.string() + ": " + why);
-        }
-    }
+    remove_stale_temps(target); // a killed run's leftovers must not pile up
+    const fs::path temp = temp_path_for(target);
+    write_synced(temp, bytes, target);
     std::error_code ec;
     fs::rename(temp, target, ec);
     if (ec)
@@ -384,6 +367,7 @@ fs::path write_file_atomic(const fs::path& path, std::string_view data,
         fs::remove(temp, ignored);
         throw IoError("Cannot write " + target.string() + ": rename failed: " + ec.message());
     }
+    sync_directory(dir);
     if (is_regular(other))
     {
         fs::remove(other, ec);

@@ -77,10 +77,10 @@ struct WriteFileOptions
 };
 
 //! \brief Write `data` to `path` (or `path.gz` when compressing) atomically: the bytes go to
-//! a temporary file in the same directory, flushed to the OS (not fsync'ed: atomic against
-//! concurrent readers and failed writes, not against power loss), then renamed over the
-//! target. The
-//! other spelling (`path.gz` when writing `path`, and vice versa) is removed afterwards so
+//! a temporary file in the same directory (temp_file.h), fsync'ed, then renamed over the
+//! target and the directory fsync'ed: a reader, a killed run or a power loss sees the old
+//! file or the new one, never a partial one. Temporaries of killed runs are removed first.
+//! The other spelling (`path.gz` when writing `path`, and vice versa) is removed afterwards so
 //! both never coexist. The gzip header carries no time stamp, so equal data gives equal
 //! bytes. Returns the path written.
 //! \pre the parent directory exists.

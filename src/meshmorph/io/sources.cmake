@@ -8,6 +8,7 @@ set(MESHMORPH_IO_SOURCES
     meshmorph/io/foam_compound.cpp
     meshmorph/io/boundary_io.cpp
     meshmorph/io/foam_file.cpp
+    meshmorph/io/temp_file.cpp
     meshmorph/io/foam_lists.cpp
     meshmorph/io/case_instance.cpp
     meshmorph/io/read_poly_mesh.cpp

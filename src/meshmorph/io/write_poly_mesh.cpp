@@ -3,6 +3,7 @@
 #include "meshmorph/io/write_poly_mesh.h"
 
 #include <system_error>
+#include <vector>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
@@ -10,6 +11,7 @@
 #include "meshmorph/io/case_instance.h"
 #include "meshmorph/io/foam_file.h"
 #include "meshmorph/io/foam_lists.h"
+#include "meshmorph/io/temp_file.h"
 
 namespace meshmorph::io
 {
@@ -157,13 +159,59 @@ fs::path write_points(const Points& points, const FoamFileInfo& like, const fs::
                       const PolyMeshWriteOptions& options)
 {
     const fs::path dir = poly_mesh_dir(case_dir, instance, region);
-    create_dirs(dir);
-    if (foam_file_exists(dir / "tetBasePtIs"))
-        log::warning() << (dir / "tetBasePtIs").string()
-                       << " depends on the point positions and is now stale; remove it if "
-                          "OpenFOAM reports tet decomposition problems";
-    return write_points_file(points, like, dir / "points", poly_mesh_location(instance, region),
-                             options);
+    const std::string location = poly_mesh_location(instance, region);
+    fs::path top; // the outermost directory of `dir` that does not exist yet
+    for (fs::path d = dir; d != case_dir && d.has_relative_path() && !fs::exists(d);
+         d = d.parent_path())
+        top = d;
+    if (top.empty())
+    {
+        if (foam_file_exists(dir / "tetBasePtIs"))
+            log::warning() << (dir / "tetBasePtIs").string()
+                           << " depends on the point positions and is now stale; remove it if "
+                              "OpenFOAM reports tet decomposition problems";
+        return write_points_file(points, like, dir / "points", location, options);
+    }
+    // New directories appear complete or not at all: built under a hidden name, then
+    // renamed. A failed or killed write leaves no empty <time>/polyMesh that the next run or
+    // OpenFOAM would take for a time (a killed one leaves a hidden temporary, removed by
+    // the next write of the same directory).
+    remove_stale_temps(top);
+    const fs::path staging = temp_path_for(top);
+    const fs::path staged_dir = staging / fs::relative(dir, top);
+    try
+    {
+        try
+        {
+            create_dirs(staged_dir);
+        }
+        catch (const IoError& e)
+        {
+            throw IoError("Cannot write " + (dir / "points").string() + ": " + e.what());
+        }
+        fs::path written;
+        try
+        {
+            written = write_points_file(points, like, staged_dir / "points", location, options);
+        }
+        catch (const IoError& e)
+        {
+            throw IoError("Cannot write " + (dir / "points").string() + ": " + e.what());
+        }
+        std::error_code ec;
+        fs::rename(staging, top, ec);
+        if (ec)
+            throw IoError("Cannot write " + (dir / written.filename()).string() + ": rename of " +
+                          staging.string() + " failed: " + ec.message());
+        sync_directory(top.parent_path());
+        return dir / written.filename();
+    }
+    catch (const Error&)
+    {
+        std::error_code ignored;
+        fs::remove_all(staging, ignored);
+        throw;
+    }
 }
 
 fs::path write_poly_mesh_dir(const PolyMesh& mesh, const FoamPolyMesh& like, const fs::path& dir,

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
 #include "meshmorph/morph/patch_plane.h"
 
 namespace meshmorph::morph
@@ -142,6 +143,23 @@ void add_closed_form_claims(const PolyMesh& mesh, const std::optional<EmptyPlane
     }
 }
 
+//! A target much farther from its points than their own extent is most likely the wrong
+//! file, units or position: the morph goes on (large motions are legitimate) but says so.
+void warn_if_far(const MorphSetup& setup, const SurfaceRequests& requests, const std::string& file,
+                 const Points& query, const Points& closest)
+{
+    if (query.rows() == 0)
+        return;
+    const double extent = (query.colwise().maxCoeff() - query.colwise().minCoeff()).norm();
+    const double distance = (closest - query).rowwise().norm().maxCoeff();
+    if (extent > 0 && distance > extent)
+        log::warning() << setup.dict_path << ":" << requests.line << ": " << requests.what
+                       << ": the surface \"" << file
+                       << "\" is far from its points: they move up to " << distance
+                       << ", more than their own extent " << extent
+                       << " (is it the right surface, in the right units and position?)";
+}
+
 //! Project every queued surface point onto its target, one query per file.
 void project_surface_requests(const PolyMesh& mesh, const MorphSetup& setup,
                               const ConstraintInputs& inputs, const SurfaceQueue& queue,
@@ -170,6 +188,7 @@ void project_surface_requests(const PolyMesh& mesh, const MorphSetup& setup,
             const Eigen::Index r = static_cast<Eigen::Index>(i);
             claims[requests.claims[i].first].value = (closest.row(r) - query.row(r)).transpose();
         }
+        warn_if_far(setup, requests, file, query, closest);
     }
 }
 

@@ -19,6 +19,7 @@ set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/constraint_steps.cpp
     meshmorph/morph/constraints.cpp
     meshmorph/morph/cyclic_coupling.cpp
+    meshmorph/morph/duplicate_points.cpp
     meshmorph/morph/distributed_constraints.cpp
     meshmorph/morph/point_morph.cpp
     meshmorph/morph/morph_steps.cpp

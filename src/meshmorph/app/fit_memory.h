@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Up-front memory estimates of the fits a morphDict asks for, so that a lattice or
+//! a centre count too large for the machine fails naming its entry before anything is
+//! allocated (issue 12, resource limits).
+#pragma once
+
+#include <string>
+
+#include "meshmorph/app/deformation_factory.h"
+
+namespace meshmorph::app
+{
+
+//! Bytes an FFD lattice of `count` control points holds (its control points and their
+//! displacements, n x 3 each).
+double ffd_lattice_bytes(double count);
+
+//! "1e+12" or "4096": a count that may exceed any integer type.
+std::string format_count(double count);
+
+//! \brief Bytes the fit of `settings` to `n_constraints` constraints allocates, at least:
+//! DM-FFD its dense m x n basis and SVD factors, the RBF its dense systems (direct:
+//! m x m; greedy: up to maxCentres squared), IDW and FFD little.
+double fit_bytes(const DeformationSettings& settings, Index n_constraints);
+
+//! \brief Throws when fit_bytes() exceeds the memory this process may still allocate.
+//! \throw ParseError naming the entry that sets the size (dmffd.lattice,
+//! rbf.greedy.maxCentres), or InvalidInput for a size given by the mesh alone.
+void check_fit_memory(const DeformationSettings& settings, Index n_constraints);
+
+} // namespace meshmorph::app
