@@ -1,14 +1,20 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # morphMesh on the snappyHexMesh motorBike (bike lifted, tutorials/motorBike/system/morphDict)
-# serially and with -parallel, ranks x threads: wall time and peak memory per rank.
+# serially and with -parallel, ranks x threads: wall time and peak memory per rank, and
+# each -parallel result against the serial one (scripts/parallel/compare_decomposed.py).
+# Then, on the case decomposed for the largest rank count, the check side by side with its
+# peer: checkMeshQuality -parallel against checkMesh -parallel (-allGeometry -allTopology
+# -meshQuality, same run, same ranks), reports compared line by line.
 #
 #   parallel_motorbike.sh -bin DIR -out DIR [-case DIR] [-runs "1x1 1x2 2x1"]
 #
+# -bin: the build's applications directory (holding morphMesh/ and checkMeshQuality/).
 # -case: the meshed motorBike (default build/cases/motorBike-full, made by
 # benchmarks/io/make_motorbike.sh). Each entry of -runs is RANKSxTHREADS; 1xT is the serial
 # morphMesh with T OpenMP threads, Rx T runs mpirun -np R morphMesh -parallel on the case
-# decomposed by decomposePar (method simple). Writes DIR/summary.md.
+# decomposed by decomposePar (method simple); the first entry must be serial. Writes
+# DIR/summary.md.
 set -u
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 source_dir=$(cd "$here/../.." && pwd)
@@ -19,8 +25,8 @@ while [ $# -gt 0 ]; do
         -out) out=$2; shift 2 ;;
         -case) case_dir=$2; shift 2 ;;
         -runs) runs=$2; shift 2 ;;
-        -help|-h) sed -n '3,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-        *) echo "parallel_motorbike.sh: unknown option '$1'" >&2; exit 2 ;;
+        -help|-h) sed -n '3,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+            *) echo "parallel_motorbike.sh: unknown option '$1'" >&2; exit 2 ;;
     esac
 done
 [ -n "$bin" ] && [ -n "$out" ] || { echo "parallel_motorbike.sh: -bin and -out are required" >&2; exit 2; }
@@ -36,15 +42,17 @@ rm -rf "$work" && mkdir -p "$work" && cp -r "$case_dir/constant" "$case_dir/syst
 peak_mb() { awk '/Maximum resident set size/ {printf "%.0f", $NF / 1024}' "$1"; }
 wall_s() { awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0; for (i = 1; i <= n; ++i) s = s * 60 + t[i]; printf "%.2f", s}' "$1"; }
 
-echo "| ranks x threads | wall [s] | peak memory per rank [MB] | fit [s] | evaluate [s] |" > "$out/summary.md"
-echo "| --- | --- | --- | --- | --- |" >> "$out/summary.md"
+morph=$bin/morphMesh/morphMesh check=$bin/checkMeshQuality/checkMeshQuality
+echo "| ranks x threads | wall [s] | peak memory per rank [MB] | fit [s] | evaluate [s] | largest difference to serial (of the extent) |" > "$out/summary.md"
+echo "| --- | --- | --- | --- | --- | --- |" >> "$out/summary.md"
 decomposed=0
 for run in $runs; do
     ranks=${run%x*} threads=${run#*x}
     log=$out/log.$run
     rm -rf "$work"/processor*/[1-9]* "$work"/[1-9]*
     if [ "$ranks" = 1 ]; then
-        OMP_NUM_THREADS=$threads /usr/bin/time -v -o "$out/time.$run.0" "$bin/morphMesh" -case "$work" > "$log" 2>&1 || { echo "$run failed (see $log)"; continue; }
+        OMP_NUM_THREADS=$threads /usr/bin/time -v -o "$out/time.$run.0" "$morph" -case "$work" > "$log" 2>&1 || { echo "$run failed (see $log)"; continue; }
+        cp "$work/1/polyMesh/points" "$out/serial_points"
     else
         if [ $decomposed != "$ranks" ]; then
             rm -rf "$work"/processor*
@@ -53,13 +61,45 @@ for run in $runs; do
             decomposed=$ranks
         fi
         mpirun -np "$ranks" --oversubscribe -x OMP_NUM_THREADS="$threads" sh -c \
-            "/usr/bin/time -v -o '$out/time.$run.'\$OMPI_COMM_WORLD_RANK '$bin/morphMesh' -case '$work' -parallel" > "$log" 2>&1 ||
+            "/usr/bin/time -v -o '$out/time.$run.'\$OMPI_COMM_WORLD_RANK '$morph' -case '$work' -parallel" > "$log" 2>&1 ||
             { echo "$run failed (see $log)"; continue; }
     fi
     mem=""
     for r in $(seq 0 $((ranks - 1))); do mem="$mem${mem:+ / }$(peak_mb "$out/time.$run.$r")"; done
     fit=$(sed -n 's/^Timings \[s\]: .*fit \([0-9.e+-]*\),.*/\1/p' "$log")
     eval=$(sed -n 's/^Timings \[s\]: .*evaluate \([0-9.e+-]*\),.*/\1/p' "$log")
-    echo "| $run | $(wall_s "$out/time.$run.0") | $mem | $fit | $eval |" >> "$out/summary.md"
+    diff="(serial)"
+    if [ "$ranks" != 1 ]; then
+        /usr/bin/python3 "$source_dir/scripts/parallel/compare_decomposed.py" "$work" 1 "$ranks" \
+            "$out/serial_points" > "$out/compare.$run" 2>&1
+        diff=$(sed -n 's/.*(\(.*\) of the extent).*/\1/p' "$out/compare.$run")
+        grep -q "not bit-identical: 0" "$out/compare.$run" || diff="$diff; shared points differ"
+    fi
+    echo "| $run | $(wall_s "$out/time.$run.0") | $mem | $fit | $eval | $diff |" >> "$out/summary.md"
 done
+
+# The check, side by side with checkMesh, on the decomposed (undeformed) mesh.
+if [ "$decomposed" != 0 ]; then
+    rm -rf "$work"/processor*/[1-9]*
+    checks="-allGeometry -allTopology -meshQuality"
+    run_check() { # name, then the command
+        local name=$1; shift
+        /usr/bin/time -v -o "$out/time.$name" "$@" > "$out/log.$name" 2>&1
+    }
+    (cd "$work" && run_check checkMesh.parallel mpirun -np "$decomposed" --oversubscribe -x OMP_NUM_THREADS=1 checkMesh -parallel $checks)
+    run_check checkMeshQuality.parallel mpirun -np "$decomposed" --oversubscribe -x OMP_NUM_THREADS=1 "$check" -case "$work" -parallel $checks -writeSets
+    (cd "$work" && run_check checkMesh.serial checkMesh $checks)
+    OMP_NUM_THREADS=1 run_check checkMeshQuality.serial "$check" -case "$work" $checks -writeSets
+    report() { sed -n '/^Mesh stats/,/^\(Mesh OK\.\|Failed [0-9]* mesh checks\.\)$/p' "$1"; }
+    same() { diff -q <(report "$out/log.$1") <(report "$out/log.$2") > /dev/null && echo "equal" || echo "differ ($(diff <(report "$out/log.$1") <(report "$out/log.$2") | grep -c '^[<>]') lines)"; }
+    {
+        echo
+        echo "| check ($checks, 1 thread per rank) | wall [s] | peak memory [MB] (master) | report |"
+        echo "| --- | --- | --- | --- |"
+        echo "| checkMesh, serial | $(wall_s "$out/time.checkMesh.serial") | $(peak_mb "$out/time.checkMesh.serial") | |"
+        echo "| checkMeshQuality, serial | $(wall_s "$out/time.checkMeshQuality.serial") | $(peak_mb "$out/time.checkMeshQuality.serial") | $(same checkMesh.serial checkMeshQuality.serial) |"
+        echo "| checkMesh -parallel, $decomposed ranks | $(wall_s "$out/time.checkMesh.parallel") | | |"
+        echo "| checkMeshQuality -parallel, $decomposed ranks | $(wall_s "$out/time.checkMeshQuality.parallel") | | $(same checkMesh.parallel checkMeshQuality.parallel) |"
+    } >> "$out/summary.md"
+fi
 cat "$out/summary.md"

@@ -6,30 +6,40 @@ compare_decomposed.py CASE TIME N SERIAL_POINTS
   - every processor<r>/<TIME>/polyMesh/points entry equals SERIAL_POINTS at its
     pointProcAddressing label to 1e-12 of the mesh extent;
   - the copies of a point shared by processors are bit-identical (to the digits written).
-Exit 0 when both hold; prints the largest differences either way. ASCII files only.
+Exit 0 when both hold; prints the largest differences either way. ASCII or binary files
+(not compressed).
 """
 import re
+import struct
 import sys
 
 
 def body(path):
-    text = open(path).read()
-    header_end = text.index("}", text.index("FoamFile"))
-    match = re.compile(r"\n(\d+)\s*\n\(").search(text, header_end)
-    return int(match.group(1)), text[match.end():]
+    """The header's format, the list's length and the bytes after its '('."""
+    data = open(path, "rb").read()
+    header_end = data.index(b"}", data.index(b"FoamFile"))
+    binary = re.search(rb"format\s+binary", data[:header_end]) is not None
+    match = re.compile(rb"\n(\d+)\s*\n\(").search(data, header_end)
+    return binary, int(match.group(1)), data[match.end():]
 
 
 def points(path):
-    n, rest = body(path)
-    values = re.findall(r"\(([-+0-9.eE]+) ([-+0-9.eE]+) ([-+0-9.eE]+)\)", rest)[:n]
+    """The points and, per point, its exact form (text, or the bytes of a binary file)."""
+    binary, n, rest = body(path)
+    if binary:
+        values = [struct.unpack_from("<3d", rest, 24 * i) for i in range(n)]
+        return values, [rest[24 * i: 24 * i + 24] for i in range(n)]
+    values = re.findall(rb"\(([-+0-9.eE]+) ([-+0-9.eE]+) ([-+0-9.eE]+)\)", rest)[:n]
     if len(values) != n:
-        sys.exit(f"{path}: expected {n} points (ASCII), found {len(values)}")
+        sys.exit(f"{path}: expected {n} points, found {len(values)}")
     return [tuple(float(v) for v in p) for p in values], [tuple(p) for p in values]
 
 
 def labels(path):
-    n, rest = body(path)
-    return [int(v) for v in re.findall(r"-?\d+", rest[: rest.index(")")])][:n]
+    binary, n, rest = body(path)
+    if binary:  # OpenFOAM's 32-bit labels
+        return list(struct.unpack_from(f"<{n}i", rest))
+    return [int(v) for v in re.findall(rb"-?\d+", rest[: rest.index(b")")])][:n]
 
 
 case, time, n_procs, serial_file = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]

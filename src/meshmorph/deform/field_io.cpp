@@ -3,6 +3,8 @@
 // evaluation-only deformations that evaluate with the same code and data.
 #include "meshmorph/deform/field_io.h"
 
+#include "meshmorph/deform/idw_tree.h"
+
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/deform/bspline_basis.h"
 #include "meshmorph/deform/ffd_deformation.h"
@@ -103,6 +105,12 @@ std::unique_ptr<SpaceDeformation> read_idw(FieldReader& in)
     return std::make_unique<WrappedField>(std::move(idw));
 }
 
+std::unique_ptr<SpaceDeformation> read_idw_local(FieldReader& in)
+{
+    return std::make_unique<WrappedField>(
+        std::make_unique<IdwDeformation>(IdwDeformation::read_local(in)));
+}
+
 std::unique_ptr<SpaceDeformation> read_ffd(FieldReader& in)
 {
     FfdBox box;
@@ -125,6 +133,8 @@ std::unique_ptr<SpaceDeformation> read_body(FieldReader& in)
         return std::make_unique<RbfField>(detail::RbfModel::read(in));
     case FieldKind::idw:
         return read_idw(in);
+    case FieldKind::idw_local:
+        return read_idw_local(in);
     case FieldKind::ffd:
         return read_ffd(in);
     case FieldKind::sum:
@@ -162,11 +172,23 @@ FitReport read_report(FieldReader& in)
 
 } // namespace
 
-std::string write_field(const SpaceDeformation& deformation)
+QueryRegion query_region(const Points& x)
+{
+    QueryRegion r;
+    for (int k = 0; k < 3 && x.rows() > 0; ++k)
+    {
+        r.lo[k] = x.col(k).minCoeff();
+        r.hi[k] = x.col(k).maxCoeff();
+    }
+    r.block_radius = detail::largest_query_block_radius(x);
+    return r;
+}
+
+std::string write_field(const SpaceDeformation& deformation, const QueryRegion* region)
 {
     if (!deformation.is_fitted())
         throw InvalidInput("write_field: the deformation is not fitted");
-    FieldWriter out;
+    FieldWriter out(region);
     deformation.write_field(out);
     write_report(out, deformation.report());
     return out.bytes();

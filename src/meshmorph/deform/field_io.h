@@ -6,19 +6,28 @@
 //! evaluates bit-identically to the original. Sizes: an RBF field is its centres, weights and
 //! polynomial (6 doubles per centre), an FFD/DM-FFD field its lattice and control
 //! displacements; an IDW field (method idw, or the local correction of a greedy RBF) is its
-//! handles and their values (6 doubles per handle).
+//! handles and their values (6 doubles per handle), or, written for a region, only its
+//! locally essential tree: the handles near the region and the moments of the far clusters
+//! (Barnes-Hut), so that a rank receives what its points need, not every handle.
 #pragma once
 
 #include <memory>
 #include <string>
 
+#include "meshmorph/deform/field_stream.h"
 #include "meshmorph/deform/space_deformation.h"
 
 namespace meshmorph
 {
 
 //! \throw InvalidInput if the deformation is not fitted or its kind cannot be written.
-std::string write_field(const SpaceDeformation& deformation);
+//! \param region if given, the field evaluates exactly as the original (bit-identically)
+//!        at points inside region->lo..hi split into query blocks no larger than
+//!        region->block_radius (query_region()); elsewhere it may throw.
+std::string write_field(const SpaceDeformation& deformation, const QueryRegion* region = nullptr);
+
+//! \brief The region of the points x (their bounding box and IdwTree's largest query block).
+QueryRegion query_region(const Points& x);
 
 //! A deformation that evaluates the written field (fit() throws: it is evaluation only).
 //! \throw IoError on truncated or unknown data.

@@ -21,15 +21,29 @@ namespace meshmorph
 //! What a written field is (its first value).
 enum class FieldKind : std::uint32_t
 {
-    rbf = 1, //!< an RBF expansion (direct or greedy): detail::RbfModel
-    idw = 2, //!< IDW: settings, handles, values
-    ffd = 3, //!< an FFD lattice and its control displacements (FFD, DM-FFD)
-    sum = 4, //!< two fields added (a global field and its local correction)
+    rbf = 1,       //!< an RBF expansion (direct or greedy): detail::RbfModel
+    idw = 2,       //!< IDW: settings, handles, values
+    ffd = 3,       //!< an FFD lattice and its control displacements (FFD, DM-FFD)
+    sum = 4,       //!< two fields added (a global field and its local correction)
+    idw_local = 5, //!< IDW for one region only: normalisation and the essential tree
+};
+
+//! Where a written field will be evaluated (a -parallel rank's points): fields whose size
+//! grows with the handles (IDW) write only what evaluations there need.
+struct QueryRegion
+{
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}; //!< bounding box of the points (plain: sent)
+    //! Largest radius of a block of 32 points (IdwTree's query blocks) about its centroid.
+    double block_radius = 0;
 };
 
 class FieldWriter
 {
 public:
+    FieldWriter() = default;
+    explicit FieldWriter(const QueryRegion* region) : region_(region) {}
+    //! The region the field is written for, or nullptr (everywhere).
+    const QueryRegion* region() const { return region_; }
     template <class T> void put(const T& value)
     {
         static_assert(std::is_trivially_copyable_v<T>);
@@ -56,6 +70,7 @@ public:
 
 private:
     std::string bytes_;
+    const QueryRegion* region_ = nullptr;
 };
 
 class FieldReader

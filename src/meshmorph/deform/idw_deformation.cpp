@@ -69,10 +69,47 @@ void IdwDeformation::write_field(FieldWriter& out) const
 {
     if (!impl_->tree)
         throw InvalidInput("IDW: write_field before fit");
+    if (const QueryRegion* region = out.region())
+    {
+        // The region in the tree's normalised units; the block radius with a margin for the
+        // round-off of normalising (the blocks split the same points the same way).
+        const Impl& d = *impl_;
+        out.put(FieldKind::idw_local);
+        out.put(d.settings);
+        out.put_matrix(d.centre);
+        out.put(d.scale);
+        out.put(d.report.max_displacement);
+        out.put(d.report.num_handles);
+        const Vector3 lo =
+            (Vector3(region->lo[0], region->lo[1], region->lo[2]) - d.centre) / d.scale;
+        const Vector3 hi =
+            (Vector3(region->hi[0], region->hi[1], region->hi[2]) - d.centre) / d.scale;
+        d.tree->write_essential(out, lo, hi, 1.01 * region->block_radius / d.scale + 1e-12);
+        return;
+    }
     out.put(FieldKind::idw);
     out.put(impl_->settings);
     out.put_matrix(impl_->handles);
     out.put_matrix(impl_->displacements);
+}
+
+IdwDeformation IdwDeformation::read_local(FieldReader& in)
+{
+    const IdwSettings settings = in.get<IdwSettings>();
+    IdwDeformation idw(settings);
+    Impl& d = *idw.impl_;
+    d.centre = in.get_matrix<Vector3>();
+    d.scale = in.get<double>();
+    const double max_displacement = in.get<double>();
+    const Index handles = in.get<Index>();
+    const detail::IdwWeight weight{settings.far_exponent, settings.near_exponent,
+                                   std::pow(settings.alpha, settings.near_exponent)};
+    d.tree.emplace(detail::IdwTree::read_essential(in, weight, settings.theta));
+    d.report.method = "idw";
+    d.report.solver = "tree (locally essential)";
+    d.report.num_handles = d.report.num_centres = handles;
+    d.report.max_displacement = max_displacement;
+    return idw;
 }
 
 void IdwDeformation::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const

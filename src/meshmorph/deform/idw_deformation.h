@@ -52,7 +52,11 @@ public:
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     const FitReport& report() const override;
     bool is_fitted() const override;
+    //! With a query region on `out`: only the locally essential tree (FieldKind::idw_local).
     void write_field(FieldWriter& out) const override;
+    //! An IDW field written for a region (FieldKind::idw_local, the kind already read):
+    //! evaluation only. \throw IoError on bad data.
+    static IdwDeformation read_local(FieldReader& in);
 
 private:
     struct Impl;

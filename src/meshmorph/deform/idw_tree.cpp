@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
@@ -278,8 +280,9 @@ namespace
 {
 
 //! Far nodes and near leaves for every point of a block with centre c and radius rho:
-//! a node is far when node.radius < theta (|c - centroid| - rho).
-void interaction_lists(const std::vector<IdwTree::Node>& nodes, double theta, const double c[3],
+//! a node is far when node.radius < theta (|c - centroid| - rho). False if the block needs
+//! a node written as moments only (a tree written for another region).
+bool interaction_lists(const std::vector<IdwTree::Node>& nodes, double theta, const double c[3],
                        double rho, std::vector<Index>& far, std::vector<Index>& near)
 {
     far.clear();
@@ -295,6 +298,8 @@ void interaction_lists(const std::vector<IdwTree::Node>& nodes, double theta, co
         const double gap = std::sqrt(dx * dx + dy * dy + dz * dz) - rho;
         if (gap > 0.0 && node.radius < theta * gap)
             far.push_back(id);
+        else if (node.moments_only)
+            return false;
         else if (node.child < 0)
             near.push_back(id);
         else
@@ -303,9 +308,111 @@ void interaction_lists(const std::vector<IdwTree::Node>& nodes, double theta, co
             stack[top++] = node.child;
         }
     }
+    return true;
 }
 
 } // namespace
+
+namespace
+{
+
+//! The distance from p to the box lo..hi (0 inside).
+double distance_to_box(const double p[3], const Vector3& lo, const Vector3& hi)
+{
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+        const double d = std::max({lo[k] - p[k], 0.0, p[k] - hi[k]});
+        d2 += d * d;
+    }
+    return std::sqrt(d2);
+}
+
+} // namespace
+
+double largest_query_block_radius(const Points& x)
+{
+    std::vector<Index> order;
+    double largest = 0;
+    for (const SplitNode& b : median_split(x, order, block_size))
+    {
+        if (b.child >= 0)
+            continue;
+        Vector3 c = Vector3::Zero();
+        for (Index i = b.begin; i < b.end; ++i)
+            c += x.row(order[std::size_t(i)]).transpose();
+        c /= double(b.end - b.begin);
+        for (Index i = b.begin; i < b.end; ++i)
+            largest = std::max(largest, (x.row(order[std::size_t(i)]).transpose() - c).norm());
+    }
+    return largest;
+}
+
+void IdwTree::write_essential(FieldWriter& out, const Vector3& lo, const Vector3& hi,
+                              double block_radius) const
+{
+    // Breadth first, so that the two children of a node kept open stay adjacent.
+    std::vector<Node> kept{nodes_[0]};
+    std::vector<Index> origin{0};
+    std::vector<double> sources[6];
+    const std::vector<double>* all[6] = {&sx_, &sy_, &sz_, &vx_, &vy_, &vz_};
+    for (std::size_t k = 0; k < kept.size(); ++k)
+    {
+        Node& node = kept[k];
+        const double c[3] = {node.cx, node.cy, node.cz};
+        const double gap = distance_to_box(c, lo, hi) - block_radius;
+        if (gap > 0.0 && node.radius < theta_ * gap)
+        {
+            node.moments_only = true;
+            node.child = -1;
+            node.begin = node.end = 0;
+        }
+        else if (node.child < 0)
+        {
+            const Index begin = static_cast<Index>(sources[0].size());
+            for (int a = 0; a < 6; ++a)
+                sources[a].insert(sources[a].end(), all[a]->begin() + node.begin,
+                                  all[a]->begin() + node.end);
+            node.end = begin + (node.end - node.begin);
+            node.begin = begin;
+        }
+        else
+        {
+            const Index child = nodes_[std::size_t(origin[k])].child;
+            node.child = static_cast<Index>(kept.size());
+            node.begin = node.end = 0; // an inner node's sources are its leaves'
+            for (Index c2 : {child, child + 1})
+            {
+                kept.push_back(nodes_[std::size_t(c2)]);
+                origin.push_back(c2);
+            }
+        }
+    }
+    out.put_vector(kept);
+    for (const std::vector<double>& s : sources)
+        out.put_vector(s);
+}
+
+IdwTree IdwTree::read_essential(FieldReader& in, const IdwWeight& weight, double theta)
+{
+    IdwTree tree(weight, theta);
+    tree.nodes_ = in.get_vector<Node>();
+    for (std::vector<double>* a :
+         {&tree.sx_, &tree.sy_, &tree.sz_, &tree.vx_, &tree.vy_, &tree.vz_})
+        *a = in.get_vector<double>();
+    const Index n_nodes = static_cast<Index>(tree.nodes_.size());
+    const Index m = static_cast<Index>(tree.sx_.size());
+    if (n_nodes == 0)
+        throw IoError("fitted field: an IDW tree without nodes");
+    for (std::vector<double>* a : {&tree.sy_, &tree.sz_, &tree.vx_, &tree.vy_, &tree.vz_})
+        if (static_cast<Index>(a->size()) != m)
+            throw IoError("fitted field: IDW sources of different lengths");
+    for (const Node& node : tree.nodes_)
+        if (node.begin < 0 || node.end < node.begin || node.end > m ||
+            (node.child >= 0 && node.child + 1 >= n_nodes))
+            throw IoError("fitted field: an IDW tree node out of range");
+    return tree;
+}
 
 void IdwTree::weighted_mean(const Points& x, Points& out) const
 {
@@ -320,6 +427,7 @@ void IdwTree::weighted_mean(const Points& x, Points& out) const
     const WeightGeneral wg{weight_.beta, weight_.far_exponent, weight_.near_exponent,
                            double(weight_.far_exponent), double(weight_.near_exponent)};
     const std::int64_t n_blocks = static_cast<std::int64_t>(blocks.size());
+    std::atomic<bool> outside_region{false};
 #pragma omp parallel if (n_blocks > 8)
     {
         std::vector<Index> far, near;
@@ -349,7 +457,12 @@ void IdwTree::weighted_mean(const Points& x, Points& out) const
                 rho2 = std::max(rho2, (b.x[i] - c[0]) * (b.x[i] - c[0]) +
                                           (b.y[i] - c[1]) * (b.y[i] - c[1]) +
                                           (b.z[i] - c[2]) * (b.z[i] - c[2]));
-            interaction_lists(nodes_, theta_, c, std::sqrt(rho2), far, near);
+            // An exception must not leave an OpenMP region: noted, thrown after it.
+            if (!interaction_lists(nodes_, theta_, c, std::sqrt(rho2), far, near))
+            {
+                outside_region = true;
+                continue;
+            }
             b.clear_sums();
             const auto accumulate = [&](const auto& weight)
             {
@@ -380,6 +493,8 @@ void IdwTree::weighted_mean(const Points& x, Points& out) const
             }
         }
     }
+    if (outside_region)
+        throw std::logic_error("IDW: a query outside the region its tree was written for");
 }
 
 } // namespace meshmorph::detail

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "meshmorph/core/types.h"
+#include "meshmorph/deform/field_stream.h"
 
 namespace meshmorph::detail
 {
@@ -34,11 +35,25 @@ struct IdwWeight
 //! 1e-13 of the sources' extent, far below any mesh spacing, far above round-off).
 inline constexpr double idw_coincident2 = 1e-26;
 
+//! \brief The largest radius (about its centroid) of the query blocks weighted_mean() splits
+//! the rows of x into (0 for no points).
+double largest_query_block_radius(const Points& x);
+
 class IdwTree
 {
 public:
     //! Sources in normalised coordinates (m x 3, m >= 1) and their values (m x 3).
     IdwTree(const Points& sources, const Points& values, const IdwWeight& weight, double theta);
+
+    //! \brief The locally essential tree for queries in the box lo..hi in blocks of radius at
+    //! most block_radius (normalised units), the parallel Barnes-Hut idea: a node that every
+    //! such block sees as far (radius < theta (distance to the box - block_radius)) is
+    //! written as its moments only; the others with their children, leaves with their
+    //! sources. weighted_mean() of the tree read back equals this one's there, bit for bit.
+    void write_essential(FieldWriter& out, const Vector3& lo, const Vector3& hi,
+                         double block_radius) const;
+    //! \brief A tree written by write_essential(). \throw IoError on bad data.
+    static IdwTree read_essential(FieldReader& in, const IdwWeight& weight, double theta);
 
     //! The weighted mean N(x) / D(x) at every normalised point (rows of x), or the value of
     //! a source that a point coincides with (the limit of the weighted mean there). OpenMP
@@ -61,9 +76,12 @@ public:
         double first[3][3] = {};    //!< [a][k] = sum delta_a v_k
         double second[6] = {};      //!< sum delta delta^T: xx yy zz xy xz yz
         double second_v[3][6] = {}; //!< [k] = sum delta delta^T v_k (same layout)
+        //! Written without its sources (write_essential): it must only ever be far.
+        bool moments_only = false;
     };
 
 private:
+    IdwTree(const IdwWeight& weight, double theta) : weight_(weight), theta_(theta) {}
     void build(Index node, std::vector<Index>& order, const Points& s, const Points& v);
     void compute_moments(Node& node) const;
 

@@ -11,6 +11,7 @@ namespace meshmorph
 {
 
 class FieldWriter;
+class FieldReader;
 
 //! What a fit did; retrievable with SpaceDeformation::report() after fit().
 struct FitReport

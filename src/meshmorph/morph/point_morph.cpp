@@ -372,7 +372,11 @@ PointMorph morph_points_distributed(const PolyMesh& mesh, const Constraints& c,
     if (fit)
     {
         const FitInput in = gathered_fit_input(x_eval, c, d);
-        std::string bytes;
+        // Each rank gets the field for its own points: an IDW part only as its locally
+        // essential tree, not every handle (the pitfall of replicating the boundary).
+        const std::vector<std::vector<QueryRegion>> regions =
+            comm.gather_values(std::vector<QueryRegion>{query_region(x_eval)});
+        std::vector<std::string> per_rank;
         parallel::on_master(comm,
                             [&]
                             {
@@ -382,15 +386,14 @@ PointMorph morph_points_distributed(const PolyMesh& mesh, const Constraints& c,
                                 remove_empty_normal(at_handles, c);
                                 counts = {double(p.points.size()), double(in.slip_labels.size()),
                                           max_norm(p.values), max_norm(at_handles - p.values)};
-                                bytes = write_field(deformation);
+                                for (const std::vector<QueryRegion>& r : regions)
+                                    per_rank.push_back(write_field(deformation, &r.front()));
                             });
-        bytes = comm.broadcast(bytes);
+        const std::string bytes = comm.scatter(per_rank);
         counts = comm.broadcast_values(counts);
-        if (!comm.master())
-        {
-            received = read_field(bytes);
-            field = received.get();
-        }
+        // The master too evaluates what it sent itself: every rank alike.
+        received = read_field(bytes);
+        field = received.get();
     }
     result.report = field->report();
     result.fit_seconds = fit_clock.seconds();
