@@ -124,6 +124,26 @@ TEST(IdwDeformation, default_tree_keeps_its_documented_accuracy)
     EXPECT_LE(rms_err, 5e-4);
 }
 
+TEST(IdwDeformation, a_points_value_does_not_depend_on_the_points_queried_with_it)
+{
+    // A -parallel morph evaluates each rank's points apart; the tree's far-field decisions are
+    // made per point, so every split of the queries gives the same bits.
+    IdwDeformation idw;
+    const Points handles = test::sphere_points(5000, Vector3(0.5, 0.5, 0.5), 0.5);
+    idw.fit(handles, test::smooth_field(handles));
+    const Points query = test::random_points(4000, -0.2, 1.2, 5);
+    Points all(query.rows(), 3);
+    idw.evaluate(query, all);
+    for (const Eigen::Index split : {Eigen::Index(1), Eigen::Index(1357), Eigen::Index(3999)})
+    {
+        Points first(split, 3), second(query.rows() - split, 3);
+        idw.evaluate(query.topRows(split), first);
+        idw.evaluate(query.bottomRows(query.rows() - split), second);
+        EXPECT_EQ(first, all.topRows(split)) << split;
+        EXPECT_EQ(second, all.bottomRows(query.rows() - split)) << split;
+    }
+}
+
 TEST(IdwDeformation, tiny_inputs_one_handle_and_coincident_handles)
 {
     // One handle: its value everywhere.

@@ -180,7 +180,6 @@ QueryRegion query_region(const Points& x)
         r.lo[k] = x.col(k).minCoeff();
         r.hi[k] = x.col(k).maxCoeff();
     }
-    r.block_radius = detail::largest_query_block_radius(x);
     return r;
 }
 

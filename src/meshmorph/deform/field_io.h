@@ -22,11 +22,10 @@ namespace meshmorph
 
 //! \throw InvalidInput if the deformation is not fitted or its kind cannot be written.
 //! \param region if given, the field evaluates exactly as the original (bit-identically)
-//!        at points inside region->lo..hi split into query blocks no larger than
-//!        region->block_radius (query_region()); elsewhere it may throw.
+//!        at points inside the box region->lo..hi (query_region()); elsewhere it may throw.
 std::string write_field(const SpaceDeformation& deformation, const QueryRegion* region = nullptr);
 
-//! \brief The region of the points x (their bounding box and IdwTree's largest query block).
+//! \brief The region of the points x: their bounding box.
 QueryRegion query_region(const Points& x);
 
 //! A deformation that evaluates the written field (fit() throws: it is evaluation only).

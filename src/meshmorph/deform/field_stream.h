@@ -33,8 +33,6 @@ enum class FieldKind : std::uint32_t
 struct QueryRegion
 {
     double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}; //!< bounding box of the points (plain: sent)
-    //! Largest radius of a block of 32 points (IdwTree's query blocks) about its centroid.
-    double block_radius = 0;
 };
 
 class FieldWriter

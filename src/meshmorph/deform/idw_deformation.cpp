@@ -71,8 +71,7 @@ void IdwDeformation::write_field(FieldWriter& out) const
         throw InvalidInput("IDW: write_field before fit");
     if (const QueryRegion* region = out.region())
     {
-        // The region in the tree's normalised units; the block radius with a margin for the
-        // round-off of normalising (the blocks split the same points the same way).
+        // The region in the tree's normalised units.
         const Impl& d = *impl_;
         out.put(FieldKind::idw_local);
         out.put(d.settings);
@@ -84,7 +83,7 @@ void IdwDeformation::write_field(FieldWriter& out) const
             (Vector3(region->lo[0], region->lo[1], region->lo[2]) - d.centre) / d.scale;
         const Vector3 hi =
             (Vector3(region->hi[0], region->hi[1], region->hi[2]) - d.centre) / d.scale;
-        d.tree->write_essential(out, lo, hi, 1.01 * region->block_radius / d.scale + 1e-12);
+        d.tree->write_essential(out, lo, hi);
         return;
     }
     out.put(FieldKind::idw);

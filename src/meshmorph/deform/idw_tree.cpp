@@ -133,7 +133,8 @@ struct Block
     int n = 0;
     alignas(64) double x[block_size], y[block_size], z[block_size];
     alignas(64) double nx[block_size], ny[block_size], nz[block_size], den[block_size];
-    alignas(64) double hit[block_size]; //!< 1 + source index of a coincident source, or 0
+    alignas(64) double hit[block_size];  //!< 1 + source index of a coincident source, or 0
+    alignas(64) double lane[block_size]; //!< 1 for the lanes a term applies to, else 0
     alignas(64) double r2[block_size], inv_r[block_size]; //!< scratch of the kernels
 
     void clear_sums()
@@ -143,7 +144,7 @@ struct Block
     }
 };
 
-//! Adds the second-order expansion of a far node to every point of the block.
+//! Adds the second-order expansion of a far node to the block's points in b.lane.
 template <class W> void add_far(const IdwTree::Node& node, const W& weight, Block& b)
 {
     const double count = node.count;
@@ -172,20 +173,24 @@ template <class W> void add_far(const IdwTree::Node& node, const W& weight, Bloc
             const double q = quadratic(m, ux, uy, uz);
             return 0.5 * (w2 * q + t * (m[0] + m[1] + m[2] - q));
         };
-        b.den[i] += count * w0 + second_order(node.second);
-        b.nx[i] += w0 * node.sv[0] -
-                   w1 * (ux * node.first[0][0] + uy * node.first[1][0] + uz * node.first[2][0]) +
-                   second_order(node.second_v[0]);
-        b.ny[i] += w0 * node.sv[1] -
-                   w1 * (ux * node.first[0][1] + uy * node.first[1][1] + uz * node.first[2][1]) +
-                   second_order(node.second_v[1]);
-        b.nz[i] += w0 * node.sv[2] -
-                   w1 * (ux * node.first[0][2] + uy * node.first[1][2] + uz * node.first[2][2]) +
-                   second_order(node.second_v[2]);
+        const double on = b.lane[i]; // x + 0 * t == x: lanes off keep their sums exactly
+        b.den[i] += on * (count * w0 + second_order(node.second));
+        b.nx[i] +=
+            on * (w0 * node.sv[0] -
+                  w1 * (ux * node.first[0][0] + uy * node.first[1][0] + uz * node.first[2][0]) +
+                  second_order(node.second_v[0]));
+        b.ny[i] +=
+            on * (w0 * node.sv[1] -
+                  w1 * (ux * node.first[0][1] + uy * node.first[1][1] + uz * node.first[2][1]) +
+                  second_order(node.second_v[1]));
+        b.nz[i] +=
+            on * (w0 * node.sv[2] -
+                  w1 * (ux * node.first[0][2] + uy * node.first[1][2] + uz * node.first[2][2]) +
+                  second_order(node.second_v[2]));
     }
 }
 
-//! Adds one source directly to every point of the block (and notes coincidences).
+//! Adds one source directly to the block's points in b.lane (and notes coincidences).
 template <class W>
 void add_source(double sx, double sy, double sz, double vx, double vy, double vz, double tag,
                 const W& weight, Block& b)
@@ -200,8 +205,8 @@ void add_source(double sx, double sy, double sz, double vx, double vy, double vz
     {
         double pa, pb;
         weight(b.inv_r[i], pa, pb);
-        const double w = pa + pb;
-        b.hit[i] = b.r2[i] <= idw_coincident2 ? tag : b.hit[i];
+        const double w = b.lane[i] * (pa + pb);
+        b.hit[i] = b.lane[i] > 0.0 && b.r2[i] <= idw_coincident2 ? tag : b.hit[i];
         b.nx[i] += w * vx;
         b.ny[i] += w * vy;
         b.nz[i] += w * vz;
@@ -279,33 +284,72 @@ void IdwTree::compute_moments(Node& node) const
 namespace
 {
 
-//! Far nodes and near leaves for every point of a block with centre c and radius rho:
-//! a node is far when node.radius < theta (|c - centroid| - rho). False if the block needs
-//! a node written as moments only (a tree written for another region).
+//! A term of a block's sum: a node (far: its expansion; near: a leaf's sources) and the
+//! block's lanes it applies to (bit i: point i).
+struct Term
+{
+    Index node;
+    std::uint32_t lanes;
+};
+
+//! The lanes of the block's points for which `node` is far (radius < theta |x - centroid|,
+//! Barnes-Hut's test per point, so that each point's sum depends on the point alone and not
+//! on the block, nor on which points a rank holds).
+std::uint32_t far_lanes(const IdwTree::Node& node, double theta, const Block& b,
+                        std::uint32_t active)
+{
+    std::uint32_t far = 0;
+    const double limit = node.radius * node.radius;
+    for (int i = 0; i < b.n; ++i)
+    {
+        const double dx = b.x[i] - node.cx, dy = b.y[i] - node.cy, dz = b.z[i] - node.cz;
+        const double t2 = theta * theta * (dx * dx + dy * dy + dz * dz);
+        if (((active >> i) & 1u) && limit < t2)
+            far |= 1u << i;
+    }
+    return far;
+}
+
+//! Far terms and near leaves of a block of n points, in the tree's depth-first order, each
+//! with the lanes it applies to. A node far for the whole ball (centre c, radius rho) is
+//! far for every point in it; a node that no point sees as far is opened for all. False if
+//! a point needs a node written as moments only (a tree written for another region).
 bool interaction_lists(const std::vector<IdwTree::Node>& nodes, double theta, const double c[3],
-                       double rho, std::vector<Index>& far, std::vector<Index>& near)
+                       double rho, const Block& b, std::vector<Term>& far, std::vector<Term>& near)
 {
     far.clear();
     near.clear();
-    std::array<Index, 256> stack;
+    const std::uint32_t all = b.n == 32 ? ~0u : (1u << b.n) - 1u;
+    std::array<Term, 256> stack;
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = {0, all};
     while (top > 0)
     {
-        const Index id = stack[--top];
-        const IdwTree::Node& node = nodes[std::size_t(id)];
+        const Term t = stack[--top];
+        const IdwTree::Node& node = nodes[std::size_t(t.node)];
         const double dx = c[0] - node.cx, dy = c[1] - node.cy, dz = c[2] - node.cz;
-        const double gap = std::sqrt(dx * dx + dy * dy + dz * dz) - rho;
-        if (gap > 0.0 && node.radius < theta * gap)
-            far.push_back(id);
-        else if (node.moments_only)
+        const double centre_distance = std::sqrt(dx * dx + dy * dy + dz * dz);
+        const double gap = centre_distance - rho;
+        // The ball's tests decide for all its points only with a margin far above round-off,
+        // so that they never disagree with the test of a point (see far_lanes).
+        std::uint32_t far_here = 0;
+        if (gap > 0.0 && node.radius < (1.0 - 1e-9) * theta * gap)
+            far_here = t.lanes; // the whole ball is far: so is every point
+        else if (node.radius < (1.0 + 1e-9) * theta * (centre_distance + rho))
+            far_here = far_lanes(node, theta, b, t.lanes); // some point may be far
+        if (far_here)
+            far.push_back({t.node, far_here});
+        const std::uint32_t rest = t.lanes & ~far_here;
+        if (!rest)
+            continue;
+        if (node.moments_only)
             return false;
-        else if (node.child < 0)
-            near.push_back(id);
+        if (node.child < 0)
+            near.push_back({t.node, rest});
         else
         {
-            stack[top++] = node.child + 1;
-            stack[top++] = node.child;
+            stack[top++] = {node.child + 1, rest};
+            stack[top++] = {node.child, rest};
         }
     }
     return true;
@@ -330,26 +374,7 @@ double distance_to_box(const double p[3], const Vector3& lo, const Vector3& hi)
 
 } // namespace
 
-double largest_query_block_radius(const Points& x)
-{
-    std::vector<Index> order;
-    double largest = 0;
-    for (const SplitNode& b : median_split(x, order, block_size))
-    {
-        if (b.child >= 0)
-            continue;
-        Vector3 c = Vector3::Zero();
-        for (Index i = b.begin; i < b.end; ++i)
-            c += x.row(order[std::size_t(i)]).transpose();
-        c /= double(b.end - b.begin);
-        for (Index i = b.begin; i < b.end; ++i)
-            largest = std::max(largest, (x.row(order[std::size_t(i)]).transpose() - c).norm());
-    }
-    return largest;
-}
-
-void IdwTree::write_essential(FieldWriter& out, const Vector3& lo, const Vector3& hi,
-                              double block_radius) const
+void IdwTree::write_essential(FieldWriter& out, const Vector3& lo, const Vector3& hi) const
 {
     // Breadth first, so that the two children of a node kept open stay adjacent.
     std::vector<Node> kept{nodes_[0]};
@@ -360,8 +385,9 @@ void IdwTree::write_essential(FieldWriter& out, const Vector3& lo, const Vector3
     {
         Node& node = kept[k];
         const double c[3] = {node.cx, node.cy, node.cz};
-        const double gap = distance_to_box(c, lo, hi) - block_radius;
-        if (gap > 0.0 && node.radius < theta_ * gap)
+        // Far for every point of the box (with the margin of interaction_lists).
+        const double gap = distance_to_box(c, lo, hi);
+        if (gap > 0.0 && node.radius < (1.0 - 1e-9) * theta_ * gap)
         {
             node.moments_only = true;
             node.child = -1;
@@ -430,7 +456,7 @@ void IdwTree::weighted_mean(const Points& x, Points& out) const
     std::atomic<bool> outside_region{false};
 #pragma omp parallel if (n_blocks > 8)
     {
-        std::vector<Index> far, near;
+        std::vector<Term> far, near;
         Block b;
 #pragma omp for schedule(dynamic, 16)
         for (std::int64_t k = 0; k < n_blocks; ++k)
@@ -458,19 +484,28 @@ void IdwTree::weighted_mean(const Points& x, Points& out) const
                                           (b.y[i] - c[1]) * (b.y[i] - c[1]) +
                                           (b.z[i] - c[2]) * (b.z[i] - c[2]));
             // An exception must not leave an OpenMP region: noted, thrown after it.
-            if (!interaction_lists(nodes_, theta_, c, std::sqrt(rho2), far, near))
+            if (!interaction_lists(nodes_, theta_, c, std::sqrt(rho2), b, far, near))
             {
                 outside_region = true;
                 continue;
             }
             b.clear_sums();
+            const auto set_lanes = [&](std::uint32_t lanes)
+            {
+                for (int i = 0; i < block_size; ++i)
+                    b.lane[i] = double((lanes >> i) & 1u);
+            };
             const auto accumulate = [&](const auto& weight)
             {
-                for (Index id : far)
-                    add_far(nodes_[std::size_t(id)], weight, b);
-                for (Index id : near)
+                for (const Term& t : far)
                 {
-                    const Node& leaf = nodes_[std::size_t(id)];
+                    set_lanes(t.lanes);
+                    add_far(nodes_[std::size_t(t.node)], weight, b);
+                }
+                for (const Term& t : near)
+                {
+                    set_lanes(t.lanes);
+                    const Node& leaf = nodes_[std::size_t(t.node)];
                     for (Index j = leaf.begin; j < leaf.end; ++j)
                         add_source(sx_[j], sy_[j], sz_[j], vx_[j], vy_[j], vz_[j],
                                    static_cast<double>(j + 1), weight, b);

@@ -8,12 +8,14 @@
 //! are replaced by a second-order Taylor expansion about their centroid (moments: count,
 //! sum v, sum delta v^T, sum delta delta^T, sum delta delta^T v_k), the Barnes-Hut idea
 //! that Luke, Collins & Blades (JCP 231, 2012) use for explicit mesh motion; near clusters
-//! are summed directly. A cluster of radius rho is expanded when rho < theta |x - centroid|
-//! holds for every point of a query block; theta = 0 sums every source directly (exact).
+//! are summed directly. A cluster of radius rho is expanded for the points x with
+//! rho < theta |x - centroid| (decided per point, so that a point's value does not depend
+//! on the other points queried with it); theta = 0 sums every source directly (exact).
 //!
 //! Queries are sorted into compact blocks (the same median split as the sources); each
-//! block builds one interaction list and then runs SIMD loops over its points, so the cost
-//! per point is a few hundred expansion and direct terms without per-point traversal.
+//! block builds one interaction list (each term with the block's points it applies to) and
+//! then runs SIMD loops over its points, so the cost per point is a few hundred expansion
+//! and direct terms without per-point traversal.
 #pragma once
 
 #include <vector>
@@ -35,23 +37,18 @@ struct IdwWeight
 //! 1e-13 of the sources' extent, far below any mesh spacing, far above round-off).
 inline constexpr double idw_coincident2 = 1e-26;
 
-//! \brief The largest radius (about its centroid) of the query blocks weighted_mean() splits
-//! the rows of x into (0 for no points).
-double largest_query_block_radius(const Points& x);
-
 class IdwTree
 {
 public:
     //! Sources in normalised coordinates (m x 3, m >= 1) and their values (m x 3).
     IdwTree(const Points& sources, const Points& values, const IdwWeight& weight, double theta);
 
-    //! \brief The locally essential tree for queries in the box lo..hi in blocks of radius at
-    //! most block_radius (normalised units), the parallel Barnes-Hut idea: a node that every
-    //! such block sees as far (radius < theta (distance to the box - block_radius)) is
-    //! written as its moments only; the others with their children, leaves with their
-    //! sources. weighted_mean() of the tree read back equals this one's there, bit for bit.
-    void write_essential(FieldWriter& out, const Vector3& lo, const Vector3& hi,
-                         double block_radius) const;
+    //! \brief The locally essential tree for queries in the box lo..hi (normalised units),
+    //! the parallel Barnes-Hut idea: a node far for every point of the box (radius < theta
+    //! times its distance to the box) is written as its moments only; the others with their
+    //! children, leaves with their sources. weighted_mean() of the tree read back equals this
+    //! one's in the box, bit for bit.
+    void write_essential(FieldWriter& out, const Vector3& lo, const Vector3& hi) const;
     //! \brief A tree written by write_essential(). \throw IoError on bad data.
     static IdwTree read_essential(FieldReader& in, const IdwWeight& weight, double theta);
 
