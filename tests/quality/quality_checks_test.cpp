@@ -3,6 +3,7 @@
 // mesh_quality_checks.h) and of the report walkers (report_text.h, quality_json.h).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <stdexcept>
 
 #include "helpers.h"
@@ -17,6 +18,7 @@
 #include "meshmorph/quality/quality_json.h"
 #include "meshmorph/quality/report_text.h"
 #include "meshmorph/quality/topology_checks.h"
+#include "meshmorph/quality/zone_topology.h"
 
 using namespace meshmorph;
 
@@ -250,4 +252,37 @@ TEST(ReportText, region_and_near_point_lines_as_checkmesh_prints_them)
     r = check_mesh(test::make_split_pair_mesh(true), settings);
     EXPECT_EQ(r.text.find("<<Writing"), std::string::npos) << r.text;
     EXPECT_NE(r.text.find("   *Number of regions: 2\n"), std::string::npos);
+}
+
+TEST(SurfaceTopology, non_manifold_points_are_those_of_shared_edges_and_pinched_fans)
+{
+    // Three quads on the edge 0-1 (a book of three pages): the edge's points are checkMesh's
+    // nonManifoldPoints. Two closed tetrahedra surfaces touching at point 0: a pinched fan.
+    PolyMesh book;
+    book.points.resize(8, 3);
+    book.points << 0, 0, 0, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, -1, 0, 0, -1, 0, 1;
+    book.faces.push_back({0, 1, 3, 2});
+    book.faces.push_back({0, 4, 5, 1});
+    book.faces.push_back({0, 1, 7, 6});
+    const SurfaceTopology pages = surface_topology(book, "book", {0, 1, 2});
+    EXPECT_EQ(pages.type, "multiply connected (shared edge)");
+    EXPECT_EQ(pages.edge_points, (std::vector<Index>{0, 1}));
+    EXPECT_TRUE(pages.fan_points.empty());
+
+    PolyMesh pinch;
+    pinch.points.resize(7, 3);
+    pinch.points << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1;
+    for (const auto& f : std::vector<std::array<Index, 3>>{{0, 2, 1},
+                                                           {0, 1, 3},
+                                                           {0, 3, 2},
+                                                           {1, 2, 3},
+                                                           {0, 5, 4},
+                                                           {0, 4, 6},
+                                                           {0, 6, 5},
+                                                           {4, 5, 6}})
+        pinch.faces.push_back({f[0], f[1], f[2]});
+    const SurfaceTopology touching = surface_topology(pinch, "pinch", {0, 1, 2, 3, 4, 5, 6, 7});
+    EXPECT_EQ(touching.type, "multiply connected (shared point)");
+    EXPECT_TRUE(touching.edge_points.empty());
+    EXPECT_EQ(touching.fan_points, (std::vector<Index>{0}));
 }

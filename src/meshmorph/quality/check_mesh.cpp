@@ -107,6 +107,22 @@ double min_finite(const Eigen::VectorXd& values)
     return min;
 }
 
+//! The points checkMesh collects in nonManifoldPoints. checkMesh -parallel (v1912) checks
+//! only the patches' addressing and collects none.
+std::vector<Index> non_manifold_points(const QualityReport& r, bool parallel_run)
+{
+    std::vector<Index> points;
+    if (parallel_run)
+        return points;
+    for (const auto* rows : {&r.patch_topology, &r.face_zone_topology})
+        for (const SurfaceTopology& s : *rows)
+        {
+            points.insert(points.end(), s.edge_points.begin(), s.edge_points.end());
+            points.insert(points.end(), s.fan_points.begin(), s.fan_points.end());
+        }
+    return as_set(std::move(points));
+}
+
 //! The cell regions; in a -parallel run, joined across processor faces.
 std::vector<std::vector<Index>> regions_of(const PolyMesh& mesh, const ProcessorFaces* processors)
 {
@@ -137,6 +153,8 @@ void run_topology_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
         r.cell_to_region = region_of_cells(regions, mesh.n_cells);
     r.patch_topology = patch_topology(mesh);
     r.face_zone_topology = face_zone_topology(mesh);
+    r.non_manifold_points = non_manifold_points(r, processors != nullptr);
+    r.non_manifold_total = size_of(r.non_manifold_points);
     r.cell_zones = cell_zone_summaries(mesh, cell_faces, g);
 }
 
@@ -235,6 +253,8 @@ void summarise_checks(QualityReport& r)
     r.failed_checks = 0;
     r.failed_check_names.clear();
     r.sets.clear();
+    if (!r.non_manifold_points.empty()) // written first, as checkMesh's topology does
+        r.sets.push_back({"nonManifoldPoints", MeshSet::Kind::point, r.non_manifold_points});
     for (const CheckResult& c : r.checks)
     {
         if (c.failed())

@@ -100,6 +100,10 @@ struct QualityReport
 
     // The topology tables (empty with no_topology).
     std::vector<SurfaceTopology> patch_topology, face_zone_topology;
+    //! checkMesh's pointSet nonManifoldPoints: the surfaces' edge_points and fan_points,
+    //! sorted (none in a -parallel run, as checkMesh -parallel); and their number.
+    std::vector<Index> non_manifold_points;
+    Index non_manifold_total = 0;
     std::vector<CellZoneSummary> cell_zones;
 
     //! Every check run, in report order: topology, geometry, -allGeometry, -meshQuality.

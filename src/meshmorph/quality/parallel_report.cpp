@@ -58,6 +58,7 @@ nlohmann::json mesh_json(const QualityReport& r, const PolyMesh& mesh, Index pro
             {"polyhedra", c.polyhedra_by_faces},
             {"patches", surfaces_json(r.patch_topology)},
             {"faceZones", surfaces_json(r.face_zone_topology)},
+            {"nonManifoldPoints", r.non_manifold_total},
             {"cellZones", cell_zones}};
 }
 
@@ -156,6 +157,7 @@ QualityReport combine_mesh_parts(const QualityReport& local, const std::vector<s
     r.n_cells = r.n_faces = r.n_internal_faces = 0;
     r.n_internal_points = 0;
     r.cell_types = {};
+    r.non_manifold_total = 0;
     r.min_scaled_jacobian = std::numeric_limits<double>::quiet_NaN();
     r.n_patches = non_processor_patches;
     for (SurfaceTopology& s : r.patch_topology)
@@ -183,6 +185,7 @@ QualityReport combine_mesh_parts(const QualityReport& local, const std::vector<s
         add_cell_types(r.cell_types, other);
         add_surfaces(r.patch_topology, other.at("patches"));
         add_surfaces(r.face_zone_topology, other.at("faceZones"));
+        r.non_manifold_total += other.at("nonManifoldPoints").get<Index>();
         add_cell_zones(r.cell_zones, other.at("cellZones"));
     }
     // Each processor face is on two ranks: once a face, and an internal one.

@@ -623,6 +623,9 @@ void topology_tables(Writer& t)
         t.out << "    No faceZones found.\n";
     else
         surface_table("FaceZone", r.face_zone_topology, t);
+    if (t.settings.report_sets && r.non_manifold_total > 0)
+        t.out << "  <<Writing " << r.non_manifold_total
+              << " conflicting points to set nonManifoldPoints\n";
     t.out << "\nChecking basic cellZone addressing...\n";
     if (r.cell_zones.empty())
         t.out << "    No cellZones found.\n";

@@ -16,8 +16,8 @@ namespace meshmorph
 namespace
 {
 
-//! Whether some edge is used once (open) / more than twice.
-std::pair<bool, bool> edge_use(const PolyMesh& mesh, const std::vector<Index>& faces)
+//! Whether some edge is used once (open), and the points of edges used more than twice.
+std::pair<bool, std::vector<Index>> edge_use(const PolyMesh& mesh, const std::vector<Index>& faces)
 {
     std::vector<std::uint64_t> edges;
     for (Index f : faces)
@@ -27,17 +27,22 @@ std::pair<bool, bool> edge_use(const PolyMesh& mesh, const std::vector<Index>& f
             edges.push_back(packed_edge(face[i], face[(i + 1) % face.size()]));
     }
     std::sort(edges.begin(), edges.end());
-    bool has_open = false, has_over = false;
+    bool has_open = false;
+    std::vector<Index> over;
     for (std::size_t i = 0; i < edges.size();)
     {
         std::size_t j = i;
         while (j < edges.size() && edges[j] == edges[i])
             ++j;
         has_open = has_open || j - i == 1;
-        has_over = has_over || j - i > 2;
+        if (j - i > 2)
+        {
+            over.push_back(static_cast<Index>(edges[i] >> 32));
+            over.push_back(static_cast<Index>(edges[i] & 0xffffffffu));
+        }
         i = j;
     }
-    return {has_open, has_over};
+    return {has_open, as_set(std::move(over))};
 }
 
 //! The two neighbours of point p in face f (-1 if p is not in f).
@@ -78,9 +83,9 @@ bool several_fans(const PolyMesh& mesh, const std::vector<Index>& faces,
     return fans.count() > 1;
 }
 
-//! For a closed surface: whether some point's faces form several fans.
-bool has_shared_point(const PolyMesh& mesh, const std::vector<Index>& faces,
-                      const std::vector<Index>& points)
+//! For a closed surface: the points whose faces form several fans.
+std::vector<Index> shared_points(const PolyMesh& mesh, const std::vector<Index>& faces,
+                                 const std::vector<Index>& points)
 {
     std::vector<Index> local(static_cast<std::size_t>(mesh.n_points()), -1);
     for (std::size_t i = 0; i < points.size(); ++i)
@@ -89,10 +94,11 @@ bool has_shared_point(const PolyMesh& mesh, const std::vector<Index>& faces,
     for (std::size_t k = 0; k < faces.size(); ++k)
         for (Index p : mesh.faces[faces[k]])
             point_faces_local[local[p]].push_back(static_cast<Index>(k));
+    std::vector<Index> shared;
     for (std::size_t pi = 0; pi < points.size(); ++pi)
         if (several_fans(mesh, faces, point_faces_local[pi], points[pi]))
-            return true;
-    return false;
+            shared.push_back(points[pi]);
+    return shared;
 }
 
 } // namespace
@@ -124,12 +130,13 @@ SurfaceTopology surface_topology(const PolyMesh& mesh, std::string name,
         t.type = "ok (empty)";
         return t;
     }
-    const auto [has_open, has_over] = edge_use(mesh, faces);
-    if (has_over)
+    auto [has_open, over] = edge_use(mesh, faces);
+    t.edge_points = std::move(over);
+    if (!t.edge_points.empty())
         t.type = "multiply connected (shared edge)";
     else if (has_open)
         t.type = "ok (non-closed singly connected)";
-    else if (has_shared_point(mesh, faces, points))
+    else if (t.fan_points = shared_points(mesh, faces, points); !t.fan_points.empty())
         t.type = "multiply connected (shared point)";
     else
         t.type = "ok (closed singly connected)";

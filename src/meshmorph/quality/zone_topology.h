@@ -20,6 +20,10 @@ struct SurfaceTopology
     Index n_points = 0; //!< distinct points
     std::string type;   //!< "ok (closed singly connected)", "multiply connected (shared edge)", ...
     Vector3 bb_min = Vector3::Zero(), bb_max = Vector3::Zero(); //!< of the points, if any
+    //! checkMesh's nonManifoldPoints of this surface: the points of edges used by more than
+    //! two faces (PrimitivePatch::checkTopology), and of a closed surface the points whose
+    //! faces form several fans (checkPointManifold). Sorted.
+    std::vector<Index> edge_points, fan_points;
 };
 
 //! \brief The surface type of `faces` (OpenFOAM PrimitivePatch::surfaceType): an edge used
