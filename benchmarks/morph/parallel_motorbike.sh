@@ -102,4 +102,39 @@ if [ "$decomposed" != 0 ]; then
         echo "| checkMeshQuality -parallel, $decomposed ranks | $(wall_s "$out/time.checkMeshQuality.parallel") | | $(same checkMesh.parallel checkMeshQuality.parallel) |"
     } >> "$out/summary.md"
 fi
+# A paper estimate for larger cases on 64 ranks, from the measured per-rank costs.
+/usr/bin/python3 - "$out" "$work" <<'PY' >> "$out/summary.md"
+import glob, re, sys
+out, work = sys.argv[1], sys.argv[2]
+def rss(path):
+    m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", open(path).read())
+    return int(m.group(1)) / 1024
+def timing(log, key):
+    m = re.search(r"^Timings \[s\]: .*" + key + r" ([0-9.e+-]+)", open(log).read(), re.M)
+    return float(m.group(1)) if m else None
+serial = glob.glob(f"{out}/time.1x1.0")
+parallel = sorted(glob.glob(f"{out}/time.2x1.*"))
+if not serial or len(parallel) < 2:
+    sys.exit(0)
+log = open(f"{out}/log.1x1").read()
+cells = int(re.search(r"points, (\d+) cells", log).group(1))
+constraints = int(re.search(r"Constraints: (\d+) prescribed", log).group(1))
+m1, m2 = rss(serial[0]), max(rss(p) for p in parallel)
+per_cell = (m1 - m2) / (cells / 2)           # MB per cell a rank holds
+fixed = m1 - per_cell * cells                # libraries, buffers: per rank
+fit, evaluate = timing(f"{out}/log.1x1", "fit"), timing(f"{out}/log.1x1", "evaluate")
+print()
+print("Paper estimate, 64 ranks (per-rank memory = fixed + per-cell x cells per rank; the")
+print("constraints grow like the surface, cells^(2/3); the master's fit like the constraints,")
+print("each rank's evaluation like its cells; the IDW part a rank receives is its locally")
+print(f"essential tree). Measured: {cells} cells, {constraints} constraints, {per_cell * 1e3:.2f} kB")
+print(f"per cell, {fixed:.0f} MB fixed, fit {fit} s, evaluate {evaluate} s (serial, 1 thread).")
+print()
+print("| cells | cells per rank | constraints | memory per rank [MB] | fit on the master [s] | evaluate per rank [s] |")
+print("| --- | --- | --- | --- | --- | --- |")
+for n in (10e6, 50e6):
+    scale = (n / cells) ** (2 / 3)
+    print(f"| {n / 1e6:.0f}M | {n / 64 / 1e3:.0f}k | {constraints * scale / 1e3:.0f}k | "
+          f"{fixed + per_cell * n / 64:.0f} | {fit * scale:.1f} | {evaluate * (n / 64) / cells:.2f} |")
+PY
 cat "$out/summary.md"

@@ -40,17 +40,19 @@ const char* prefix(Level l)
     }
 }
 
-// One message as a line on `out` (info, debug) or `err` (errors, warnings), flushed.
+// One message as a line on `out` (info, debug) or `err` (errors, warnings), flushed. The
+// line is one write: std::cerr is unbuffered, and under mpirun (or `2>&1` to a pipe) the
+// prefix written apart could land in another line of the other stream.
 void write_line(std::ostream& out, std::ostream& err, Level l, const std::string& message)
 {
     if (l == Level::error || l == Level::warning)
     {
         out.flush();
-        err << prefix(l) << message << '\n';
+        err << (prefix(l) + message + '\n');
         err.flush();
         return;
     }
-    out << message << '\n';
+    out << (message + '\n');
     out.flush();
 }
 } // namespace
