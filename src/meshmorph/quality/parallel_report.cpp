@@ -160,10 +160,13 @@ QualityReport combine_mesh_parts(const QualityReport& local, const std::vector<s
     r.non_manifold_total = 0;
     r.min_scaled_jacobian = std::numeric_limits<double>::quiet_NaN();
     r.n_patches = non_processor_patches;
-    for (SurfaceTopology& s : r.patch_topology)
-        s = {s.name, 0, 0, "", Vector3::Zero(), Vector3::Zero()};
-    for (SurfaceTopology& s : r.face_zone_topology)
-        s = {s.name, 0, 0, "", Vector3::Zero(), Vector3::Zero()};
+    for (auto* rows : {&r.patch_topology, &r.face_zone_topology})
+        for (SurfaceTopology& s : *rows)
+        {
+            SurfaceTopology named;
+            named.name = s.name;
+            s = std::move(named);
+        }
     for (CellZoneSummary& z : r.cell_zones)
         z = {z.name,
              0,
