@@ -90,8 +90,7 @@ if [ "$decomposed" != 0 ]; then
     run_check checkMeshQuality.parallel mpirun -np "$decomposed" --oversubscribe -x OMP_NUM_THREADS=1 "$check" -case "$work" -parallel $checks -writeSets
     (cd "$work" && run_check checkMesh.serial checkMesh $checks)
     OMP_NUM_THREADS=1 run_check checkMeshQuality.serial "$check" -case "$work" $checks -writeSets
-    report() { sed -n '/^Mesh stats/,/^\(Mesh OK\.\|Failed [0-9]* mesh checks\.\)$/p' "$1"; }
-    same() { diff -q <(report "$out/log.$1") <(report "$out/log.$2") > /dev/null && echo "equal" || echo "differ ($(diff <(report "$out/log.$1") <(report "$out/log.$2") | grep -c '^[<>]') lines)"; }
+    same() { /usr/bin/python3 "$source_dir/scripts/parallel/compare_reports.py" "$out/log.$1" "$out/log.$2" | tail -1; }
     {
         echo
         echo "| check ($checks, 1 thread per rank) | wall [s] | peak memory [MB] (master) | report |"
