@@ -440,6 +440,38 @@ IdwTree IdwTree::read_essential(FieldReader& in, const IdwWeight& weight, double
     return tree;
 }
 
+namespace
+{
+
+//! The points of query block q into b (unused lanes repeat the first point: harmless work,
+//! no branches); their centroid into c. Returns the block's radius about it.
+double load_block(const Points& x, const std::vector<Index>& order, const SplitNode& q, Block& b,
+                  double c[3])
+{
+    b.n = static_cast<int>(q.end - q.begin);
+    for (int i = 0; i < block_size; ++i)
+    {
+        const Index p = order[std::size_t(q.begin + (i < b.n ? i : 0))];
+        b.x[i] = x(p, 0);
+        b.y[i] = x(p, 1);
+        b.z[i] = x(p, 2);
+    }
+    for (int i = 0; i < b.n; ++i)
+    {
+        c[0] += b.x[i] / b.n;
+        c[1] += b.y[i] / b.n;
+        c[2] += b.z[i] / b.n;
+    }
+    double rho2 = 0.0;
+    for (int i = 0; i < b.n; ++i)
+        rho2 =
+            std::max(rho2, (b.x[i] - c[0]) * (b.x[i] - c[0]) + (b.y[i] - c[1]) * (b.y[i] - c[1]) +
+                               (b.z[i] - c[2]) * (b.z[i] - c[2]));
+    return std::sqrt(rho2);
+}
+
+} // namespace
+
 void IdwTree::weighted_mean(const Points& x, Points& out) const
 {
     out.resize(x.rows(), 3);
@@ -462,29 +494,10 @@ void IdwTree::weighted_mean(const Points& x, Points& out) const
         for (std::int64_t k = 0; k < n_blocks; ++k)
         {
             const SplitNode& q = blocks[std::size_t(k)];
-            b.n = static_cast<int>(q.end - q.begin);
             double c[3] = {0, 0, 0};
-            for (int i = 0; i < block_size; ++i)
-            {
-                // Unused lanes repeat the first point: harmless work, no branches.
-                const Index p = order[std::size_t(q.begin + (i < b.n ? i : 0))];
-                b.x[i] = x(p, 0);
-                b.y[i] = x(p, 1);
-                b.z[i] = x(p, 2);
-            }
-            for (int i = 0; i < b.n; ++i)
-            {
-                c[0] += b.x[i] / b.n;
-                c[1] += b.y[i] / b.n;
-                c[2] += b.z[i] / b.n;
-            }
-            double rho2 = 0.0;
-            for (int i = 0; i < b.n; ++i)
-                rho2 = std::max(rho2, (b.x[i] - c[0]) * (b.x[i] - c[0]) +
-                                          (b.y[i] - c[1]) * (b.y[i] - c[1]) +
-                                          (b.z[i] - c[2]) * (b.z[i] - c[2]));
+            const double rho = load_block(x, order, q, b, c);
             // An exception must not leave an OpenMP region: noted, thrown after it.
-            if (!interaction_lists(nodes_, theta_, c, std::sqrt(rho2), b, far, near))
+            if (!interaction_lists(nodes_, theta_, c, rho, b, far, near))
             {
                 outside_region = true;
                 continue;
