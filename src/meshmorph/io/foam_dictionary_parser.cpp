@@ -71,6 +71,30 @@ bool is_code_directive(const std::string& w)
                                  "engine; write the value out instead");
 }
 
+// Limits that keep hostile input from overflowing the stack: sub-dictionaries are parsed
+// (and destroyed) recursively, and std::regex compiles recursively, about one level per
+// character. Real dictionaries nest a few levels and their regex keys are short.
+constexpr std::size_t max_dictionary_nesting = 128;
+constexpr std::size_t max_regex_keyword_size = 1024;
+
+// A quoted keyword compiled as a regular expression; `what` names its use in messages.
+std::regex compile_keyword_regex(const FoamTokenizer& tok, const FoamToken& key,
+                                 const std::string& what)
+{
+    if (key.text.size() > max_regex_keyword_size)
+        throw tok.error_at(key.line, what + " of " + std::to_string(key.text.size()) +
+                                         " characters is longer than the " +
+                                         std::to_string(max_regex_keyword_size) + " supported");
+    try
+    {
+        return std::regex(key.text, std::regex::ECMAScript);
+    }
+    catch (const std::regex_error& ex)
+    {
+        throw tok.error_at(key.line, "invalid " + what + " \"" + key.text + "\": " + ex.what());
+    }
+}
+
 } // namespace
 
 namespace
@@ -520,16 +544,8 @@ struct detail_dictionary_access
                 auto& es = dict.entries_;
                 if (k.is_string())
                 {
-                    std::regex re;
-                    try
-                    {
-                        re = std::regex(k.text, std::regex::ECMAScript);
-                    }
-                    catch (const std::regex_error& ex)
-                    {
-                        throw tok.error_at(k.line, "invalid regular expression \"" + k.text +
-                                                       "\" after '#remove': " + ex.what());
-                    }
+                    const std::regex re =
+                        compile_keyword_regex(tok, k, "regular expression after '#remove'");
                     std::erase_if(
                         es, [&](const FoamEntry& e)
                         { return std::regex_match(e.keyword_, re) || e.keyword_ == k.text; });
@@ -608,22 +624,19 @@ struct detail_dictionary_access
             e.path_ = tok.path();
             e.scope_ = dict.scope_;
             if (key.is_string())
-            {
-                try
-                {
-                    e.regex_ = std::make_shared<const std::regex>(key.text, std::regex::ECMAScript);
-                }
-                catch (const std::regex_error& ex)
-                {
-                    throw tok.error_at(key.line, "invalid regular expression keyword \"" +
-                                                     key.text + "\": " + ex.what());
-                }
-            }
+                e.regex_ = std::make_shared<const std::regex>(
+                    compile_keyword_regex(tok, key, "regular expression keyword"));
             const FoamToken& ahead = tok.peek();
             if (ahead.is_punct('{'))
             {
                 const std::size_t open_offset = ahead.offset;
                 const std::size_t open_line = ahead.line;
+                if (scopes.size() > max_dictionary_nesting)
+                    throw tok.error_at(open_line, "dictionary '" +
+                                                      child_scope(dict.scope_, key.text) +
+                                                      "' is nested deeper than " +
+                                                      std::to_string(max_dictionary_nesting) +
+                                                      " levels");
                 tok.next();
                 auto sub = std::make_unique<FoamDictionary>(
                     tok.path(), child_scope(dict.scope_, key.text), open_line);
