@@ -448,6 +448,25 @@ TEST(FoamDictionary, deep_nesting_and_long_regex_keys_are_errors_not_crashes)
     EXPECT_TRUE(parse_dictionary(longest, "system/re").found(std::string(1022, 'a')));
 }
 
+// Found by fuzz/mesh_file_fuzzer.cpp: a count of 19 digits overflowed inside std::regex
+// (UBSan), and nested counts make std::regex copy an atom millions of times.
+TEST(FoamDictionary, regex_keys_with_huge_repetition_counts_are_errors)
+{
+    for (const std::string key : {"a{6666666666666666666}", "(a{100}){100}", "x{0,20000}"})
+    {
+        const std::string m =
+            parse_error_of([&] { parse_dictionary("\n\"" + key + "\" 1;\n", "system/re"); });
+        EXPECT_TRUE(contains(m, "system/re:2:") && contains(m, key) &&
+                    contains(m, "repeats more than 10000 times in all"))
+            << m;
+    }
+    const FoamDictionary d = parse_dictionary(
+        "\"a{2,3}b{5}\" 1;\n\"c\\\\{99999\\\\}\" 2;\n\"[{]9999999}\" 3;\n", "system/re");
+    EXPECT_TRUE(d.found("aabbbbb"));
+    EXPECT_TRUE(d.found("c{99999}"));
+    EXPECT_TRUE(d.found("{9999999}"));
+}
+
 TEST(FoamDictionary, source_text_is_verbatim)
 {
     const std::string text = "walls\n{\n    type            wall;\n"
