@@ -448,8 +448,9 @@ TEST(FoamDictionary, deep_nesting_and_long_regex_keys_are_errors_not_crashes)
     EXPECT_TRUE(parse_dictionary(longest, "system/re").found(std::string(1022, 'a')));
 }
 
-// Found by fuzz/mesh_file_fuzzer.cpp: a count of 19 digits overflowed inside std::regex
-// (UBSan), and nested counts make std::regex copy an atom millions of times.
+// Found by fuzz/mesh_file_fuzzer.cpp: a back-reference of 21 digits overflowed a long inside
+// std::regex (UBSan), as would a count {n}; nested counts make std::regex copy an atom
+// millions of times.
 TEST(FoamDictionary, regex_keys_with_huge_repetition_counts_are_errors)
 {
     for (const std::string key : {"a{6666666666666666666}", "(a{100}){100}", "x{0,20000}"})
@@ -460,6 +461,11 @@ TEST(FoamDictionary, regex_keys_with_huge_repetition_counts_are_errors)
                     contains(m, "repeats more than 10000 times in all"))
             << m;
     }
+    const std::string backref = parse_error_of(
+        [] { parse_dictionary("\"(a)\\\\666666666666666666666\" 1;", "system/re"); });
+    EXPECT_TRUE(contains(backref, "system/re:1:") &&
+                contains(backref, "has a back-reference number of more than 4 digits"))
+        << backref;
     const FoamDictionary d = parse_dictionary(
         "\"a{2,3}b{5}\" 1;\n\"c\\\\{99999\\\\}\" 2;\n\"[{]9999999}\" 3;\n", "system/re");
     EXPECT_TRUE(d.found("aabbbbb"));

@@ -127,6 +127,24 @@ std::uint64_t regex_repetitions(const std::string& pattern)
     return product;
 }
 
+// The longest run of digits right after a backslash (a back-reference `\12`): std::regex
+// reads it into a `long` that 19 digits overflow.
+std::size_t longest_escaped_number(const std::string& pattern)
+{
+    std::size_t longest = 0;
+    for (std::size_t i = 0; i + 1 < pattern.size(); ++i)
+        if (pattern[i] == '\\')
+        {
+            std::size_t digits = 0;
+            while (i + 1 + digits < pattern.size() &&
+                   std::isdigit(static_cast<unsigned char>(pattern[i + 1 + digits])))
+                ++digits;
+            longest = std::max(longest, digits);
+            i += std::max<std::size_t>(digits, 1); // past the escaped character
+        }
+    return longest;
+}
+
 // A quoted keyword compiled as a regular expression; `what` names its use in messages.
 std::regex compile_keyword_regex(const FoamTokenizer& tok, const FoamToken& key,
                                  const std::string& what)
@@ -139,6 +157,9 @@ std::regex compile_keyword_regex(const FoamTokenizer& tok, const FoamToken& key,
         throw tok.error_at(key.line, what + " \"" + key.text + "\" repeats more than " +
                                          std::to_string(max_regex_repetitions) +
                                          " times in all (its {n,m} counts multiplied)");
+    if (longest_escaped_number(key.text) > 4)
+        throw tok.error_at(key.line, what + " \"" + key.text +
+                                         "\" has a back-reference number of more than 4 digits");
     try
     {
         return std::regex(key.text, std::regex::ECMAScript);
