@@ -473,6 +473,23 @@ TEST(FoamDictionary, regex_keys_with_huge_repetition_counts_are_errors)
     EXPECT_TRUE(d.found("{9999999}"));
 }
 
+// Found by fuzz/dictionary_fuzzer.cpp: a key like "(a*)*b" took exponential time to match a
+// long keyword (std::regex's backtracking matcher); back-references, which the polynomial
+// matcher cannot do, are a clear error.
+TEST(FoamDictionary, regex_keys_match_in_polynomial_time)
+{
+    const FoamDictionary d = parse_dictionary("\"(a*)*b\" 1;\n\"(x+x+)+y\" 2;\n", "system/re");
+    EXPECT_EQ(d.find(std::string(5000, 'a')), nullptr);
+    EXPECT_EQ(d.find(std::string(5000, 'x')), nullptr);
+    ASSERT_NE(d.find("aaab"), nullptr);
+    EXPECT_EQ(d.find("xxxy")->get<int>(), 2);
+    const std::string backref =
+        parse_error_of([] { parse_dictionary("\n\"(a)\\\\1\" 1;\n", "system/re"); });
+    EXPECT_TRUE(contains(backref, "system/re:2:") &&
+                contains(backref, "invalid regular expression keyword \"(a)\\1\""))
+        << backref;
+}
+
 TEST(FoamDictionary, source_text_is_verbatim)
 {
     const std::string text = "walls\n{\n    type            wall;\n"

@@ -293,6 +293,16 @@ FoamCompound read_compound(FoamTokenizer& tokenizer, const std::string& type_wor
 //! 48 GB.
 inline constexpr std::int64_t max_uniform_list_size = std::int64_t(1) << 24;
 
+//! \brief How quoted (regex) keywords are compiled, here and wherever they are matched again:
+//! ECMAScript, and with libstdc++ its polynomial-time matcher, so that a keyword such as
+//! `"(a*)*b"` cannot take exponential time on a long name. That matcher refuses
+//! back-references, which OpenFOAM's (POSIX) keyword regexes do not have either.
+inline constexpr std::regex::flag_type keyword_regex_flags = std::regex::ECMAScript
+#ifdef __GLIBCXX__
+                                                             | std::regex_constants::__polynomial
+#endif
+    ;
+
 //! Whether `word` names a compound type read_compound() understands (`List<label>`, …).
 bool is_compound_type(std::string_view word);
 

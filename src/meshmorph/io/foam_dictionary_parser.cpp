@@ -162,7 +162,7 @@ std::regex compile_keyword_regex(const FoamTokenizer& tok, const FoamToken& key,
                                          "\" has a back-reference number of more than 4 digits");
     try
     {
-        return std::regex(key.text, std::regex::ECMAScript);
+        return std::regex(key.text, keyword_regex_flags);
     }
     catch (const std::regex_error& ex)
     {
