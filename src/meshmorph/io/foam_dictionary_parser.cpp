@@ -94,8 +94,8 @@ std::optional<std::uint64_t> read_count(const std::string& pattern, std::size_t&
     return count;
 }
 
-// The product over the {n}, {n,}, {n,m} of `pattern` of (copies + 1), copies being m, or n
-// when there is no m; saturated above max_regex_repetitions. Escaped braces and braces in
+// The product over the {n}, {n,}, {n,m} of `pattern` of (copies + 1), copies being the larger
+// of n and m; saturated above max_regex_repetitions. Escaped braces and braces in
 // [...] are literal.
 std::uint64_t regex_repetitions(const std::string& pattern)
 {
@@ -118,7 +118,7 @@ std::uint64_t regex_repetitions(const std::string& pattern)
             {
                 ++i;
                 if (const std::optional<std::uint64_t> m = read_count(pattern, i))
-                    copies = m;
+                    copies = std::max(copies.value_or(0), *m); // n > m is an error, after n is read
             }
             product = std::min(product * (copies.value_or(0) + 1), max_regex_repetitions + 1);
             --i; // the loop's ++i moves to the character after the counts
