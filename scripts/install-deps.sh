@@ -27,10 +27,13 @@ for arg in "$@"; do
 done
 
 # Build: compiler, CMake, Eigen, VTK, BLAS/LAPACK, JSON, zlib, OpenMPI (-parallel); tests
-# and benchmarks; clang-format for the format check of scripts/run-tests.sh.
+# and benchmarks; clang-format for the format check of scripts/run-tests.sh; clang for the
+# asan preset and the fuzz targets: libclang-rt-14-dev holds the ASan/UBSan runtimes and
+# libFuzzer (only recommended by clang, so named here), llvm its llvm-symbolizer (readable
+# sanitizer stack traces).
 required=(build-essential cmake g++ git libeigen3-dev libvtk9-dev libopenblas-dev liblapack-dev
           nlohmann-json3-dev zlib1g-dev libgtest-dev libgmock-dev libbenchmark-dev clang-format
-          libopenmpi-dev openmpi-bin)
+          libopenmpi-dev openmpi-bin clang libclang-rt-14-dev llvm)
 # Oracle tests compare with OpenFOAM v1912 (Debian) and use its tutorials and gmsh.
 if [[ $with_openfoam == 1 ]]; then
     required+=(openfoam openfoam-examples gmsh)

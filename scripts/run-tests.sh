@@ -4,17 +4,23 @@
 # checks that every C++ file is clang-format clean (.clang-format; fix with
 # `git ls-files '*.cpp' '*.h' | xargs clang-format -i`), configures with the `ci` preset
 # (Release, -Werror) into build/ci, builds with 2 jobs and runs every CTest test (unit, OpenFOAM oracle and tutorial tests) with 2 jobs.
-# Usage: scripts/run-tests.sh [--no-openfoam]   (tests that need OpenFOAM then skip)
-# Exits non-zero if any step or any test fails. ctest's output: build/ci/ctest.log,
-# JUnit XML: build/ci/ctest-junit.xml.
+# Then the `asan` preset (clang, ASan + UBSan, Debug) into build/asan: the same tests except
+# those labelled openfoam or tutorial, and each fuzz target 5 s over its seeds (scripts/fuzz.sh).
+# Usage: scripts/run-tests.sh [--no-openfoam] [--no-asan]
+#   --no-openfoam  tests that need OpenFOAM skip
+#   --no-asan      skip the sanitizer build, its tests and the fuzz run
+# Exits non-zero if any step or any test fails. ctest's output: build/ci/ctest.log and
+# build/asan/ctest.log, JUnit XML: build/ci/ctest-junit.xml, build/asan/ctest-junit.xml.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 deps_args=()
+with_asan=1
 for arg in "$@"; do
     case "$arg" in
         --no-openfoam) deps_args+=(--no-openfoam) ;;
-        -h|--help) sed -n '3,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --no-asan) with_asan=0 ;;
+        -h|--help) sed -n '3,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "run-tests.sh: unknown option '$arg' (try --help)" >&2; exit 2 ;;
     esac
 done
@@ -42,8 +48,32 @@ step "Testing (preset ci, 2 jobs)"
 status=0
 ctest --preset ci --output-junit ctest-junit.xml 2>&1 | tee build/ci/ctest.log || status=$?
 
+asan_status=0
+if [[ $with_asan == 1 ]]; then
+    asan_start=$SECONDS
+    step "Configuring (preset asan: clang, ASan + UBSan, fuzz targets)"
+    cmake --preset asan
+
+    step "Building (preset asan, 2 jobs)"
+    cmake --build --preset asan
+
+    step "Testing under ASan + UBSan (preset asan, 2 jobs; OpenFOAM oracle and tutorial tests excluded)"
+    # Any sanitizer report aborts its test (-fno-sanitize-recover, LeakSanitizer's exit code).
+    ctest --preset asan -j2 --timeout 900 -LE 'openfoam|tutorial' --output-junit ctest-junit.xml \
+        2>&1 | tee build/asan/ctest.log || asan_status=$?
+
+    step "Fuzzing (each target 5 s over its seeds, build/asan)"
+    bash scripts/fuzz.sh --build-dir build/asan --no-build --time 5 || asan_status=1
+    echo "run-tests.sh: the asan stage took $((SECONDS - asan_start)) s"
+fi
+
 step "Summary"
 # The ctest summary: pass rate, failed/skipped (not run) tests, time.
 sed -n '/tests passed/,$p' build/ci/ctest.log
-echo "run-tests.sh: $((SECONDS - start)) s in total; ctest exit status $status"
-exit "$status"
+if [[ $with_asan == 1 ]]; then
+    echo "asan (ASan + UBSan):"
+    sed -n '/tests passed/,$p' build/asan/ctest.log
+fi
+echo "run-tests.sh: $((SECONDS - start)) s in total; ctest exit status $status, asan stage $asan_status"
+[[ $status -ne 0 ]] && exit "$status"
+exit "$asan_status"

@@ -401,6 +401,96 @@ TEST(FoamDictionary, lists_uniform_nested_and_unsized)
     EXPECT_EQ(d.entry("l2").source_text(), "2((1 2) (3 4))");
 }
 
+// Found by fuzz/dictionary_fuzzer.cpp: `N{v}` with N = 2e9 allocated 16-48 GB.
+TEST(FoamDictionary, huge_uniform_lists_are_errors_not_allocations)
+{
+    const std::string compound =
+        parse_error_of([] { parse_dictionary("\na List<vector> 2000000000{(0 0 0)};\n", "d"); });
+    EXPECT_TRUE(contains(compound, "d:2:") && contains(compound, "2000000000") &&
+                contains(compound, "exceeds the plausible size 16777216"))
+        << compound;
+    const FoamDictionary d = parse_dictionary("b 2000000000{1.5};\nc 16777216{1};\n", "d");
+    const std::string plain = parse_error_of([&] { d.get<std::vector<double>>("b"); });
+    EXPECT_TRUE(contains(plain, "d:1:") && contains(plain, "keyword 'b'") &&
+                contains(plain, "exceeds the plausible size 16777216"))
+        << plain;
+    EXPECT_EQ(d.get<std::vector<double>>("c").size(), 16777216u);
+}
+
+// Stack overflows found by fuzzing (sub-dictionaries and std::regex recurse): a clear error.
+TEST(FoamDictionary, deep_nesting_and_long_regex_keys_are_errors_not_crashes)
+{
+    std::string nested = "FoamFile { format ascii; class dictionary; }\n";
+    for (int i = 0; i < 100000; ++i)
+        nested += "a {\n";
+    const std::string deep = parse_error_of([&] { parse_dictionary(nested, "system/deep"); });
+    EXPECT_TRUE(contains(deep, "system/deep:130:") &&
+                contains(deep, "is nested deeper than 128 levels"))
+        << deep.substr(0, 200);
+    std::string ok;
+    for (int i = 0; i < 128; ++i)
+        ok += "a { ";
+    ok += "b 1;" + std::string(128, '}');
+    EXPECT_NO_THROW(parse_dictionary(ok, "system/ok"));
+
+    const std::string long_key = "x 1;\n\"" + std::string(20000, 'a') + "\" 1;\n";
+    const std::string key = parse_error_of([&] { parse_dictionary(long_key, "system/re"); });
+    EXPECT_TRUE(contains(key, "system/re:2:") &&
+                contains(key, "regular expression keyword of 20000 characters is longer than "
+                              "the 1024 supported"))
+        << key.substr(0, 200);
+    const std::string removed = parse_error_of(
+        [&] { parse_dictionary("#remove \"" + std::string(1025, 'a') + "\"\n", "system/rm"); });
+    EXPECT_TRUE(contains(removed, "system/rm:1:") &&
+                contains(removed, "after '#remove' of 1025 characters"))
+        << removed.substr(0, 200);
+    const std::string longest = "\"(" + std::string(1022, 'a') + ")\" 1;\n";
+    EXPECT_TRUE(parse_dictionary(longest, "system/re").found(std::string(1022, 'a')));
+}
+
+// Found by fuzz/mesh_file_fuzzer.cpp: a back-reference of 21 digits overflowed a long inside
+// std::regex (UBSan), as would a count {n}; nested counts make std::regex copy an atom
+// millions of times.
+TEST(FoamDictionary, regex_keys_with_huge_repetition_counts_are_errors)
+{
+    for (const std::string key :
+         {"a{6666666666666666666}", "a{66666666666666666666,6}", "(a{100}){100}", "x{0,20000}"})
+    {
+        const std::string m =
+            parse_error_of([&] { parse_dictionary("\n\"" + key + "\" 1;\n", "system/re"); });
+        EXPECT_TRUE(contains(m, "system/re:2:") && contains(m, key) &&
+                    contains(m, "repeats more than 10000 times in all"))
+            << m;
+    }
+    const std::string backref = parse_error_of(
+        [] { parse_dictionary("\"(a)\\\\666666666666666666666\" 1;", "system/re"); });
+    EXPECT_TRUE(contains(backref, "system/re:1:") &&
+                contains(backref, "has a back-reference number of more than 4 digits"))
+        << backref;
+    const FoamDictionary d = parse_dictionary(
+        "\"a{2,3}b{5}\" 1;\n\"c\\\\{99999\\\\}\" 2;\n\"[{]9999999}\" 3;\n", "system/re");
+    EXPECT_TRUE(d.found("aabbbbb"));
+    EXPECT_TRUE(d.found("c{99999}"));
+    EXPECT_TRUE(d.found("{9999999}"));
+}
+
+// Found by fuzz/dictionary_fuzzer.cpp: a key like "(a*)*b" took exponential time to match a
+// long keyword (std::regex's backtracking matcher); back-references, which the polynomial
+// matcher cannot do, are a clear error.
+TEST(FoamDictionary, regex_keys_match_in_polynomial_time)
+{
+    const FoamDictionary d = parse_dictionary("\"(a*)*b\" 1;\n\"(x+x+)+y\" 2;\n", "system/re");
+    EXPECT_EQ(d.find(std::string(5000, 'a')), nullptr);
+    EXPECT_EQ(d.find(std::string(5000, 'x')), nullptr);
+    ASSERT_NE(d.find("aaab"), nullptr);
+    EXPECT_EQ(d.find("xxxy")->get<int>(), 2);
+    const std::string backref =
+        parse_error_of([] { parse_dictionary("\n\"(a)\\\\1\" 1;\n", "system/re"); });
+    EXPECT_TRUE(contains(backref, "system/re:2:") &&
+                contains(backref, "invalid regular expression keyword \"(a)\\1\""))
+        << backref;
+}
+
 TEST(FoamDictionary, source_text_is_verbatim)
 {
     const std::string text = "walls\n{\n    type            wall;\n"

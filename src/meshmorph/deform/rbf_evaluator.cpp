@@ -279,7 +279,6 @@ void RbfModel::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Point
     const double inv = 1.0 / scale;
     const Eigen::Index p = static_cast<Eigen::Index>(exponents.size());
     const bool compact = kernel.type == KernelType::wendland_c2;
-    const double support2 = kernel.support * kernel.support;
 
     with_kernel(
         kernel,
@@ -302,6 +301,9 @@ void RbfModel::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Point
                 }
                 if (compact)
                 {
+                    // Declared inside the parallel region: clang 14 rejects a nested lambda's
+                    // use of a local from outside the OpenMP region's enclosing lambda.
+                    const double support2 = kernel.support * kernel.support;
                     for (int i = 0; i < count; ++i)
                     {
                         double sx = 0.0, sy = 0.0, sz = 0.0;

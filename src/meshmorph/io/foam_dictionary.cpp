@@ -361,7 +361,8 @@ std::vector<T> take_list(Cursor& c, const std::string& what, ReadOne read_one,
             c.expect_punct('}', "closing a uniform list N{value}");
             if (n > max_uniform_list_size)
                 throw c.entry().error("uniform list of " + std::to_string(n) +
-                                      " elements exceeds the label range of this build");
+                                      " elements exceeds the plausible size " +
+                                      std::to_string(max_uniform_list_size));
             out.assign(static_cast<std::size_t>(n), v);
             return out;
         }

@@ -286,9 +286,22 @@ FoamDictionary read_dictionary(const std::filesystem::path& path, ParseOptions o
 FoamCompound read_compound(FoamTokenizer& tokenizer, const std::string& type_word,
                            const ParseOptions& options = {}, const std::string& what = {});
 
-//! A uniform list `N{v}` is expanded in memory; N beyond the label range is malformed input
-//! (OpenFOAM could not hold it either), not a reason to exhaust memory.
-inline constexpr std::int64_t max_uniform_list_size = std::numeric_limits<Index>::max();
+//! A uniform list `N{v}` is expanded in memory but is a few bytes of text for any N, so N
+//! cannot be checked against the input left. OpenFOAM writes a field of equal values as
+//! `uniform v`, so a dictionary's N{v} is short; this bound (polyMesh lists use the same,
+//! ListReadOptions::max_uniform_size) keeps a hostile `2000000000{(0 0 0)}` from asking for
+//! 48 GB.
+inline constexpr std::int64_t max_uniform_list_size = std::int64_t(1) << 24;
+
+//! \brief How quoted (regex) keywords are compiled, here and wherever they are matched again:
+//! ECMAScript, and with libstdc++ its polynomial-time matcher, so that a keyword such as
+//! `"(a*)*b"` cannot take exponential time on a long name. That matcher refuses
+//! back-references, which OpenFOAM's (POSIX) keyword regexes do not have either.
+inline constexpr std::regex::flag_type keyword_regex_flags = std::regex::ECMAScript
+#ifdef __GLIBCXX__
+                                                             | std::regex_constants::__polynomial
+#endif
+    ;
 
 //! Whether `word` names a compound type read_compound() understands (`List<label>`, …).
 bool is_compound_type(std::string_view word);

@@ -7,10 +7,12 @@
 #include <bit>
 #include <cctype>
 #include <cerrno>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <deque>
 #include <limits>
+#include <optional>
 
 #include "meshmorph/core/log.h"
 #include "meshmorph/io/foam_file.h"
@@ -69,6 +71,103 @@ bool is_code_directive(const std::string& w)
     throw tok.error_at(line, "'" + w +
                                  "' is not supported: it needs a C++ compiler or an expression "
                                  "engine; write the value out instead");
+}
+
+// Limits that keep hostile input from overflowing the stack: sub-dictionaries are parsed
+// (and destroyed) recursively, and std::regex compiles recursively, about one level per
+// character. Real dictionaries nest a few levels and their regex keys are short.
+constexpr std::size_t max_dictionary_nesting = 128;
+constexpr std::size_t max_regex_keyword_size = 1024;
+// std::regex copies an atom once per repetition ({n,m}: up to max(n, m) copies, nested
+// repetitions multiply), and overflows a `long` on a count of 19 digits (undefined
+// behaviour inside libstdc++); keywords in OpenFOAM cases use no counts at all.
+constexpr std::uint64_t max_regex_repetitions = 10000;
+
+// The number at pattern[i...] (i moved past its digits), saturated above
+// max_regex_repetitions; nullopt when no digit is there.
+std::optional<std::uint64_t> read_count(const std::string& pattern, std::size_t& i)
+{
+    std::optional<std::uint64_t> count;
+    for (; i < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[i])); ++i)
+        count = std::min<std::uint64_t>(count.value_or(0) * 10 + std::uint64_t(pattern[i] - '0'),
+                                        max_regex_repetitions + 1);
+    return count;
+}
+
+// The product over the {n}, {n,}, {n,m} of `pattern` of (copies + 1), copies being the larger
+// of n and m; saturated above max_regex_repetitions. Escaped braces and braces in
+// [...] are literal.
+std::uint64_t regex_repetitions(const std::string& pattern)
+{
+    std::uint64_t product = 1;
+    bool in_class = false;
+    for (std::size_t i = 0; i < pattern.size(); ++i)
+    {
+        const char c = pattern[i];
+        if (c == '\\')
+            ++i;
+        else if (in_class)
+            in_class = c != ']';
+        else if (c == '[')
+            in_class = true;
+        else if (c == '{')
+        {
+            ++i;
+            std::optional<std::uint64_t> copies = read_count(pattern, i);
+            if (i < pattern.size() && pattern[i] == ',')
+            {
+                ++i;
+                if (const std::optional<std::uint64_t> m = read_count(pattern, i))
+                    copies = std::max(copies.value_or(0), *m); // n > m is an error, after n is read
+            }
+            product = std::min(product * (copies.value_or(0) + 1), max_regex_repetitions + 1);
+            --i; // the loop's ++i moves to the character after the counts
+        }
+    }
+    return product;
+}
+
+// The longest run of digits right after a backslash (a back-reference `\12`): std::regex
+// reads it into a `long` that 19 digits overflow.
+std::size_t longest_escaped_number(const std::string& pattern)
+{
+    std::size_t longest = 0;
+    for (std::size_t i = 0; i + 1 < pattern.size(); ++i)
+        if (pattern[i] == '\\')
+        {
+            std::size_t digits = 0;
+            while (i + 1 + digits < pattern.size() &&
+                   std::isdigit(static_cast<unsigned char>(pattern[i + 1 + digits])))
+                ++digits;
+            longest = std::max(longest, digits);
+            i += std::max<std::size_t>(digits, 1); // past the escaped character
+        }
+    return longest;
+}
+
+// A quoted keyword compiled as a regular expression; `what` names its use in messages.
+std::regex compile_keyword_regex(const FoamTokenizer& tok, const FoamToken& key,
+                                 const std::string& what)
+{
+    if (key.text.size() > max_regex_keyword_size)
+        throw tok.error_at(key.line, what + " of " + std::to_string(key.text.size()) +
+                                         " characters is longer than the " +
+                                         std::to_string(max_regex_keyword_size) + " supported");
+    if (regex_repetitions(key.text) > max_regex_repetitions)
+        throw tok.error_at(key.line, what + " \"" + key.text + "\" repeats more than " +
+                                         std::to_string(max_regex_repetitions) +
+                                         " times in all (its {n,m} counts multiplied)");
+    if (longest_escaped_number(key.text) > 4)
+        throw tok.error_at(key.line, what + " \"" + key.text +
+                                         "\" has a back-reference number of more than 4 digits");
+    try
+    {
+        return std::regex(key.text, keyword_regex_flags);
+    }
+    catch (const std::regex_error& ex)
+    {
+        throw tok.error_at(key.line, "invalid " + what + " \"" + key.text + "\": " + ex.what());
+    }
 }
 
 } // namespace
@@ -520,16 +619,8 @@ struct detail_dictionary_access
                 auto& es = dict.entries_;
                 if (k.is_string())
                 {
-                    std::regex re;
-                    try
-                    {
-                        re = std::regex(k.text, std::regex::ECMAScript);
-                    }
-                    catch (const std::regex_error& ex)
-                    {
-                        throw tok.error_at(k.line, "invalid regular expression \"" + k.text +
-                                                       "\" after '#remove': " + ex.what());
-                    }
+                    const std::regex re =
+                        compile_keyword_regex(tok, k, "regular expression after '#remove'");
                     std::erase_if(
                         es, [&](const FoamEntry& e)
                         { return std::regex_match(e.keyword_, re) || e.keyword_ == k.text; });
@@ -608,22 +699,18 @@ struct detail_dictionary_access
             e.path_ = tok.path();
             e.scope_ = dict.scope_;
             if (key.is_string())
-            {
-                try
-                {
-                    e.regex_ = std::make_shared<const std::regex>(key.text, std::regex::ECMAScript);
-                }
-                catch (const std::regex_error& ex)
-                {
-                    throw tok.error_at(key.line, "invalid regular expression keyword \"" +
-                                                     key.text + "\": " + ex.what());
-                }
-            }
+                e.regex_ = std::make_shared<const std::regex>(
+                    compile_keyword_regex(tok, key, "regular expression keyword"));
             const FoamToken& ahead = tok.peek();
             if (ahead.is_punct('{'))
             {
                 const std::size_t open_offset = ahead.offset;
                 const std::size_t open_line = ahead.line;
+                if (scopes.size() > max_dictionary_nesting)
+                    throw tok.error_at(open_line,
+                                       "dictionary '" + child_scope(dict.scope_, key.text) +
+                                           "' is nested deeper than " +
+                                           std::to_string(max_dictionary_nesting) + " levels");
                 tok.next();
                 auto sub = std::make_unique<FoamDictionary>(
                     tok.path(), child_scope(dict.scope_, key.text), open_line);

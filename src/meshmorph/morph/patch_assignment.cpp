@@ -7,6 +7,7 @@
 #include <regex>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/io/foam_dictionary.h"
 
 namespace meshmorph::morph
 {
@@ -49,7 +50,7 @@ Regexes compile_regexes(const MorphSetup& setup)
             continue;
         try
         {
-            regexes[e].emplace(entry.key, std::regex::ECMAScript);
+            regexes[e].emplace(entry.key, io::keyword_regex_flags);
         }
         catch (const std::regex_error& err)
         {
