@@ -218,8 +218,8 @@ QualityReport distributed_check(const PolyMesh& mesh, const CompactList& cf,
     const parallel::Communicator& comm = *d.comm;
     const ProcessorFaces processors = exchange_processor_faces(mesh, geometry, comm);
     const QualityReport local = check_mesh(mesh, cf, geometry, settings, &processors);
-    QualityReport r = reduce_report(local, mesh, settings, processors,
-                                    global_point_count(d.global_point, comm));
+    QualityReport r =
+        reduce_report(local, mesh, settings, processors, global_point_count(d.global_point, comm));
     r.negative_volume_cells = Index(comm.sum(std::int64_t(local.negative_volume_cells)));
     r.incorrectly_oriented_face_pyramids =
         Index(comm.sum(std::int64_t(local.incorrectly_oriented_face_pyramids)));
