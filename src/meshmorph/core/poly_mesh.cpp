@@ -105,4 +105,12 @@ std::vector<char> boundary_point_mask(const PolyMesh& mesh)
     return mask;
 }
 
+const std::string* find_entry(const Patch& patch, std::string_view key)
+{
+    for (const auto& [k, v] : patch.entries)
+        if (k == key)
+            return &v;
+    return nullptr;
+}
+
 } // namespace meshmorph

@@ -8,6 +8,7 @@
 
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -108,6 +109,10 @@ CompactList cell_points(const PolyMesh& mesh, const CompactList& cell_faces);
 //! A patch's distinct points in OpenFOAM's patch-local order (first appearance walking
 //! the patch faces, docs/polymesh-format.md §6.5).
 std::vector<Index> patch_points(const PolyMesh& mesh, const Patch& patch);
+
+//! \brief The verbatim value of the patch's entry `key` (e.g. neighbourPatch, myProcNo), or
+//! nullptr when the boundary file does not give it.
+const std::string* find_entry(const Patch& patch, std::string_view key);
 //! Whether each point is a vertex of some boundary face.
 std::vector<char> boundary_point_mask(const PolyMesh& mesh);
 

@@ -99,29 +99,21 @@ double mag(const Tensor& t)
     return std::sqrt(s);
 }
 
-const std::string* entry(const Patch& p, std::string_view key)
-{
-    for (const auto& [k, v] : p.entries)
-        if (k == key)
-            return &v;
-    return nullptr;
-}
-
 std::string word_entry(const Patch& p, std::string_view key, std::string fallback)
 {
-    const std::string* v = entry(p, key);
+    const std::string* v = find_entry(p, key);
     return v ? *v : fallback;
 }
 
 double scalar_entry(const Patch& p, std::string_view key, double fallback)
 {
-    const std::string* v = entry(p, key);
+    const std::string* v = find_entry(p, key);
     return v ? std::stod(*v) : fallback;
 }
 
 FoamVector vector_entry(const Patch& p, std::string_view key)
 {
-    const std::string* v = entry(p, key);
+    const std::string* v = find_entry(p, key);
     if (!v)
         throw InvalidInput("cyclic patch " + p.name + " has no " + std::string(key));
     std::string text = *v;

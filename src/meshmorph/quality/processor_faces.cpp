@@ -16,17 +16,9 @@ namespace meshmorph
 namespace
 {
 
-const std::string* patch_entry(const Patch& p, std::string_view key)
-{
-    for (const auto& [k, v] : p.entries)
-        if (k == key)
-            return &v;
-    return nullptr;
-}
-
 int rank_entry(const Patch& p, std::string_view key)
 {
-    const std::string* v = patch_entry(p, key);
+    const std::string* v = find_entry(p, key);
     if (!v)
         throw InvalidInput("processor patch " + p.name + " has no " + std::string(key));
     try
