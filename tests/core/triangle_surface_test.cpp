@@ -89,7 +89,10 @@ TEST(TriangleSurface, tree_matches_brute_force)
                        x)
                           .norm());
         const SurfacePoint sp = tree.closest_point(x);
-        EXPECT_EQ(sp.distance, best) << "query " << q; // same arithmetic, exact
+        // The nearest distance, or one tied with it (the tie rule may pick a triangle
+        // whose distance differs from the smallest only by round-off).
+        EXPECT_GE(sp.distance, best) << "query " << q;
+        EXPECT_LE(sp.distance, best + tree.tie_tolerance()) << "query " << q;
         EXPECT_NEAR((sp.point - x).norm(), sp.distance, 1e-15 * (1 + sp.distance));
         EXPECT_TRUE(Vector3(batch.row(q)).isApprox(sp.point, 1e-15) ||
                     (Vector3(batch.row(q)) - sp.point).norm() < 1e-15);
@@ -97,6 +100,46 @@ TEST(TriangleSurface, tree_matches_brute_force)
     // Vertices are on the surface.
     for (Index v = 0; v < s.n_vertices(); ++v)
         EXPECT_EQ(tree.closest_point(s.vertices.row(v).transpose()).distance, 0.0);
+}
+
+// A roof: two slopes meeting at a ridge along y (x = 0, z = 1), symmetric about x = 0.
+// Slope triangles are listed in the order given (the tie rule picks the first listed).
+TriangleSurface roof(bool left_first)
+{
+    TriangleSurface s;
+    s.vertices.resize(6, 3);
+    s.vertices << -1, -1, 0, -1, 1, 0, 0, -1, 1, 0, 1, 1, 1, -1, 0, 1, 1, 0;
+    const Eigen::Matrix<Index, 2, 3, Eigen::RowMajor> left{{0, 2, 3}, {0, 3, 1}};
+    const Eigen::Matrix<Index, 2, 3, Eigen::RowMajor> right{{2, 4, 5}, {2, 5, 3}};
+    s.triangles.resize(4, 3);
+    s.triangles.topRows(2) = left_first ? left : right;
+    s.triangles.bottomRows(2) = left_first ? right : left;
+    return s;
+}
+
+TEST(TriangleSurface, a_point_equally_near_two_slopes_goes_to_the_slope_listed_first)
+{
+    // Below the ridge, on the plane of symmetry: both slopes are at the same distance, and
+    // which one wins must not depend on the last bits of the arithmetic. Offsets of 1e-15
+    // (round-off) keep the rule's choice; an offset of 1e-6 (geometry) picks the nearer.
+    for (const bool left_first : {true, false})
+    {
+        const SurfaceTree tree(roof(left_first));
+        const double side = left_first ? -1.0 : 1.0;
+        for (const double dx : {0.0, 1e-15, -1e-15, 3e-16})
+        {
+            for (const double y : {-0.5, 0.0, 0.25})
+            {
+                const SurfacePoint p = tree.closest_point(Vector3(dx, y, 0.2));
+                EXPECT_LE(p.triangle, 1) << "dx " << dx << " y " << y;
+                EXPECT_NEAR(p.point.x(), side * 0.4, 1e-12) << "dx " << dx << " y " << y;
+            }
+        }
+        const SurfacePoint nearer_right = tree.closest_point(Vector3(1e-6, 0.0, 0.2));
+        EXPECT_GT(nearer_right.point.x(), 0.0);
+        const SurfacePoint nearer_left = tree.closest_point(Vector3(-1e-6, 0.0, 0.2));
+        EXPECT_LT(nearer_left.point.x(), 0.0);
+    }
 }
 
 TEST(TriangleSurface, tree_rejects_bad_surfaces)

@@ -194,3 +194,78 @@ TEST(PointField, empty_patches_default_to_empty_and_constraints_need_their_type)
     EXPECT_NE(msg.find("zMin"), std::string::npos) << msg;
     EXPECT_NE(msg.find("empty"), std::string::npos) << msg;
 }
+
+TEST(PointField, every_spelling_of_an_empty_or_uniform_list_that_openfoam_writes_is_read)
+{
+    // A processor's part of a patch can hold no points: decomposePar then writes `value
+    // nonuniform 0;` (binary) or `nonuniform List<vector> 0()` (ASCII). Both, and every
+    // other spelling of an empty or uniform list, must read.
+    PolyMesh mesh = test::make_block_mesh(
+        2, 2, 1, [](double u, double v, double w) { return Vector3(u, v, 0.1 * w); },
+        {"patch", "patch", "wall", "wall", "empty", "empty"});
+    Patch nothing;
+    nothing.name = "nothing";
+    nothing.type = "patch";
+    nothing.start_face = mesh.n_faces();
+    mesh.patches.push_back(nothing);
+    const fs::path case_dir = test::scratch_dir("pf_empty_lists");
+    write_poly_mesh(mesh, default_poly_mesh_files(FoamFormat::ascii), case_dir, "constant");
+    const std::size_t n_xmin = patch_points(mesh, mesh.patches[0]).size();
+    const std::string n = std::to_string(n_xmin);
+    const auto field =
+        [&](const std::string& format, const std::string& xmin, const std::string& empty)
+    {
+        return "FoamFile { version 2.0; format " + format +
+               "; class pointVectorField; object pointDisplacement; }\n"
+               "dimensions [0 1 0 0 0 0 0];\ninternalField uniform (0 0 0);\n"
+               "boundaryField\n{\n    \".*\" { type fixedValue; value uniform (0 0 0); }\n"
+               "    xMin { type fixedValue; value " +
+               xmin + "; }\n    nothing { type fixedValue; value " + empty + "; }\n}\n";
+    };
+    struct Spelling
+    {
+        std::string format, xmin, empty;
+    };
+    const std::vector<Spelling> spellings{
+        {"binary", "uniform (1 2 3)", "nonuniform 0"},
+        {"binary", "uniform (1 2 3)", "nonuniform List<vector> 0"},
+        {"binary", "uniform (1 2 3)", "nonuniform List<vector> 0()"},
+        {"ascii", "uniform (1 2 3)", "nonuniform List<vector> 0()"},
+        {"ascii", "uniform (1 2 3)", "nonuniform List<vector> 0 ( )"},
+        {"ascii", "uniform (1 2 3)", "nonuniform 0()"},
+        {"ascii", "uniform (1 2 3)", "nonuniform ()"},
+        {"ascii", "uniform (1 2 3)", "nonuniform 0"},
+        {"ascii", "uniform (1 2 3)", "nonuniform List<vector> 0"},
+        {"ascii", "uniform (1 2 3)", "uniform (1 2 3)"},
+        {"ascii", "nonuniform List<vector> " + n + "{(1 2 3)}", "nonuniform 0{(1 2 3)}"},
+        {"ascii", "nonuniform " + n + "{(1 2 3)}", "nonuniform List<vector> 0{(1 2 3)}"},
+    };
+    for (const Spelling& s : spellings)
+    {
+        const std::string what = s.format + ": xMin " + s.xmin + ", nothing " + s.empty;
+        test::write_bytes(case_dir / "0/pointDisplacement", field(s.format, s.xmin, s.empty));
+        try
+        {
+            const PointVectorField f =
+                read_point_vector_field(case_dir, "0", "pointDisplacement", mesh);
+            const PointPatchField& empty = patch_field(f, "nothing");
+            ASSERT_TRUE(empty.value) << what;
+            EXPECT_EQ(empty.value->rows(), 0) << what;
+            const PointPatchField& xmin = patch_field(f, "xMin");
+            ASSERT_TRUE(xmin.value) << what;
+            ASSERT_EQ(xmin.value->rows(), static_cast<Eigen::Index>(n_xmin)) << what;
+            for (Eigen::Index i = 0; i < xmin.value->rows(); ++i)
+                EXPECT_EQ(xmin.value->row(i), Eigen::RowVector3d(1, 2, 3)) << what;
+        }
+        catch (const std::exception& e)
+        {
+            ADD_FAILURE() << what << ": " << e.what();
+        }
+    }
+    // A size that does not match the patch is still an error naming the patch.
+    test::write_bytes(case_dir / "0/pointDisplacement",
+                      field("ascii", "nonuniform 0", "nonuniform 0"));
+    const std::string msg =
+        test::error_of([&] { read_point_vector_field(case_dir, "0", "pointDisplacement", mesh); });
+    EXPECT_NE(msg.find("xMin"), std::string::npos) << msg;
+}

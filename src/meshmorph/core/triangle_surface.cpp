@@ -3,8 +3,11 @@
 #include "meshmorph/core/triangle_surface.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "meshmorph/core/exceptions.h"
 
@@ -36,6 +39,15 @@ double box_distance_squared(const Vector3& q, const Eigen::Vector3d& lo, const E
 }
 
 constexpr Index leaf_size = 4;
+
+//! Relative size of the distance band in which triangles tie (SurfaceTree::tie_tolerance).
+constexpr double relative_tie_tolerance = 1e-9;
+
+double surface_size(const Points& vertices)
+{
+    const double diagonal = (vertices.colwise().maxCoeff() - vertices.colwise().minCoeff()).norm();
+    return std::max(diagonal, vertices.cwiseAbs().maxCoeff());
+}
 
 } // namespace
 
@@ -103,6 +115,7 @@ SurfaceTree::SurfaceTree(TriangleSurface surface) : surface_(std::move(surface))
                         surface_.vertices.row(surface_.triangles(t, 2)))
                            .transpose() /
                        3.0;
+    tie_tolerance_ = relative_tie_tolerance * surface_size(surface_.vertices);
     order_.resize(static_cast<std::size_t>(n));
     for (Index t = 0; t < n; ++t)
         order_[t] = t;
@@ -155,8 +168,21 @@ void SurfaceTree::build(Index node, Index begin, Index end,
 
 SurfacePoint SurfaceTree::closest_point(const Vector3& query) const
 {
-    SurfacePoint best;
-    double best_d2 = std::numeric_limits<double>::infinity();
+    // One traversal keeps every triangle that may lie within the tie band of the nearest
+    // (pruned against the best distance plus the band), then picks by the tie rule.
+    struct Candidate
+    {
+        double distance;
+        Index triangle;
+        Vector3 point;
+    };
+    std::vector<Candidate> near;
+    double best = std::numeric_limits<double>::infinity();
+    const auto reach2 = [&]
+    {
+        const double r = best + tie_tolerance_;
+        return r * r;
+    };
     // Depth is O(log n) for the median split; 128 entries cover any realistic surface.
     std::array<Index, 128> stack;
     int top = 0;
@@ -164,7 +190,7 @@ SurfacePoint SurfaceTree::closest_point(const Vector3& query) const
     while (top > 0)
     {
         const Node& node = nodes_[stack[--top]];
-        if (box_distance_squared(query, node.lo, node.hi) >= best_d2)
+        if (box_distance_squared(query, node.lo, node.hi) > reach2())
             continue;
         if (node.count > 0)
         {
@@ -175,13 +201,11 @@ SurfacePoint SurfaceTree::closest_point(const Vector3& query) const
                 const Vector3 b = surface_.vertices.row(surface_.triangles(t, 1)).transpose();
                 const Vector3 c = surface_.vertices.row(surface_.triangles(t, 2)).transpose();
                 const Vector3 x = closest_point_on_triangle(query, a, b, c);
-                const double d2 = (x - query).squaredNorm();
-                if (d2 < best_d2)
-                {
-                    best_d2 = d2;
-                    best.point = x;
-                    best.triangle = t;
-                }
+                const double d = (x - query).norm();
+                if (d > best + tie_tolerance_)
+                    continue;
+                best = std::min(best, d);
+                near.push_back({d, t, x});
             }
             continue;
         }
@@ -196,8 +220,16 @@ SurfacePoint SurfaceTree::closest_point(const Vector3& query) const
         stack[top++] = left_first ? r : l;
         stack[top++] = left_first ? l : r;
     }
-    best.distance = std::sqrt(best_d2);
-    return best;
+    SurfacePoint result;
+    for (const Candidate& c : near)
+        if (c.distance <= best + tie_tolerance_ &&
+            (result.triangle < 0 || c.triangle < result.triangle))
+        {
+            result.point = c.point;
+            result.triangle = c.triangle;
+            result.distance = c.distance;
+        }
+    return result;
 }
 
 Points SurfaceTree::closest_points(const Eigen::Ref<const Points>& queries) const

@@ -51,8 +51,18 @@ public:
     //! coordinate is not finite.
     explicit SurfaceTree(TriangleSurface surface);
 
-    //! \brief The closest surface point to query (exact; ties go to the lowest-visited triangle).
+    //! \brief The closest surface point to query (exact). Ties are broken by a rule that
+    //! does not depend on round-off: of the triangles whose distance is within
+    //! tie_tolerance() of the smallest, the one listed first in the surface wins. (A wall
+    //! point equally near two slopes of a target, e.g. on a venturi's plane of symmetry,
+    //! otherwise went to whichever slope the last bit of the arithmetic favoured: up or down
+    //! the pipe, depending on the processor and the build.)
     SurfacePoint closest_point(const Vector3& query) const;
+
+    //! \brief Distances closer than this count as equal: 1e-9 of the surface's size (its
+    //! bounding box diagonal, or its largest coordinate if larger), far above the round-off
+    //! of a distance (1e-16 relative) and far below any geometric difference that matters.
+    double tie_tolerance() const { return tie_tolerance_; }
 
     //! \brief Closest points for every row of queries (k x 3), OpenMP over queries.
     Points closest_points(const Eigen::Ref<const Points>& queries) const;
@@ -71,6 +81,7 @@ private:
     TriangleSurface surface_;
     std::vector<Node> nodes_;
     std::vector<Index> order_; //!< triangle labels, leaf ranges contiguous
+    double tie_tolerance_ = 0.0;
 };
 
 } // namespace meshmorph

@@ -14,6 +14,7 @@
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/core/stopwatch.h"
+#include "meshmorph/core/tie_break.h"
 #include "meshmorph/deform/field_stream.h"
 #include "meshmorph/deform/lapack.h"
 #include "meshmorph/deform/rbf_evaluator.h"
@@ -207,6 +208,25 @@ private:
     Eigen::Index r_ = 0;
 };
 
+//! Rows of P (one per constraint, one column per polynomial term) forming a well-spread
+//! unisolvent set: QR with column pivoting on P^T, pivoting on the largest remaining row
+//! norm with round-off ties going to the lowest row (first_largest), so that a symmetric
+//! mesh gets the same set on every processor.
+std::vector<Eigen::Index> unisolvent_rows(const Eigen::MatrixXd& P)
+{
+    Eigen::MatrixXd R = P;
+    std::vector<Eigen::Index> rows;
+    for (Eigen::Index k = 0; k < P.cols(); ++k)
+    {
+        const Eigen::Index i = first_largest(R.rowwise().squaredNorm());
+        const Eigen::VectorXd q = R.row(i).transpose() / R.row(i).norm();
+        R -= (R * q) * q.transpose();
+        R.row(i).setZero();
+        rows.push_back(i);
+    }
+    return rows;
+}
+
 } // namespace
 
 struct GreedyRbfDeformation::Impl
@@ -282,14 +302,7 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
     d.P = d.model.polynomial_matrix(X);
     const Eigen::MatrixXd& Pall = d.P;
     const Eigen::Index p = Pall.cols();
-    std::vector<Eigen::Index> U;
-    if (p > 0)
-    {
-        // Column pivoting on P^T picks a well-spread unisolvent set (extreme points).
-        Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Pall.transpose());
-        for (Eigen::Index k = 0; k < p; ++k)
-            U.push_back(qr.colsPermutation().indices()[k]);
-    }
+    const std::vector<Eigen::Index> U = unisolvent_rows(Pall);
     std::vector<char> is_centre(std::size_t(N), 0), rejected(std::size_t(N), 0);
     for (Eigen::Index u : U)
         is_centre[std::size_t(u)] = 1;
@@ -312,18 +325,22 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
         update(u);
     if (U.empty())
     {
-        Eigen::Index first = 0;
-        H.rowwise().norm().maxCoeff(&first);
+        const Eigen::Index first = first_largest(H.rowwise().norm());
         initial.push_back(first);
         is_centre[std::size_t(first)] = 1;
         update(first);
     }
     while (Eigen::Index(U.size() + initial.size()) < n0)
     {
+        // The farthest point; distances equal but for round-off (symmetric meshes) tie.
         Eigen::Index best = -1;
+        double farthest = 0.0;
         for (Eigen::Index i = 0; i < N; ++i)
-            if (!is_centre[std::size_t(i)] && (best < 0 || mind[i] > mind[best]))
+            if (!is_centre[std::size_t(i)] && (best < 0 || coarsened(mind[i]) > farthest))
+            {
                 best = i;
+                farthest = coarsened(mind[i]);
+            }
         if (best < 0)
             break;
         initial.push_back(best);
@@ -423,9 +440,13 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
         Eigen::Index b =
             s.batch_size > 0 ? s.batch_size : std::clamp<Eigen::Index>(centres / 2, 1, 4096);
         b = std::min({b, Eigen::Index(cand.size()), budget - centres});
+        // Largest residuals first; residuals equal but for round-off tie (lowest index first).
         std::partial_sort(cand.begin(), cand.begin() + b, cand.end(),
                           [&](Eigen::Index a, Eigen::Index c)
-                          { return err[a] > err[c] || (err[a] == err[c] && a < c); });
+                          {
+                              const double ea = coarsened(err[a]), ec = coarsened(err[c]);
+                              return ea > ec || (ea == ec && a < c);
+                          });
         cand.resize(std::size_t(b));
         for (Eigen::Index j : cand)
             is_centre[std::size_t(j)] = 1;

@@ -29,7 +29,13 @@ extern "C"
 namespace meshmorph::detail
 {
 
-//! Checked narrowing of a matrix dimension to LAPACK's 32-bit int.
+//! Makes OpenBLAS single-threaded (once per process), so that the fits give the same bits
+//! whatever OMP_NUM_THREADS or OPENBLAS_NUM_THREADS say. A no-op with another BLAS.
+void use_one_blas_thread();
+
+//! Checked narrowing of a matrix dimension to LAPACK's 32-bit int. Every BLAS/LAPACK call
+//! of deform passes its dimensions through here, so this is also where the BLAS is made
+//! single-threaded (use_one_blas_thread) before its first use.
 int lapack_int(long long n);
 
 } // namespace meshmorph::detail

@@ -2,8 +2,11 @@
 // The space-deformation interface: apply(), argument checks shared by the methods.
 #include "meshmorph/deform/space_deformation.h"
 
+#include <dlfcn.h>
+
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <string>
 
@@ -37,8 +40,27 @@ Points apply(const SpaceDeformation& deformation, const Eigen::Ref<const Points>
 namespace detail
 {
 
+void use_one_blas_thread()
+{
+    // OpenBLAS splits its factorisations differently for different thread counts, and the
+    // last bits of the result follow (2.4e-13 of the displacement on the venturi squeeze
+    // between OPENBLAS_NUM_THREADS 1 and 2). The fits are a small part of a morph; the
+    // evaluation, which is most of it, runs on OpenMP's threads. Looked up at run time so
+    // that any other BLAS (reference, BLIS) links as well.
+    static std::once_flag once;
+    std::call_once(once,
+                   []
+                   {
+                       using SetThreads = void (*)(int);
+                       if (auto* set = reinterpret_cast<SetThreads>(
+                               ::dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+                           set(1);
+                   });
+}
+
 int lapack_int(long long n)
 {
+    use_one_blas_thread();
     if (n < 0 || n > std::numeric_limits<int>::max())
         throw InvalidInput("matrix dimension " + std::to_string(n) +
                            " exceeds LAPACK's 32-bit integer range");

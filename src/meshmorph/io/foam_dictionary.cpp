@@ -354,6 +354,10 @@ std::vector<T> take_list(Cursor& c, const std::string& what, ReadOne read_one,
             throw c.entry().error("negative list size " + std::to_string(n));
         c.take(what);
         const FoamValueToken* u = c.peek();
+        // An empty list is written `0` alone in binary format (decomposePar's `value
+        // nonuniform 0;` for a patch with no points on a processor).
+        if (n == 0 && !(u && (u->is_punct('(') || u->is_punct('{'))))
+            return out;
         if (u && u->is_punct('{'))
         {
             c.take(what);

@@ -106,6 +106,12 @@ ListStart read_list_start(FoamTokenizer& tok, const FoamHeader& header,
             }
             return start;
         }
+        if (start.size == 0 && !tok.peek().is_punct('(') && !tok.peek().is_punct('{'))
+        {
+            // `0` alone: the binary spelling of an empty list, accepted in ASCII too.
+            start.open = 0;
+            return start;
+        }
     }
     const FoamToken& t = tok.peek();
     if (t.is_punct('('))
@@ -942,6 +948,8 @@ CompactList read_face_list_plain(FoamTokenizer& tok, const FoamHeader& header,
 {
     const ListStart start = read_list_start(tok, header, options, min_chars_face, 0);
     CompactList faces;
+    if (start.open == 0)
+        return faces;
     if (start.open == '{')
     {
         std::vector<Index> one;

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The same morph writes the same points whatever the thread count: morphMesh run as a
+// process with OMP_NUM_THREADS 1, 2 and 4 on the venturi squeeze (a surface projection
+// with equidistant targets, untangling) and on a greedy RBF with its IDW correction. The
+// release (-march=native) and ci (generic) builds are compared by
+// benchmarks/morph/same_result.sh; docs/same-result.md says what is equal to what.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "helpers.h"
+#include "meshmorph/io/read_poly_mesh.h"
+#include "process_run.h"
+#include "venturi_case.h"
+
+namespace meshmorph::app
+{
+namespace
+{
+
+namespace fs = std::filesystem;
+
+//! morphMesh (the executable) on a copy of `source` with OMP_NUM_THREADS=threads; the
+//! points it wrote.
+Points morph_with_threads(const fs::path& source, int threads)
+{
+    const fs::path dir = source.string() + "_threads" + std::to_string(threads);
+    fs::remove_all(dir);
+    fs::copy(source, dir, fs::copy_options::recursive);
+    test::ProcessOptions options;
+    options.environment = {"OMP_NUM_THREADS=" + std::to_string(threads)};
+    options.timeout_seconds = 600;
+    const test::ProcessRun r =
+        test::run_process({MESHMORPH_MORPH_MESH_EXE, "-case", dir.string()}, options);
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    return io::read_points_file(dir / "1/polyMesh/points");
+}
+
+//! Every thread count writes bit-identical points: the parallel loops write disjoint
+//! points, and no reduction's order depends on the threads.
+void expect_same_points_for_every_thread_count(const fs::path& source)
+{
+    const Points one = morph_with_threads(source, 1);
+    ASSERT_GT(one.rows(), 0);
+    for (const int threads : {2, 4})
+    {
+        const Points other = morph_with_threads(source, threads);
+        ASSERT_EQ(other.rows(), one.rows());
+        EXPECT_EQ((other - one).cwiseAbs().maxCoeff(), 0.0)
+            << threads << " threads against 1 on " << source;
+    }
+}
+
+} // namespace
+
+TEST(SameResult, venturi_squeeze_writes_the_same_points_with_1_2_and_4_threads)
+{
+    // Wall points on the venturi's plane of symmetry are equally near both slopes; the
+    // squeeze needs the local repair in one step.
+    expect_same_points_for_every_thread_count(test::venturi_case("same_venturi", 0.8, ""));
+}
+
+TEST(SameResult, greedy_rbf_with_idw_correction_writes_the_same_points_with_1_2_and_4_threads)
+{
+    // A symmetric mesh: residuals and farthest points tie in exact arithmetic.
+    expect_same_points_for_every_thread_count(
+        test::venturi_case("same_greedy", 0.3, "rbf { greedy { tolerance 1e-2; } }\n"));
+}
+
+} // namespace meshmorph::app
