@@ -75,9 +75,8 @@ venturi_case "$out/src/bent" 0.8 1.0 ""
 venturi_case "$out/src/greedy" 0.3 0 "rbf { greedy { tolerance 1e-2; } }"
 cases="venturi bent greedy"
 if [[ -f $motorbike/constant/polyMesh/faces ]]; then
-    mkdir -p "$out/src/motorBike/system"
-    cp -r "$motorbike/constant" "$out/src/motorBike/"
-    cp "$motorbike/system/controlDict" "$out/src/motorBike/system/"
+    mkdir -p "$out/src/motorBike"
+    cp -r "$motorbike/constant" "$motorbike/system" "$out/src/motorBike/"
     cat > "$out/src/motorBike/system/morphDict" <<'DICT'
 FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }
 method rbf;
