@@ -9,7 +9,6 @@
 #include <numeric>
 
 #include <Eigen/LU>
-#include <Eigen/QR>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
