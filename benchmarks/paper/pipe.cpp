@@ -19,7 +19,7 @@
 #include "meshmorph/deform/rbf_deformation.h"
 #include "meshmorph/io/read_poly_mesh.h"
 #include "meshmorph/quality/cell_validity.h"
-#include "meshmorph/quality/mesh_geometry.h"
+#include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/quality/scaled_jacobian.h"
 #include "paper_common.h"
 #include "sections.h"

@@ -14,7 +14,7 @@
 #include "helpers.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/quality/check_mesh.h"
-#include "meshmorph/quality/mesh_geometry.h"
+#include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/quality/report_text.h"
 
 using namespace meshmorph;

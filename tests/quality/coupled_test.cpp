@@ -8,7 +8,7 @@
 #include "helpers.h"
 #include "meshmorph/quality/cell_determinant.h"
 #include "meshmorph/quality/check_mesh.h"
-#include "meshmorph/quality/coupled_patches.h"
+#include "meshmorph/mesh/coupled_patches.h"
 #include "meshmorph/quality/coupled_points.h"
 #include "meshmorph/quality/face_orthogonality.h"
 #include "meshmorph/quality/face_weights.h"

@@ -14,7 +14,7 @@
 #include "meshmorph/quality/face_skewness.h"
 #include "meshmorph/quality/geometry_checks.h"
 #include "meshmorph/quality/mesh_quality_checks.h"
-#include "meshmorph/quality/point_faces.h"
+#include "meshmorph/mesh/point_faces.h"
 #include "meshmorph/quality/quality_json.h"
 #include "meshmorph/quality/report_text.h"
 #include "meshmorph/quality/topology_checks.h"

@@ -11,7 +11,7 @@
 #include "meshmorph/quality/geometry_checks.h"
 #include "meshmorph/quality/quality_json.h"
 #include "meshmorph/quality/wedge_alignment.h"
-#include "meshmorph/quality/wedge_geometry.h"
+#include "meshmorph/mesh/wedge_geometry.h"
 
 using namespace meshmorph;
 

@@ -8,6 +8,7 @@
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
+#include "meshmorph/mesh/patch_kinds.h"
 #include "meshmorph/morph/patch_plane.h"
 
 namespace meshmorph::morph

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/mesh/patch_kinds.h"
 
 namespace meshmorph::morph::detail
 {

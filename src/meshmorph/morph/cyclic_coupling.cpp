@@ -6,7 +6,8 @@
 #include <sstream>
 
 #include "meshmorph/core/exceptions.h"
-#include "meshmorph/quality/coupled_patches.h"
+#include "meshmorph/mesh/coupled_patches.h"
+#include "meshmorph/mesh/patch_kinds.h"
 
 namespace meshmorph::morph
 {
@@ -122,7 +123,7 @@ std::vector<CyclicPointPair> cyclic_point_pairs(const PolyMesh& mesh)
     bool has_cyclic = false;
     for (const Patch& p : mesh.patches)
     {
-        if (p.type == "processorCyclic" && p.n_faces > 0)
+        if (is_processor_cyclic_patch(p) && p.n_faces > 0)
             throw InvalidInput("patch " + p.name +
                                " is a cyclic split across processors (processorCyclic): "
                                "decompose with the cyclic patches kept whole (decomposeParDict "

@@ -2,6 +2,7 @@
 // A rank's part of a decomposed mesh, and bounding boxes over every rank.
 #include "meshmorph/morph/decomposition.h"
 
+#include "meshmorph/mesh/patch_kinds.h"
 #include "meshmorph/morph/patch_assignment.h"
 
 namespace meshmorph::morph

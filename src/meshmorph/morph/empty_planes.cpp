@@ -3,7 +3,7 @@
 #include "meshmorph/morph/empty_planes.h"
 
 #include "meshmorph/core/exceptions.h"
-#include "meshmorph/quality/mesh_geometry.h"
+#include "meshmorph/mesh/mesh_geometry.h"
 
 namespace meshmorph::morph
 {

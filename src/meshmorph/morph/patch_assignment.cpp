@@ -8,6 +8,7 @@
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/io/foam_dictionary.h"
+#include "meshmorph/mesh/patch_kinds.h"
 
 namespace meshmorph::morph
 {
@@ -194,11 +195,6 @@ void require_every_entry_used(const PolyMesh& mesh, const MorphSetup& setup, con
 }
 
 } // namespace
-
-bool is_processor_patch(const Patch& patch)
-{
-    return patch.type == "processor" || patch.type == "processorCyclic";
-}
 
 std::vector<PatchAssignment> assign_patches(const PolyMesh& mesh, const MorphSetup& setup,
                                             bool decomposed)

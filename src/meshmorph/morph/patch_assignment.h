@@ -30,10 +30,6 @@ struct PatchAssignment
     Index n_points = 0;
 };
 
-//! processor and processorCyclic patches: the faces a decomposed mesh shares with another
-//! rank (internal faces of the undecomposed mesh).
-bool is_processor_patch(const Patch& patch);
-
 //! Decide the prescription of every patch (in mesh patch order).
 //! \throw ParseError (dict path + entry line) for a key matching nothing, a constraint patch
 //! (empty/wedge) given another type; InvalidInput for processor patches.

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "meshmorph/quality/mesh_geometry.h"
+#include "meshmorph/mesh/mesh_geometry.h"
 
 namespace meshmorph::morph
 {

@@ -27,4 +27,4 @@ set(MESHMORPH_MORPH_SOURCES
 )
 meshmorph_add_component(morph
     SOURCES ${MESHMORPH_MORPH_SOURCES}
-    DEPENDS meshmorph::core meshmorph::parallel meshmorph::io meshmorph::quality meshmorph::deform)
+    DEPENDS meshmorph::core meshmorph::parallel meshmorph::mesh meshmorph::io meshmorph::quality meshmorph::deform)

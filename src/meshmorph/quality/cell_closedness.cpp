@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "meshmorph/quality/foam_vector.h"
+#include "meshmorph/mesh/foam_vector.h"
 
 namespace meshmorph
 {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "meshmorph/core/poly_mesh.h"
-#include "meshmorph/quality/mesh_geometry.h"
+#include "meshmorph/mesh/mesh_geometry.h"
 
 namespace meshmorph
 {

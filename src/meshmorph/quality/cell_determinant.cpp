@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "meshmorph/quality/foam_vector.h"
+#include "meshmorph/mesh/foam_vector.h"
 
 namespace meshmorph
 {

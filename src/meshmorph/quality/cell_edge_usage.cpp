@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "meshmorph/quality/foam_vector.h"
+#include "meshmorph/mesh/foam_vector.h"
 #include "meshmorph/quality/mesh_edges.h"
 
 namespace meshmorph

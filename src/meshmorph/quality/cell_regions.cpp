@@ -4,7 +4,8 @@
 
 #include <algorithm>
 
-#include "meshmorph/quality/coupled_patches.h"
+#include "meshmorph/mesh/coupled_patches.h"
+#include "meshmorph/mesh/patch_kinds.h"
 #include "meshmorph/quality/disjoint_sets.h"
 
 namespace meshmorph

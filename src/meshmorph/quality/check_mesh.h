@@ -26,8 +26,8 @@
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/quality/check_result.h"
 #include "meshmorph/quality/mesh_edges.h"
-#include "meshmorph/quality/mesh_geometry.h"
-#include "meshmorph/quality/processor_faces.h"
+#include "meshmorph/mesh/mesh_geometry.h"
+#include "meshmorph/mesh/processor_faces.h"
 #include "meshmorph/quality/zone_topology.h"
 
 namespace meshmorph

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "meshmorph/core/poly_mesh.h"
-#include "meshmorph/quality/coupled_patches.h"
+#include "meshmorph/mesh/coupled_patches.h"
 
 namespace meshmorph
 {

@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 
 #include "meshmorph/core/poly_mesh.h"
-#include "meshmorph/quality/mesh_geometry.h"
+#include "meshmorph/mesh/mesh_geometry.h"
 
 namespace meshmorph
 {

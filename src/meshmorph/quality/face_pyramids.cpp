@@ -4,8 +4,8 @@
 
 #include <utility>
 
+#include "meshmorph/mesh/foam_vector.h"
 #include "meshmorph/quality/cell_validity.h"
-#include "meshmorph/quality/foam_vector.h"
 
 namespace meshmorph
 {

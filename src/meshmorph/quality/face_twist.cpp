@@ -2,7 +2,7 @@
 // Face twist in OpenFOAM's operation order.
 #include "meshmorph/quality/face_twist.h"
 
-#include "meshmorph/quality/foam_vector.h"
+#include "meshmorph/mesh/foam_vector.h"
 
 namespace meshmorph
 {

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "meshmorph/mesh/foam_vector.h"
 #include "meshmorph/quality/face_orthogonality.h"
-#include "meshmorph/quality/foam_vector.h"
 
 namespace meshmorph
 {

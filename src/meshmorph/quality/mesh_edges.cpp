@@ -4,7 +4,7 @@
 // boundary face uses it.
 #include "meshmorph/quality/mesh_edges.h"
 
-#include "meshmorph/quality/foam_vector.h"
+#include "meshmorph/mesh/foam_vector.h"
 
 namespace meshmorph
 {

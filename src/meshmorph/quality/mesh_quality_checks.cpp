@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "meshmorph/mesh/foam_vector.h"
 #include "meshmorph/quality/cell_determinant.h"
 #include "meshmorph/quality/face_concavity.h"
 #include "meshmorph/quality/face_flatness.h"
@@ -14,7 +15,6 @@
 #include "meshmorph/quality/face_tets.h"
 #include "meshmorph/quality/face_twist.h"
 #include "meshmorph/quality/face_weights.h"
-#include "meshmorph/quality/foam_vector.h"
 
 namespace meshmorph
 {

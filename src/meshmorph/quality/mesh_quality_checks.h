@@ -8,8 +8,8 @@
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/quality/check_mesh.h"
 #include "meshmorph/quality/check_result.h"
-#include "meshmorph/quality/coupled_patches.h"
-#include "meshmorph/quality/mesh_geometry.h"
+#include "meshmorph/mesh/coupled_patches.h"
+#include "meshmorph/mesh/mesh_geometry.h"
 
 namespace meshmorph
 {

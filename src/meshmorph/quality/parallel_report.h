@@ -5,7 +5,7 @@
 
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/quality/check_mesh.h"
-#include "meshmorph/quality/processor_faces.h"
+#include "meshmorph/mesh/processor_faces.h"
 
 namespace meshmorph
 {

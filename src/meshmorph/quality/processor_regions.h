@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "meshmorph/core/poly_mesh.h"
-#include "meshmorph/quality/processor_faces.h"
+#include "meshmorph/mesh/processor_faces.h"
 
 namespace meshmorph
 {

@@ -7,7 +7,6 @@
 set(MESHMORPH_QUALITY_SOURCES
     meshmorph/quality/scaled_jacobian.cpp
     meshmorph/quality/mean_curvature.cpp
-    meshmorph/quality/mesh_geometry.cpp
     meshmorph/quality/cell_closedness.cpp
     meshmorph/quality/cell_concavity.cpp
     meshmorph/quality/cell_determinant.cpp
@@ -25,17 +24,13 @@ set(MESHMORPH_QUALITY_SOURCES
     meshmorph/quality/face_tets.cpp
     meshmorph/quality/face_twist.cpp
     meshmorph/quality/face_weights.cpp
-    meshmorph/quality/coupled_patches.cpp
     meshmorph/quality/coupled_points.cpp
-    meshmorph/quality/processor_faces.cpp
     meshmorph/quality/processor_regions.cpp
     meshmorph/quality/check_reduction.cpp
     meshmorph/quality/parallel_report.cpp
     meshmorph/quality/mesh_edges.cpp
-    meshmorph/quality/point_faces.cpp
     meshmorph/quality/point_nearness.cpp
     meshmorph/quality/wedge_alignment.cpp
-    meshmorph/quality/wedge_geometry.cpp
     meshmorph/quality/zone_topology.cpp
     meshmorph/quality/check_result.cpp
     meshmorph/quality/topology_checks.cpp
@@ -47,7 +42,7 @@ set(MESHMORPH_QUALITY_SOURCES
 )
 meshmorph_add_component(quality
     SOURCES ${MESHMORPH_QUALITY_SOURCES}
-    DEPENDS meshmorph::core meshmorph::parallel nlohmann_json::nlohmann_json)
+    DEPENDS meshmorph::core meshmorph::parallel meshmorph::mesh nlohmann_json::nlohmann_json)
 if(MESHMORPH_QUALITY_SOURCES)
     # Bit-level agreement with OpenFOAM's checkMesh: never contract a*b+c into an FMA.
     target_compile_options(meshmorph_quality PRIVATE -ffp-contract=off)

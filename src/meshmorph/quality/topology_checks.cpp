@@ -5,8 +5,9 @@
 #include <algorithm>
 #include <string>
 
+#include "meshmorph/mesh/coupled_patches.h"
+#include "meshmorph/mesh/patch_kinds.h"
 #include "meshmorph/quality/cell_regions.h"
-#include "meshmorph/quality/coupled_patches.h"
 
 namespace meshmorph
 {

@@ -11,7 +11,7 @@
 #include "meshmorph/quality/cell_edge_usage.h"
 #include "meshmorph/quality/check_result.h"
 #include "meshmorph/quality/face_face_connectivity.h"
-#include "meshmorph/quality/processor_faces.h"
+#include "meshmorph/mesh/processor_faces.h"
 
 namespace meshmorph
 {

@@ -8,7 +8,7 @@
 #include <span>
 #include <utility>
 
-#include "meshmorph/quality/foam_vector.h"
+#include "meshmorph/mesh/foam_vector.h"
 
 namespace meshmorph
 {

@@ -9,8 +9,8 @@
 
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/quality/edge_alignment.h"
-#include "meshmorph/quality/mesh_geometry.h"
-#include "meshmorph/quality/wedge_geometry.h"
+#include "meshmorph/mesh/mesh_geometry.h"
+#include "meshmorph/mesh/wedge_geometry.h"
 
 namespace meshmorph
 {

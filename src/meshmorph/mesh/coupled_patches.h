@@ -12,14 +12,12 @@
 #include <Eigen/Core>
 
 #include "meshmorph/core/poly_mesh.h"
-#include "meshmorph/quality/mesh_geometry.h"
-#include "meshmorph/quality/processor_faces.h"
+#include "meshmorph/mesh/mesh_geometry.h"
+#include "meshmorph/mesh/patch_kinds.h"
+#include "meshmorph/mesh/processor_faces.h"
 
 namespace meshmorph
 {
-
-//! \brief Whether checkMesh couples the patch's faces: cyclic and cyclicSlip.
-bool is_coupled_patch(const Patch& patch);
 
 //! \brief The index of the neighbourPatch of the cyclic patch `patch`.
 //! \throws InvalidInput if it names no cyclic patch.

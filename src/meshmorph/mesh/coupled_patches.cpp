@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Cyclic transforms and the cells across coupled faces, in OpenFOAM's operation order
 // (cyclicPolyPatch::calcTransforms, coupledPolyPatch::calcTransformTensors, syncTools).
-#include "meshmorph/quality/coupled_patches.h"
+#include "meshmorph/mesh/coupled_patches.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <string>
 
 #include "meshmorph/core/exceptions.h"
-#include "meshmorph/quality/foam_vector.h"
+#include "meshmorph/mesh/foam_vector.h"
 
 namespace meshmorph
 {
@@ -255,11 +255,6 @@ CyclicPatch cyclic_patch(const PolyMesh& mesh, const MeshGeometry& g, Index inde
 }
 
 } // namespace
-
-bool is_coupled_patch(const Patch& p)
-{
-    return p.type == "cyclic" || p.type == "cyclicSlip";
-}
 
 Index cyclic_neighbour_patch(const PolyMesh& mesh, Index patch)
 {

@@ -12,8 +12,8 @@
 #include <Eigen/Core>
 
 #include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/mesh/wedge_geometry.h"
 #include "meshmorph/parallel/communicator.h"
-#include "meshmorph/quality/wedge_geometry.h"
 
 namespace meshmorph
 {

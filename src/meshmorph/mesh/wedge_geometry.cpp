@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Wedge patch geometry in OpenFOAM's operation order (wedgePolyPatch::calcGeometry,
 // face::areaNormal, Vector::normalise).
-#include "meshmorph/quality/wedge_geometry.h"
+#include "meshmorph/mesh/wedge_geometry.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "meshmorph/quality/foam_vector.h"
+#include "meshmorph/mesh/foam_vector.h"
 
 namespace meshmorph
 {

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Base geometry in OpenFOAM's operation order (primitiveMeshFaceCentresAndAreas,
 // primitiveMeshCellCentresAndVols of v1912).
-#include "meshmorph/quality/mesh_geometry.h"
+#include "meshmorph/mesh/mesh_geometry.h"
 
 #include <span>
 #include <utility>
 
-#include "meshmorph/quality/foam_vector.h"
+#include "meshmorph/mesh/foam_vector.h"
 
 namespace meshmorph
 {

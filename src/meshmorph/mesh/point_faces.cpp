@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Point -> faces addressing by counting sort.
-#include "meshmorph/quality/point_faces.h"
+#include "meshmorph/mesh/point_faces.h"
 
 #include <numeric>
 

@@ -14,8 +14,8 @@
 #include <Eigen/Core>
 
 #include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/parallel/communicator.h"
-#include "meshmorph/quality/mesh_geometry.h"
 
 namespace meshmorph
 {

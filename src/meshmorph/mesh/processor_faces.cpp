@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The exchange across processor patches: one message per neighbouring rank, its patches'
 // faces in patch order, each face as (cell centre, cell volume, number of vertices, vertices).
-#include "meshmorph/quality/processor_faces.h"
+#include "meshmorph/mesh/processor_faces.h"
 
 #include <cstring>
 #include <map>
 #include <string>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/mesh/patch_kinds.h"
 #include "meshmorph/parallel/collective.h"
 
 namespace meshmorph
@@ -115,7 +116,7 @@ std::vector<ProcessorPatch> processor_patches(const PolyMesh& mesh, int rank)
     for (std::size_t i = 0; i < mesh.patches.size(); ++i)
     {
         const Patch& p = mesh.patches[i];
-        if (p.type == "processorCyclic")
+        if (is_processor_cyclic_patch(p))
             throw InvalidInput("patch " + p.name +
                                ": processorCyclic (a cyclic split across ranks) is not supported "
                                "yet; decompose with the cyclic patches on one processor "
