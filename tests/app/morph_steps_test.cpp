@@ -3,6 +3,7 @@
 // along their arc), `steps` in morphDict, and a motion that inverts cells in one step but
 // is valid in several, through the morphMesh application.
 #include "meshmorph/app/morph_mesh.h"
+#include "meshmorph/morph/constraints.h"
 #include "meshmorph/morph/morph_steps.h"
 
 #include <algorithm>

@@ -9,6 +9,7 @@
 #include "meshmorph/app/options.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
+#include "meshmorph/io/case_instance.h"
 
 using namespace meshmorph;
 using namespace meshmorph::app;
@@ -149,8 +150,8 @@ TEST(Options, vtk_flag_writes_into_the_case_and_vtk_file_anywhere)
     parse(o, {"-vtk"});
     EXPECT_TRUE(vtk_requested(o));
     EXPECT_TRUE(vtk_file_argument(o).empty());
-    EXPECT_EQ(default_vtk_file("/c", "morphMesh", "", "0.5"), "/c/VTK/morphMesh_0.5.vtu");
-    EXPECT_EQ(default_vtk_file("/c", "morphMesh", "fluid", "1"), "/c/VTK/morphMesh_fluid_1.vtu");
+    EXPECT_EQ(io::default_vtk_file("/c", "morphMesh", "", "0.5"), "/c/VTK/morphMesh_0.5.vtu");
+    EXPECT_EQ(io::default_vtk_file("/c", "morphMesh", "fluid", "1"), "/c/VTK/morphMesh_fluid_1.vtu");
     parse(o, {"-vtkFile", "out/q.vtu"});
     EXPECT_TRUE(vtk_requested(o));
     EXPECT_EQ(vtk_file_argument(o), std::filesystem::absolute("out/q.vtu"));

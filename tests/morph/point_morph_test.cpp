@@ -10,6 +10,7 @@
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/deform/greedy_rbf_deformation.h"
 #include "meshmorph/deform/rbf_deformation.h"
+#include "meshmorph/morph/constraints.h"
 #include "meshmorph/morph/point_morph.h"
 
 namespace meshmorph::morph

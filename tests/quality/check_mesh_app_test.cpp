@@ -17,6 +17,7 @@
 #include "meshmorph/core/config.h"
 #include "meshmorph/io/write_poly_mesh.h"
 #include "meshmorph/quality/quality_json.h"
+#include "meshmorph/quality/quality_summary.h"
 
 namespace fs = std::filesystem;
 using namespace meshmorph;
@@ -267,19 +268,30 @@ TEST(CheckMeshQualityApp, mesh_quality_dict_errors_name_file_and_line)
     EXPECT_NE(r.err.find("minFaceFlatness"), std::string::npos) << r.err;
 }
 
-TEST(QualityJson, summary_prints_before_and_after)
+TEST(QualitySummary, prints_before_and_after_from_the_reports)
 {
     CheckMeshSettings settings;
-    const nlohmann::json before = quality_json(check_mesh(test::make_box_mesh(2, 2, 2), settings));
-    const nlohmann::json after = quality_json(check_mesh(damaged_box(), settings));
+    const QualityReport before = check_mesh(test::make_box_mesh(2, 2, 2), settings);
+    const QualityReport after = check_mesh(damaged_box(), settings);
     std::ostringstream out;
-    print_quality_summary(out, before, after);
+    print_quality_summary(out, &before, &after);
     EXPECT_NE(out.str().find("before"), std::string::npos);
     EXPECT_NE(out.str().find("max non-orthogonality [deg]"), std::string::npos);
     EXPECT_NE(out.str().find("Mesh OK"), std::string::npos);
     EXPECT_NE(out.str().find("mesh checks failed"), std::string::npos);
-    EXPECT_EQ(after["meshOK"], false);
-    EXPECT_GT(after["negativeVolumeCells"].get<int>(), 0);
+    EXPECT_FALSE(after.mesh_ok());
+    EXPECT_GT(after.negative_volume_cells, 0);
+    // The table says what the JSON says: the same numbers, formatted with 6 digits.
+    const nlohmann::json j = quality_json(after);
+    const std::string negative = std::to_string(j["negativeVolumeCells"].get<long long>());
+    EXPECT_NE(out.str().find("negative volume cells          0               " + negative),
+              std::string::npos)
+        << out.str();
+    // One column when only one report is given.
+    std::ostringstream only_after;
+    print_quality_summary(only_after, nullptr, &after);
+    EXPECT_EQ(only_after.str().find("before"), std::string::npos) << only_after.str();
+    EXPECT_NE(only_after.str().find("mesh checks failed"), std::string::npos);
 }
 
 TEST(CheckMeshQualityApp, vtk_file_has_the_quality_fields)

@@ -9,12 +9,13 @@
 #include <sstream>
 
 #include "meshmorph/app/banner.h"
-#include "meshmorph/app/decomposed_case.h"
 #include "meshmorph/app/options.h"
+#include "meshmorph/app/parallel_run.h"
 #include "meshmorph/core/config.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/io/case_instance.h"
+#include "meshmorph/io/decomposed_case.h"
 #include "meshmorph/io/foam_dictionary.h"
 #include "meshmorph/io/foam_file.h"
 #include "meshmorph/io/read_poly_mesh.h"
@@ -22,6 +23,7 @@
 #include "meshmorph/quality/parallel_report.h"
 #include "meshmorph/quality/quality_json.h"
 #if MESHMORPH_WITH_VTK
+#include "meshmorph/core/number_format.h"
 #include "meshmorph/io/vtk_writer.h"
 #endif
 
@@ -257,8 +259,8 @@ void check(const CheckMeshSettings& settings, const parallel::Communicator* comm
     }
     ProcessorFaces processors = exchange_processor_faces(m.foam.mesh, m.geometry, *comm);
     std::vector<Index> addressing;
-    parallel::collective(*comm, [&] { addressing = read_point_addressing(m.foam); });
-    const Index global_points = global_point_count(addressing, *comm);
+    parallel::collective(*comm, [&] { addressing = io::read_point_addressing(m.foam); });
+    const Index global_points = io::global_point_count(addressing, *comm);
     m.local = check_mesh(m.foam.mesh, m.cell_faces, m.geometry, settings, &processors);
     m.report = reduce_report(m.local, m.foam.mesh, settings, processors, global_points);
 }
@@ -287,7 +289,7 @@ void write_vtk(const Options& options, const CheckedMesh& m, const fs::path& cas
 #if MESHMORPH_WITH_VTK
     fs::path vtk = vtk_file_argument(options);
     if (vtk.empty())
-        vtk = default_vtk_file(case_dir, "checkMeshQuality", region, m.foam.time);
+        vtk = io::default_vtk_file(case_dir, "checkMeshQuality", region, m.foam.time);
     const QualityReport& r = m.local;
     std::vector<io::VtkField> fields;
     fields.emplace_back("nonOrthogonality", r.cell_non_orthogonality);
@@ -361,7 +363,7 @@ int check_mesh_quality_main(const Options& options, std::ostream& out)
     CheckMeshSettings settings;
     CheckedMesh m;
     const fs::path mesh_case =
-        parallel_run ? processor_case(case_dir, comm, "checkMeshQuality") : case_dir;
+        parallel_run ? io::processor_case(case_dir, comm, "checkMeshQuality") : case_dir;
     parallel::collective(comm,
                          [&]
                          {

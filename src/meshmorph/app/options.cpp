@@ -214,14 +214,6 @@ std::vector<OptionSpec> vtk_option_specs(const std::string& app_name, const std:
             {"vtkFile", "FILE", "Like -vtk, but write FILE (relative to the working directory)"}};
 }
 
-std::filesystem::path default_vtk_file(const std::filesystem::path& case_dir,
-                                       const std::string& app_name, const std::string& region,
-                                       const std::string& time)
-{
-    return case_dir / "VTK" /
-           (app_name + "_" + (region.empty() ? "" : region + "_") + time + ".vtu");
-}
-
 bool vtk_requested(const Options& options)
 {
     return options.found("vtk") || options.found("vtkFile");

@@ -111,11 +111,6 @@ std::optional<int> parse_command_line(Options& options, int argc, const char* co
 //! fields".
 std::vector<OptionSpec> vtk_option_specs(const std::string& app_name, const std::string& contents);
 
-//! The file `-vtk` writes: `<case>/VTK/<app_name>_[<region>_]<time>.vtu` (foamToVTK's folder).
-std::filesystem::path default_vtk_file(const std::filesystem::path& case_dir,
-                                       const std::string& app_name, const std::string& region,
-                                       const std::string& time);
-
 //! Whether `-vtk` or `-vtkFile` was given.
 bool vtk_requested(const Options& options);
 

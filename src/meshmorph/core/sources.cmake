@@ -9,5 +9,6 @@ meshmorph_add_component(core
         meshmorph/core/cell_shapes.cpp
         meshmorph/core/triangle_surface.cpp
         meshmorph/core/memory_budget.cpp
+        meshmorph/core/number_format.cpp
         # (one file per line)
     DEPENDS Eigen3::Eigen OpenMP::OpenMP_CXX)

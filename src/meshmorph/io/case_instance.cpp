@@ -210,4 +210,12 @@ std::string next_time_name(const std::vector<TimeDir>& times, const std::string&
     return format_time_name(next, settings.format, 17);
 }
 
+std::filesystem::path default_vtk_file(const std::filesystem::path& case_dir,
+                                       const std::string& app_name, const std::string& region,
+                                       const std::string& time)
+{
+    return case_dir / "VTK" /
+           (app_name + "_" + (region.empty() ? "" : region + "_") + time + ".vtu");
+}
+
 } // namespace meshmorph::io

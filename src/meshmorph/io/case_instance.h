@@ -97,4 +97,9 @@ TimeSettings read_time_settings(const std::filesystem::path& case_dir);
 std::string next_time_name(const std::vector<TimeDir>& times, const std::string& time,
                            const TimeSettings& settings);
 
+//! The file `-vtk` writes: `<case>/VTK/<app_name>_[<region>_]<time>.vtu` (foamToVTK's folder).
+std::filesystem::path default_vtk_file(const std::filesystem::path& case_dir,
+                                       const std::string& app_name, const std::string& region,
+                                       const std::string& time);
+
 } // namespace meshmorph::io

@@ -11,6 +11,7 @@ set(MESHMORPH_IO_SOURCES
     meshmorph/io/temp_file.cpp
     meshmorph/io/foam_lists.cpp
     meshmorph/io/case_instance.cpp
+    meshmorph/io/decomposed_case.cpp
     meshmorph/io/read_poly_mesh.cpp
     meshmorph/io/write_poly_mesh.cpp
     meshmorph/io/point_field.cpp
@@ -26,7 +27,7 @@ if(MESHMORPH_WITH_VTK)
 endif()
 meshmorph_add_component(io
     SOURCES ${MESHMORPH_IO_SOURCES}
-    DEPENDS meshmorph::core
+    DEPENDS meshmorph::core meshmorph::parallel
     PRIVATE_DEPENDS ${meshmorph_io_private_deps})
 if(MESHMORPH_WITH_VTK AND TARGET meshmorph_io AND MESHMORPH_IO_VTK_SOURCES)
     get_target_property(meshmorph_io_type meshmorph_io TYPE)

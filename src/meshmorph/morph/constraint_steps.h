@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "meshmorph/morph/conflict_resolution.h"
-#include "meshmorph/morph/constraints.h"
+#include "meshmorph/morph/constraint_set.h"
 
 namespace meshmorph::morph::detail
 {

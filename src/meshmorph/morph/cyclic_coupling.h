@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "meshmorph/core/poly_mesh.h"
-#include "meshmorph/morph/constraints.h"
+#include "meshmorph/morph/constraint_set.h"
 #include "meshmorph/morph/cyclic_point_pair.h"
 
 namespace meshmorph::morph

@@ -10,7 +10,8 @@
 //! each). Counts and the conflict summary are complete on the master only.
 #pragma once
 
-#include "meshmorph/morph/constraints.h"
+#include "meshmorph/morph/claims.h"
+#include "meshmorph/morph/constraint_set.h"
 #include "meshmorph/morph/decomposition.h"
 
 namespace meshmorph::morph

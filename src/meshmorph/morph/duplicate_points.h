@@ -7,7 +7,7 @@
 #include <string>
 
 #include "meshmorph/core/poly_mesh.h"
-#include "meshmorph/morph/constraints.h"
+#include "meshmorph/morph/constraint_set.h"
 
 namespace meshmorph::morph
 {

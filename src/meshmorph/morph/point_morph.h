@@ -13,7 +13,8 @@
 
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/deform/space_deformation.h"
-#include "meshmorph/morph/constraints.h"
+#include "meshmorph/morph/constraint_set.h"
+#include "meshmorph/morph/decomposition.h"
 
 namespace meshmorph::morph
 {

@@ -24,6 +24,14 @@ set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/point_morph.cpp
     meshmorph/morph/morph_steps.cpp
     meshmorph/morph/local_untangle.cpp
+    meshmorph/morph/deformation_methods.cpp
+    meshmorph/morph/fit_memory.cpp
+    meshmorph/morph/surface_projector.cpp
+    meshmorph/morph/distributed_case.cpp
+    meshmorph/morph/point_displacement_input.cpp
+    meshmorph/morph/morph_log.cpp
+    meshmorph/morph/morph_output.cpp
+    meshmorph/morph/morph_case.cpp
 )
 meshmorph_add_component(morph
     SOURCES ${MESHMORPH_MORPH_SOURCES}

@@ -6,10 +6,10 @@
 #include <Eigen/Core>
 
 #include "meshmorph/core/poly_mesh.h"
-#include "meshmorph/quality/check_mesh.h"
-#include "meshmorph/quality/check_result.h"
 #include "meshmorph/mesh/coupled_patches.h"
 #include "meshmorph/mesh/mesh_geometry.h"
+#include "meshmorph/quality/check_result.h"
+#include "meshmorph/quality/check_settings.h"
 
 namespace meshmorph
 {

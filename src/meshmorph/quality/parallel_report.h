@@ -4,8 +4,9 @@
 #pragma once
 
 #include "meshmorph/core/poly_mesh.h"
-#include "meshmorph/quality/check_mesh.h"
 #include "meshmorph/mesh/processor_faces.h"
+#include "meshmorph/quality/check_settings.h"
+#include "meshmorph/quality/quality_report.h"
 
 namespace meshmorph
 {

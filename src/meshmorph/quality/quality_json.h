@@ -18,7 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "meshmorph/quality/check_mesh.h"
+#include "meshmorph/quality/quality_report.h"
 
 namespace meshmorph
 {
@@ -26,17 +26,5 @@ namespace meshmorph
 //! \brief The JSON object of a report (see the file comment for the keys). Non-finite
 //! numbers (e.g. an undefined scaled Jacobian) become null.
 nlohmann::json quality_json(const QualityReport& report);
-
-//! \brief Print a compact before/after table of the main metrics, e.g.
-//! ```
-//!     metric                         before          after
-//!     max non-orthogonality [deg]    12.5            31.2
-//!     ...
-//!     failed checks                  0               1
-//! ```
-//! Either side may be null (only one column then). Values are read from quality_json()
-//! objects, so a morph can also print a summary of JSON it loaded.
-void print_quality_summary(std::ostream& out, const nlohmann::json& before,
-                           const nlohmann::json& after, int precision = 6);
 
 } // namespace meshmorph

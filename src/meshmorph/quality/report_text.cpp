@@ -2,6 +2,7 @@
 // checkMesh's report text (OpenFOAM v1912 checkMesh.C, checkTopology.C, checkGeometry.C and
 // the primitiveMesh::check* report lines; docs/checkmesh-spec.md).
 #include "meshmorph/quality/report_text.h"
+#include "meshmorph/core/number_format.h"
 
 #include <cstdio>
 #include <iomanip>
@@ -11,13 +12,6 @@
 
 namespace meshmorph
 {
-
-std::string format_scalar(double value, int precision)
-{
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.*g", precision, value);
-    return buffer;
-}
 
 namespace
 {

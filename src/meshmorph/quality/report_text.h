@@ -5,7 +5,8 @@
 
 #include <string>
 
-#include "meshmorph/quality/check_mesh.h"
+#include "meshmorph/quality/check_settings.h"
+#include "meshmorph/quality/quality_report.h"
 
 namespace meshmorph
 {

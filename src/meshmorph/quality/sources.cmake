@@ -37,8 +37,10 @@ set(MESHMORPH_QUALITY_SOURCES
     meshmorph/quality/geometry_checks.cpp
     meshmorph/quality/mesh_quality_checks.cpp
     meshmorph/quality/check_mesh.cpp
+    meshmorph/quality/quality_report.cpp
     meshmorph/quality/report_text.cpp
     meshmorph/quality/quality_json.cpp
+    meshmorph/quality/quality_summary.cpp
 )
 meshmorph_add_component(quality
     SOURCES ${MESHMORPH_QUALITY_SOURCES}

@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/mesh/processor_faces.h"
 #include "meshmorph/quality/cell_edge_usage.h"
 #include "meshmorph/quality/check_result.h"
 #include "meshmorph/quality/face_face_connectivity.h"
-#include "meshmorph/mesh/processor_faces.h"
 
 namespace meshmorph
 {

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "meshmorph/core/poly_mesh.h"
-#include "meshmorph/quality/edge_alignment.h"
 #include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/mesh/wedge_geometry.h"
+#include "meshmorph/quality/edge_alignment.h"
 
 namespace meshmorph
 {

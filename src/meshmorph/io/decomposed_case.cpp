@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "meshmorph/app/decomposed_case.h"
+#include "meshmorph/io/decomposed_case.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -10,17 +10,8 @@
 
 namespace fs = std::filesystem;
 
-namespace meshmorph::app
+namespace meshmorph::io
 {
-
-ParallelRun::ParallelRun(bool parallel)
-{
-    if (!parallel)
-        return;
-    session_.emplace();
-    if (!comm().master())
-        quiet_.emplace([](log::Level, const std::string&) {});
-}
 
 namespace
 {
@@ -81,10 +72,10 @@ std::vector<std::string> processor_directories(const fs::path& case_dir)
     return dirs;
 }
 
-std::vector<Index> read_point_addressing(const io::FoamPolyMesh& foam)
+std::vector<Index> read_point_addressing(const FoamPolyMesh& foam)
 {
     const fs::path file = foam.faces_dir / "pointProcAddressing";
-    std::vector<Index> labels = io::read_label_list_file(file, "pointProcAddressing");
+    std::vector<Index> labels = read_label_list_file(file, "pointProcAddressing");
     if (Index(labels.size()) != foam.mesh.n_points())
         throw InvalidInput(file.string() + " has " + std::to_string(labels.size()) +
                            " labels for " + std::to_string(foam.mesh.n_points()) +
@@ -101,4 +92,4 @@ Index global_point_count(const std::vector<Index>& point_addressing,
     return Index(comm.max(largest) + 1);
 }
 
-} // namespace meshmorph::app
+} // namespace meshmorph::io

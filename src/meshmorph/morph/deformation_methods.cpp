@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // morphDict deformation settings and the factory of SpaceDeformations.
-#include "meshmorph/app/deformation_factory.h"
+#include "meshmorph/morph/deformation_methods.h"
 
 #include <algorithm>
 #include <limits>
 #include <sstream>
 
-#include "meshmorph/app/fit_memory.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/memory_budget.h"
 #include "meshmorph/deform/corrected_deformation.h"
 #include "meshmorph/io/foam_dictionary.h"
+#include "meshmorph/morph/fit_memory.h"
 
-namespace meshmorph::app
+namespace meshmorph::morph
 {
 
 namespace
@@ -381,4 +381,4 @@ std::string describe(const DeformationSettings& s, Index n_constraints)
     return out.str();
 }
 
-} // namespace meshmorph::app
+} // namespace meshmorph::morph

@@ -1,35 +1,19 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file A decomposed case (decomposePar's processor<N> directories) as both applications
-//! read it with -parallel, and the MPI session of such a run.
+//! read it with -parallel: this rank's directory, the list of them, and the point
+//! addressing back to the undecomposed mesh.
 #pragma once
 
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
-#include "meshmorph/core/log.h"
 #include "meshmorph/core/types.h"
 #include "meshmorph/io/read_poly_mesh.h"
 #include "meshmorph/parallel/communicator.h"
 
-namespace meshmorph::app
+namespace meshmorph::io
 {
-
-//! MPI for the whole run of a -parallel application; the ranks other than the master print
-//! nothing (as OpenFOAM's tools). Without -parallel, nothing.
-class ParallelRun
-{
-public:
-    //! \throw Error if this build has no MPI (ParallelSession says how to get it).
-    explicit ParallelRun(bool parallel);
-    const parallel::Communicator& comm() const { return parallel::Communicator::world(); }
-    bool master() const { return comm().master(); }
-
-private:
-    std::optional<parallel::ParallelSession> session_;
-    std::optional<log::SinkScope> quiet_;
-};
 
 //! \brief `<case>/processor<rank>`: this rank's part. Every rank checks its own; the master
 //! checks that there is one per rank (OpenFOAM's rule) and refuses the collated layout.
@@ -43,10 +27,10 @@ std::vector<std::string> processor_directories(const std::filesystem::path& case
 //! \brief This rank's point labels in the undecomposed mesh (decomposePar's
 //! pointProcAddressing beside the faces). \throw InvalidInput naming the file if it does not
 //! fit the mesh.
-std::vector<Index> read_point_addressing(const io::FoamPolyMesh& foam);
+std::vector<Index> read_point_addressing(const FoamPolyMesh& foam);
 
 //! \brief The undecomposed mesh's number of points: the largest label over every rank + 1.
 Index global_point_count(const std::vector<Index>& point_addressing,
                          const parallel::Communicator& comm);
 
-} // namespace meshmorph::app
+} // namespace meshmorph::io

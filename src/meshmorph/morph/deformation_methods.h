@@ -34,7 +34,7 @@ namespace meshmorph::io
 class FoamDictionary;
 }
 
-namespace meshmorph::app
+namespace meshmorph::morph
 {
 
 enum class DeformationMethod
@@ -106,4 +106,4 @@ bool is_exact(const DeformationSettings& settings);
 //! Short description for the log, e.g. "rbf (triharmonic, linear polynomial, direct)".
 std::string describe(const DeformationSettings& settings, Index n_constraints);
 
-} // namespace meshmorph::app
+} // namespace meshmorph::morph

@@ -6,9 +6,9 @@
 
 #include <string>
 
-#include "meshmorph/app/deformation_factory.h"
+#include "meshmorph/morph/deformation_methods.h"
 
-namespace meshmorph::app
+namespace meshmorph::morph
 {
 
 //! Bytes an FFD lattice of `count` control points holds (its control points and their
@@ -28,4 +28,4 @@ double fit_bytes(const DeformationSettings& settings, Index n_constraints);
 //! rbf.greedy.maxCentres), or InvalidInput for a size given by the mesh alone.
 void check_fit_memory(const DeformationSettings& settings, Index n_constraints);
 
-} // namespace meshmorph::app
+} // namespace meshmorph::morph

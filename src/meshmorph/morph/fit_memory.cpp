@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Memory estimates of the fits (see fit_memory.h).
-#include "meshmorph/app/fit_memory.h"
+#include "meshmorph/morph/fit_memory.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -9,7 +9,7 @@
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/memory_budget.h"
 
-namespace meshmorph::app
+namespace meshmorph::morph
 {
 
 double ffd_lattice_bytes(double count)
@@ -104,4 +104,4 @@ void check_fit_memory(const DeformationSettings& s, Index n_constraints)
                                   : std::string(" (method idw needs far less)")));
 }
 
-} // namespace meshmorph::app
+} // namespace meshmorph::morph
