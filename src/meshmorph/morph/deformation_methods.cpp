@@ -1,15 +1,20 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// morphDict deformation settings and the factory of SpaceDeformations.
+// The deformation methods, one row each: what every method-dependent decision of a morph
+// (name, fit, exactness, construction, log line, memory) reads.
 #include "meshmorph/morph/deformation_methods.h"
 
 #include <algorithm>
-#include <limits>
+#include <iterator>
 #include <sstream>
+#include <string_view>
 
 #include "meshmorph/core/exceptions.h"
-#include "meshmorph/core/memory_budget.h"
 #include "meshmorph/deform/corrected_deformation.h"
-#include "meshmorph/io/foam_dictionary.h"
+#include "meshmorph/deform/dmffd_deformation.h"
+#include "meshmorph/deform/ffd_deformation.h"
+#include "meshmorph/deform/greedy_rbf_deformation.h"
+#include "meshmorph/deform/idw_deformation.h"
+#include "meshmorph/deform/rbf_deformation.h"
 #include "meshmorph/morph/fit_memory.h"
 
 namespace meshmorph::morph
@@ -18,367 +23,222 @@ namespace meshmorph::morph
 namespace
 {
 
-std::array<int, 3> read_lattice(const io::FoamDictionary& d)
+using Made = std::unique_ptr<SpaceDeformation>;
+
+//! The RBF is greedy when asked (`rbf { greedy {...} }`) or above the direct limit.
+bool is_greedy(const DeformationSettings& s, Index n_constraints)
 {
-    const io::FoamEntry& e = d.entry("lattice");
-    const std::vector<std::int32_t> n = e.get<std::vector<std::int32_t>>();
-    if (n.size() != 3)
-        throw e.error("expected three control-point counts (nx ny nz)");
-    for (std::int32_t v : n)
-        if (v < 4)
-            throw e.error("a cubic B-spline lattice needs at least 4 control points per "
-                          "direction, got " +
-                          std::to_string(v));
-    // Checked before anything is sized by it: the count overflows a label long before a
-    // lattice stops fitting in memory.
-    const double count = double(n[0]) * double(n[1]) * double(n[2]);
-    if (count > double(std::numeric_limits<Index>::max()))
-        throw e.error(format_count(count) + " control points, more than a label counts");
-    if (const std::optional<std::string> shortfall = memory_shortfall(ffd_lattice_bytes(count)))
-        throw e.error(format_count(count) + " control points " + *shortfall);
-    return {n[0], n[1], n[2]};
+    return s.greedy || n_constraints > s.direct_limit;
 }
 
-SizeEntry size_entry(const io::FoamEntry& e, const std::string& name)
+double lattice_count(const std::array<int, 3>& n)
 {
-    return {e.path(), e.line(), name};
+    return double(n[0]) * double(n[1]) * double(n[2]);
 }
 
-std::optional<FfdBox> read_bounds(const io::FoamDictionary& d)
+std::string constraints_text(Index n_constraints)
 {
-    const io::FoamEntry* e = d.find("bounds");
-    if (e == nullptr)
-        return std::nullopt;
-    const std::vector<Vector3> corners = e->get<std::vector<Vector3>>();
-    if (corners.size() != 2)
-        throw e->error("expected ((x0 y0 z0) (x1 y1 z1))");
-    const Vector3 extent = corners[1] - corners[0];
-    if ((extent.array() <= 0.0).any())
-        throw e->error("bounds: the second corner must exceed the first in x, y and z");
-    FfdBox box;
-    box.origin = corners[0];
-    box.axes = extent.asDiagonal();
-    return box;
+    return std::to_string(n_constraints) + " constraints";
 }
 
-//! Expect punctuation c at tokens[i] and advance.
-void expect_punct(const io::FoamEntry& e, const std::vector<io::FoamValueToken>& t, std::size_t& i,
-                  char c)
-{
-    if (i >= t.size() || !t[i].is_punct(c))
-        throw e.error(std::string("expected '") + c +
-                      "' in a list of ((i j k) (dx dy dz)), found " +
-                      (i < t.size() ? t[i].describe() : std::string("end of entry")));
-    ++i;
-}
+// ---------------------------------------------------------------------------------------
+// rbf: the paper's RBF, direct or greedy, plus the IDW correction of its residual
 
-double number(const io::FoamEntry& e, const std::vector<io::FoamValueToken>& t, std::size_t& i)
+Made make_rbf(const DeformationSettings& s, const Eigen::Ref<const Points>&, Index n_constraints)
 {
-    if (i >= t.size() || !t[i].is_number())
-        throw e.error("expected a number in a list of ((i j k) (dx dy dz)), found " +
-                      (i < t.size() ? t[i].describe() : std::string("end of entry")));
-    return t[i++].scalar;
-}
-
-//! `displacements ( ((i j k) (dx dy dz)) ... );` (an optional count before the list).
-std::vector<ControlDisplacement> read_control_displacements(const io::FoamEntry& e,
-                                                            const std::array<int, 3>& counts)
-{
-    const std::vector<io::FoamValueToken>& t = e.tokens();
-    std::size_t i = 0;
-    if (i < t.size() && t[i].is_label())
-        ++i;
-    expect_punct(e, t, i, '(');
-    std::vector<ControlDisplacement> out;
-    while (i < t.size() && !t[i].is_punct(')'))
+    // Either way the IDW correction of the residual makes the field exact at every
+    // constraint (a direct fit leaves only round-off to correct).
+    std::unique_ptr<SpaceDeformation> global;
+    if (is_greedy(s, n_constraints))
     {
-        ControlDisplacement c;
-        expect_punct(e, t, i, '(');
-        expect_punct(e, t, i, '(');
-        for (int a = 0; a < 3; ++a)
-        {
-            if (i >= t.size() || !t[i].is_label())
-                throw e.error("control point index must be an integer, found " +
-                              (i < t.size() ? t[i].describe() : std::string("end of entry")));
-            const std::int64_t v = t[i++].label;
-            if (v < 0 || v >= counts[a])
-                throw e.error("control point index " + std::to_string(v) + " out of range [0, " +
-                              std::to_string(counts[a] - 1) + "]");
-            c.index[a] = static_cast<int>(v);
-        }
-        expect_punct(e, t, i, ')');
-        expect_punct(e, t, i, '(');
-        for (int a = 0; a < 3; ++a)
-            c.displacement[a] = number(e, t, i);
-        expect_punct(e, t, i, ')');
-        expect_punct(e, t, i, ')');
-        out.push_back(c);
+        GreedySettings g = s.greedy.value_or(GreedySettings{});
+        g.rbf = s.rbf;
+        global = std::make_unique<GreedyRbfDeformation>(g);
     }
-    expect_punct(e, t, i, ')');
-    if (i != t.size())
-        throw e.error("unexpected " + t[i].describe() + " after the list");
-    return out;
+    else
+        global = std::make_unique<RbfDeformation>(s.rbf);
+    return std::make_unique<CorrectedDeformation>(std::move(global), s.idw);
 }
 
-//! `idw { exponents (3 5); alpha 0.2; theta 0.25; }`
-IdwSettings read_idw_settings(const io::FoamDictionary& d)
+void describe_rbf(std::ostream& out, const DeformationSettings& s, Index n_constraints)
 {
-    d.check_keywords({"exponents", "alpha", "theta"}, "idw");
-    IdwSettings s;
-    if (const io::FoamEntry* e = d.find("exponents"))
+    out << "rbf (" << to_string(s.rbf.kernel) << ", "
+        << (s.rbf.polynomial ? "linear polynomial" : "no polynomial") << ", ";
+    if (!is_greedy(s, n_constraints))
     {
-        const std::vector<std::int32_t> ab = e->get<std::vector<std::int32_t>>();
-        if (ab.size() != 2 || ab[0] < 1 || ab[1] <= ab[0] || ab[1] > 12)
-            throw e->error("expected (a b) with 1 <= a < b <= 12, e.g. (3 5)");
-        s.far_exponent = ab[0];
-        s.near_exponent = ab[1];
+        out << "direct, exact)";
+        return;
     }
-    s.alpha = d.get_or<double>("alpha", s.alpha);
-    if (!(s.alpha > 0.0))
-        throw d.entry("alpha").error("alpha must be > 0");
-    s.theta = d.get_or<double>("theta", s.theta);
-    if (!(s.theta >= 0.0 && s.theta <= 0.7))
-        throw d.entry("theta").error("theta must be in [0, 0.7] (0: direct sum)");
-    return s;
+    const GreedySettings g = s.greedy.value_or(GreedySettings{});
+    out << "greedy"
+        << (s.greedy ? "" : " (automatic above " + std::to_string(s.direct_limit) + " constraints)")
+        << ", tolerance " << g.tolerance << ", max " << g.max_centres
+        << " centres; IDW correction of the residual: exact)";
+}
+
+FitSize rbf_size(const DeformationSettings& s, Index n_constraints)
+{
+    const double m = double(n_constraints), word = sizeof(double);
+    if (!is_greedy(s, n_constraints)) // the system and its factor
+        return {2 * word * m * m, nullptr,
+                "a direct RBF fit of " + constraints_text(n_constraints)};
+    const Index max_centres = s.greedy.value_or(GreedySettings{}).max_centres;
+    const double centres = std::min(m, double(max_centres)); // the centres' system and factor
+    return {2 * word * centres * centres, &s.greedy_centres,
+            "a greedy RBF of up to " + std::to_string(max_centres) + " centres fitted to " +
+                constraints_text(n_constraints)};
+}
+
+// ---------------------------------------------------------------------------------------
+// idw: inverse-distance weighting (IDWarp's method), no linear solve
+
+Made make_idw(const DeformationSettings& s, const Eigen::Ref<const Points>&, Index)
+{
+    return std::make_unique<IdwDeformation>(s.idw);
+}
+
+void describe_idw(std::ostream& out, const DeformationSettings& s, Index)
+{
+    out << "idw (exponents " << s.idw.far_exponent << " " << s.idw.near_exponent << ", alpha "
+        << s.idw.alpha << ", theta " << s.idw.theta << ", exact)";
+}
+
+FitSize idw_size(const DeformationSettings&, Index n_constraints)
+{
+    return {0, nullptr, "the fit of " + constraints_text(n_constraints)};
+}
+
+// ---------------------------------------------------------------------------------------
+// dmffd: the paper's direct-manipulation FFD (SVD pseudo-inverse with clamping)
+
+Made make_dmffd(const DeformationSettings& s, const Eigen::Ref<const Points>& points, Index)
+{
+    DmffdSettings d = s.dmffd;
+    if (!d.lattice.box) // enclose the whole mesh, not only the handles (paper Sec. 3.6)
+        d.lattice.box = make_lattice(d.lattice, points).box();
+    return std::make_unique<DmffdDeformation>(d);
+}
+
+void describe_dmffd(std::ostream& out, const DeformationSettings& s, Index)
+{
+    const auto& n = s.dmffd.lattice.control_points;
+    out << "dmffd (lattice " << n[0] << "x" << n[1] << "x" << n[2] << ", clamping "
+        << s.dmffd.clamping << ")";
+}
+
+FitSize dmffd_size(const DeformationSettings& s, Index n_constraints)
+{
+    // Phi (m x n), then the SVD's U (m x r) and Vt (r x n), r = min(m, n).
+    const double m = double(n_constraints), word = sizeof(double);
+    const double n = lattice_count(s.dmffd.lattice.control_points);
+    return {word * (m * n + m * std::min(m, n) + std::min(m, n) * n), &s.dmffd_lattice,
+            "a lattice of " + format_count(n) + " control points fitted to " +
+                constraints_text(n_constraints)};
+}
+
+// ---------------------------------------------------------------------------------------
+// ffd: the paper's FFD, control points moved as the dictionary says (no fit)
+
+Made make_ffd(const DeformationSettings& s, const Eigen::Ref<const Points>& points, Index)
+{
+    const FfdLattice lattice = make_lattice(s.ffd, points);
+    auto ffd = std::make_unique<FfdDeformation>(lattice, s.ffd.outside);
+    Points control = Points::Zero(lattice.size(), 3);
+    for (const ControlDisplacement& c : s.ffd_displacements)
+        control.row(lattice.index(c.index[0], c.index[1], c.index[2])) = c.displacement.transpose();
+    ffd->set_control_displacements(control);
+    return ffd;
+}
+
+void describe_ffd(std::ostream& out, const DeformationSettings& s, Index)
+{
+    const auto& n = s.ffd.control_points;
+    out << "ffd (lattice " << n[0] << "x" << n[1] << "x" << n[2] << ", "
+        << s.ffd_displacements.size() << " control points moved)";
+}
+
+FitSize ffd_size(const DeformationSettings& s, Index n_constraints)
+{
+    return {ffd_lattice_bytes(lattice_count(s.ffd.control_points)), nullptr,
+            "the fit of " + constraints_text(n_constraints)};
+}
+
+// ---------------------------------------------------------------------------------------
+// The table
+
+struct MethodRow
+{
+    DeformationMethod method;
+    std::string_view name;
+    bool needs_fit; //!< fitted to the constraints (false: FFD's control points are given)
+    bool exact;     //!< interpolates every constraint
+    Made (*make)(const DeformationSettings&, const Eigen::Ref<const Points>&, Index);
+    void (*describe)(std::ostream&, const DeformationSettings&, Index);
+    FitSize (*size)(const DeformationSettings&, Index);
+};
+
+const MethodRow methods[] = {
+    {DeformationMethod::rbf, "rbf", true, true, make_rbf, describe_rbf, rbf_size},
+    {DeformationMethod::dmffd, "dmffd", true, false, make_dmffd, describe_dmffd, dmffd_size},
+    {DeformationMethod::ffd, "ffd", false, false, make_ffd, describe_ffd, ffd_size},
+    {DeformationMethod::idw, "idw", true, true, make_idw, describe_idw, idw_size},
+};
+
+const MethodRow& row(DeformationMethod method)
+{
+    for (const MethodRow& r : methods)
+        if (r.method == method)
+            return r;
+    throw std::logic_error("deformation method without a row in the method table");
 }
 
 } // namespace
 
 std::string to_string(DeformationMethod method)
 {
-    switch (method)
-    {
-    case DeformationMethod::rbf:
-        return "rbf";
-    case DeformationMethod::dmffd:
-        return "dmffd";
-    case DeformationMethod::ffd:
-        return "ffd";
-    case DeformationMethod::idw:
-        return "idw";
-    }
-    return "?";
+    return std::string(row(method).name);
 }
 
 DeformationMethod deformation_method_from_string(const std::string& name)
 {
-    if (name == "rbf")
-        return DeformationMethod::rbf;
-    if (name == "dmffd")
-        return DeformationMethod::dmffd;
-    if (name == "ffd")
-        return DeformationMethod::ffd;
-    if (name == "idw")
-        return DeformationMethod::idw;
-    throw InvalidInput("unknown method '" + name + "' (valid: rbf dmffd ffd idw)");
-}
-
-DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
-                                              const std::optional<std::string>& method_override)
-{
-    DeformationSettings s;
-    if (method_override)
-        s.method = deformation_method_from_string(*method_override);
-    else if (const io::FoamEntry* e = dict.find("method"))
+    std::string valid;
+    for (const MethodRow& r : methods)
     {
-        try
-        {
-            s.method = deformation_method_from_string(e->get<std::string>());
-        }
-        catch (const InvalidInput& err)
-        {
-            throw e->error(err.what());
-        }
+        if (r.name == name)
+            return r.method;
+        valid += (valid.empty() ? "" : " ") + std::string(r.name);
     }
-
-    // Every method's sub-dictionary present is validated (a typo in an unused one is still
-    // a mistake the user wants to hear about); the chosen one is used.
-    if (const io::FoamDictionary* d = dict.find_dict("rbf"))
-    {
-        d->check_keywords({"kernel", "shape", "polynomial", "supportRadius", "order", "greedy"},
-                          "rbf");
-        if (const io::FoamEntry* e = d->find("kernel"))
-        {
-            try
-            {
-                s.rbf.kernel = rbf_kernel_from_string(e->get<std::string>());
-            }
-            catch (const InvalidInput& err)
-            {
-                throw e->error(err.what());
-            }
-        }
-        s.rbf.shape_parameter = d->get_or<double>("shape", s.rbf.shape_parameter);
-        if (!(s.rbf.shape_parameter > 0.0))
-            throw d->entry("shape").error("shape must be > 0");
-        s.rbf.support_radius = d->get_or<double>("supportRadius", s.rbf.support_radius);
-        s.rbf.polyharmonic_order = d->get_or<std::int32_t>("order", s.rbf.polyharmonic_order);
-        if (const io::FoamEntry* e = d->find("polynomial"))
-        {
-            const std::string p = e->get<std::string>();
-            if (p == "linear")
-                s.rbf.polynomial = true;
-            else if (p == "none")
-                s.rbf.polynomial = false;
-            else
-                throw e->error("unknown polynomial '" + p + "' (valid: linear none)");
-        }
-        if (d->found("greedy"))
-        {
-            const io::FoamDictionary& g = d->sub_dict("greedy");
-            g.check_keywords(
-                {"tolerance", "rmsTolerance", "maxCentres", "initialCentres", "batchSize"},
-                "rbf.greedy");
-            // Each key alone: an unset key keeps its default (rmsTolerance unset: no RMS
-            // criterion beyond the max one), whatever else is set.
-            GreedySettings gs;
-            gs.tolerance = g.get_or<double>("tolerance", gs.tolerance);
-            gs.rms_tolerance = g.get_or<double>("rmsTolerance", gs.tolerance);
-            gs.max_centres = g.get_or<std::int32_t>("maxCentres", gs.max_centres);
-            gs.initial_centres = g.get_or<std::int32_t>("initialCentres", gs.initial_centres);
-            gs.batch_size = g.get_or<std::int32_t>("batchSize", gs.batch_size);
-            if (!(gs.tolerance > 0.0))
-                throw g.entry("tolerance").error("tolerance must be > 0");
-            if (gs.max_centres < 1)
-                throw g.entry("maxCentres").error("maxCentres must be >= 1");
-            if (const io::FoamEntry* e = g.find("maxCentres"))
-                s.greedy_centres = size_entry(*e, "rbf.greedy.maxCentres");
-            s.greedy = gs;
-        }
-    }
-    if (const io::FoamDictionary* d = dict.find_dict("idw"))
-        s.idw = read_idw_settings(*d);
-    if (const io::FoamDictionary* d = dict.find_dict("dmffd"))
-    {
-        d->check_keywords({"lattice", "clamping", "bounds"}, "dmffd");
-        if (d->found("lattice"))
-        {
-            s.dmffd.lattice.control_points = read_lattice(*d);
-            s.dmffd_lattice = size_entry(d->entry("lattice"), "dmffd.lattice");
-        }
-        s.dmffd.clamping = d->get_or<double>("clamping", s.dmffd.clamping);
-        if (!(s.dmffd.clamping >= 0.0 && s.dmffd.clamping < 1.0))
-            throw d->entry("clamping").error("clamping must be in [0, 1)");
-        s.dmffd.lattice.box = read_bounds(*d);
-    }
-    if (const io::FoamDictionary* d = dict.find_dict("ffd"))
-    {
-        d->check_keywords({"lattice", "bounds", "displacements"}, "ffd");
-        if (d->found("lattice"))
-            s.ffd.control_points = read_lattice(*d);
-        s.ffd.box = read_bounds(*d);
-        if (const io::FoamEntry* e = d->find("displacements"))
-            s.ffd_displacements = read_control_displacements(*e, s.ffd.control_points);
-    }
-    if (s.method == DeformationMethod::ffd)
-    {
-        const io::FoamDictionary* d = dict.find_dict("ffd");
-        if (d == nullptr || !d->found("displacements"))
-            throw ParseError(dict.path(), d ? d->line() : 0,
-                             "method ffd needs ffd { lattice (nx ny nz); displacements ( ((i j k) "
-                             "(dx dy dz)) ... ); }: FFD moves control points, it does not fit the "
-                             "boundary prescriptions");
-    }
-    return s;
+    throw InvalidInput("unknown method '" + name + "' (valid: " + valid + ")");
 }
 
 bool needs_fit(const DeformationSettings& settings)
 {
-    return settings.method != DeformationMethod::ffd;
+    return row(settings.method).needs_fit;
 }
 
 bool is_exact(const DeformationSettings& settings)
 {
-    return settings.method == DeformationMethod::rbf || settings.method == DeformationMethod::idw;
+    return row(settings.method).exact;
 }
 
-std::unique_ptr<SpaceDeformation> make_deformation(const DeformationSettings& s,
+std::unique_ptr<SpaceDeformation> make_deformation(const DeformationSettings& settings,
                                                    const Eigen::Ref<const Points>& points,
                                                    Index n_constraints)
 {
-    check_fit_memory(s, n_constraints);
-    switch (s.method)
-    {
-    case DeformationMethod::rbf:
-    {
-        // Either way the IDW correction of the residual makes the field exact at every
-        // constraint (a direct fit leaves only round-off to correct).
-        std::unique_ptr<SpaceDeformation> global;
-        if (s.greedy || n_constraints > s.direct_limit)
-        {
-            GreedySettings g = s.greedy.value_or(GreedySettings{});
-            g.rbf = s.rbf;
-            global = std::make_unique<GreedyRbfDeformation>(g);
-        }
-        else
-            global = std::make_unique<RbfDeformation>(s.rbf);
-        return std::make_unique<CorrectedDeformation>(std::move(global), s.idw);
-    }
-    case DeformationMethod::idw:
-        return std::make_unique<IdwDeformation>(s.idw);
-    case DeformationMethod::dmffd:
-    {
-        DmffdSettings d = s.dmffd;
-        if (!d.lattice.box) // enclose the whole mesh, not only the handles (paper Sec. 3.6)
-            d.lattice.box = make_lattice(d.lattice, points).box();
-        return std::make_unique<DmffdDeformation>(d);
-    }
-    case DeformationMethod::ffd:
-    {
-        const FfdLattice lattice = make_lattice(s.ffd, points);
-        auto ffd = std::make_unique<FfdDeformation>(lattice, s.ffd.outside);
-        Points control = Points::Zero(lattice.size(), 3);
-        for (const ControlDisplacement& c : s.ffd_displacements)
-            control.row(lattice.index(c.index[0], c.index[1], c.index[2])) =
-                c.displacement.transpose();
-        ffd->set_control_displacements(control);
-        return ffd;
-    }
-    }
-    throw std::logic_error("make_deformation: unknown method");
+    check_fit_memory(settings, n_constraints);
+    return row(settings.method).make(settings, points, n_constraints);
 }
 
-std::string describe(const DeformationSettings& s, Index n_constraints)
+std::string describe(const DeformationSettings& settings, Index n_constraints)
 {
     std::ostringstream out;
-    switch (s.method)
-    {
-    case DeformationMethod::rbf:
-        out << "rbf (" << to_string(s.rbf.kernel) << ", "
-            << (s.rbf.polynomial ? "linear polynomial" : "no polynomial") << ", ";
-        if (s.greedy || n_constraints > s.direct_limit)
-        {
-            const GreedySettings g = s.greedy.value_or(GreedySettings{});
-            out << "greedy"
-                << (s.greedy
-                        ? ""
-                        : " (automatic above " + std::to_string(s.direct_limit) + " constraints)")
-                << ", tolerance " << g.tolerance << ", max " << g.max_centres
-                << " centres; IDW correction of the residual: exact)";
-        }
-        else
-            out << "direct, exact)";
-        break;
-    case DeformationMethod::idw:
-        out << "idw (exponents " << s.idw.far_exponent << " " << s.idw.near_exponent << ", alpha "
-            << s.idw.alpha << ", theta " << s.idw.theta << ", exact)";
-        break;
-    case DeformationMethod::dmffd:
-    {
-        const auto& n = s.dmffd.lattice.control_points;
-        out << "dmffd (lattice " << n[0] << "x" << n[1] << "x" << n[2] << ", clamping "
-            << s.dmffd.clamping << ")";
-        break;
-    }
-    case DeformationMethod::ffd:
-    {
-        const auto& n = s.ffd.control_points;
-        out << "ffd (lattice " << n[0] << "x" << n[1] << "x" << n[2] << ", "
-            << s.ffd_displacements.size() << " control points moved)";
-        break;
-    }
-    }
+    row(settings.method).describe(out, settings, n_constraints);
     return out.str();
+}
+
+FitSize fit_size(const DeformationSettings& settings, Index n_constraints)
+{
+    return row(settings.method).size(settings, n_constraints);
 }
 
 } // namespace meshmorph::morph

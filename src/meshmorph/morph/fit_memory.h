@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "meshmorph/morph/deformation_methods.h"
+#include "meshmorph/morph/deformation_settings.h"
 
 namespace meshmorph::morph
 {
@@ -18,12 +18,8 @@ double ffd_lattice_bytes(double count);
 //! "1e+12" or "4096": a count that may exceed any integer type.
 std::string format_count(double count);
 
-//! \brief Bytes the fit of `settings` to `n_constraints` constraints allocates, at least:
-//! DM-FFD its dense m x n basis and SVD factors, the RBF its dense systems (direct:
-//! m x m; greedy: up to maxCentres squared), IDW and FFD little.
-double fit_bytes(const DeformationSettings& settings, Index n_constraints);
-
-//! \brief Throws when fit_bytes() exceeds the memory this process may still allocate.
+//! \brief Throws when the fit's size (fit_size(), deformation_methods.h) exceeds the memory
+//! this process may still allocate.
 //! \throw ParseError naming the entry that sets the size (dmffd.lattice,
 //! rbf.greedy.maxCentres), or InvalidInput for a size given by the mesh alone.
 void check_fit_memory(const DeformationSettings& settings, Index n_constraints);
