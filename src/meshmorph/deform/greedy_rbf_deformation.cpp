@@ -263,13 +263,113 @@ GreedyRbfDeformation::~GreedyRbfDeformation() = default;
 GreedyRbfDeformation::GreedyRbfDeformation(GreedyRbfDeformation&&) noexcept = default;
 GreedyRbfDeformation& GreedyRbfDeformation::operator=(GreedyRbfDeformation&&) noexcept = default;
 
-void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
-                               const Eigen::Ref<const Points>& displacements)
+//! Which constraints are centres, and which the factor refused (linearly dependent).
+struct detail::CentreMarks
 {
-    detail::check_fit_arguments(constraints, displacements);
-    const Stopwatch clock;
+    explicit CentreMarks(Eigen::Index n) : is_centre(std::size_t(n), 0), rejected(std::size_t(n), 0)
+    {
+    }
+    std::vector<char> is_centre, rejected;
+};
+
+namespace
+{
+
+using detail::CentreMarks;
+
+//! Farthest-point sampling for the initial centres, seeded by the unisolvent set U (or the
+//! largest displacement when there is no polynomial); n0 centres in all. Distances equal
+//! but for round-off (symmetric meshes) tie, to the lowest index.
+std::vector<Eigen::Index> farthest_point_centres(const Points& X, const Eigen::MatrixXd& H,
+                                                 const std::vector<Eigen::Index>& U,
+                                                 Eigen::Index n0, CentreMarks& marks)
+{
+    const Eigen::Index N = X.rows();
+    std::vector<Eigen::Index> initial;
+    Eigen::VectorXd mind = Eigen::VectorXd::Constant(N, std::numeric_limits<double>::infinity());
+    const auto update = [&](Eigen::Index c)
+    {
+        for (Eigen::Index i = 0; i < N; ++i)
+            mind[i] = std::min(mind[i], (X.row(i) - X.row(c)).squaredNorm());
+    };
+    for (Eigen::Index u : U)
+        update(u);
+    if (U.empty())
+    {
+        const Eigen::Index first = first_largest(H.rowwise().norm());
+        initial.push_back(first);
+        marks.is_centre[std::size_t(first)] = 1;
+        update(first);
+    }
+    while (Eigen::Index(U.size() + initial.size()) < n0)
+    {
+        Eigen::Index best = -1;
+        double farthest = 0.0;
+        for (Eigen::Index i = 0; i < N; ++i)
+            if (!marks.is_centre[std::size_t(i)] && (best < 0 || coarsened(mind[i]) > farthest))
+            {
+                best = i;
+                farthest = coarsened(mind[i]);
+            }
+        if (best < 0)
+            break;
+        initial.push_back(best);
+        marks.is_centre[std::size_t(best)] = 1;
+        update(best);
+    }
+    return initial;
+}
+
+//! Adds the candidates in order; one the factor refuses is marked rejected and skipped.
+void add_centres(IncrementalSystem& system, const std::vector<Eigen::Index>& candidates,
+                 CentreMarks& marks)
+{
+    std::vector<Eigen::Index> rest = candidates;
+    while (!rest.empty())
+    {
+        Eigen::Index bad = -1;
+        const Eigen::Index kept = system.add(rest, bad);
+        for (Eigen::Index j = kept; j < Eigen::Index(rest.size()); ++j)
+            marks.is_centre[std::size_t(rest[std::size_t(j)])] = 0;
+        if (bad < 0)
+            break;
+        marks.rejected[std::size_t(bad)] = 1;
+        rest.erase(rest.begin(), rest.begin() + kept + 1);
+        for (Eigen::Index j : rest)
+            marks.is_centre[std::size_t(j)] = 1;
+    }
+}
+
+//! The constraints that may become centres: not centres yet, not refused, with a residual.
+std::vector<Eigen::Index> candidates(const Eigen::VectorXd& err, const CentreMarks& marks)
+{
+    std::vector<Eigen::Index> cand;
+    for (Eigen::Index i = 0; i < err.size(); ++i)
+        if (!marks.is_centre[std::size_t(i)] && !marks.rejected[std::size_t(i)] && err[i] > 0.0)
+            cand.push_back(i);
+    return cand;
+}
+
+//! Keeps the b candidates with the largest residuals, largest first (residuals equal but
+//! for round-off tie, lowest index first).
+void keep_largest_residuals(std::vector<Eigen::Index>& cand, const Eigen::VectorXd& err,
+                            Eigen::Index b)
+{
+    std::partial_sort(cand.begin(), cand.begin() + b, cand.end(),
+                      [&](Eigen::Index a, Eigen::Index c)
+                      {
+                          const double ea = coarsened(err[a]), ec = coarsened(err[c]);
+                          return ea > ec || (ea == ec && a < c);
+                      });
+    cand.resize(std::size_t(b));
+}
+
+} // namespace
+
+void GreedyRbfDeformation::prepare(const Eigen::Ref<const Points>& constraints,
+                                   const Eigen::Ref<const Points>& displacements)
+{
     Impl& d = *impl_;
-    const GreedySettings& s = d.settings;
     d.fitted = false;
     d.converged = false;
     d.stopped_growing = false;
@@ -287,108 +387,78 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
     d.model.kernel.support = d.setup.params.support / nrm.scale;
     d.system.reset();
     d.merged = detail::merge_duplicates(constraints, d.model.normalise(constraints), displacements,
-                                        s.rbf.duplicate_tolerance);
-    const detail::MergedHandles& merged = d.merged;
+                                        d.settings.rbf.duplicate_tolerance);
     d.num_inputs = Index(constraints.rows());
-    const Points& X = merged.centres;
-    const Eigen::MatrixXd H = merged.displacements;
-    const Eigen::Index N = X.rows();
+    detail::choose_polynomial(d.model, d.setup.degree, d.merged.centres,
+                              d.settings.rbf.polynomial_rank_tolerance);
+    d.P = d.model.polynomial_matrix(d.merged.centres);
+}
+
+void GreedyRbfDeformation::set_model(const Eigen::MatrixXd& H)
+{
+    Impl& d = *impl_;
+    const IncrementalSystem& system = *d.system;
+    const Points& X = d.merged.centres;
+    const Eigen::Index p = d.P.cols();
+    Eigen::MatrixXd W, Q;
+    system.solve(H, W, Q);
+    Points C(p + system.size(), 3);
+    for (Eigen::Index a = 0; a < p; ++a)
+        C.row(a) = X.row(system.unisolvent()[std::size_t(a)]);
+    for (Eigen::Index i = 0; i < system.size(); ++i)
+        C.row(p + i) = X.row(system.selected()[std::size_t(i)]);
+    d.model.set_centres(C);
+    d.model.set_coefficients(W, Q);
+}
+
+void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
+                               const Eigen::Ref<const Points>& displacements)
+{
+    detail::check_fit_arguments(constraints, displacements);
+    const Stopwatch clock;
+    prepare(constraints, displacements);
+    Impl& d = *impl_;
+    const GreedySettings& s = d.settings;
+    const Points& X = d.merged.centres;
+    const Eigen::MatrixXd H = d.merged.displacements;
+    const Eigen::Index N = X.rows(), p = d.P.cols();
     Points Xphys(N, 3);
     for (Eigen::Index i = 0; i < N; ++i)
-        Xphys.row(i) = constraints.row(merged.first[std::size_t(i)]);
+        Xphys.row(i) = constraints.row(d.merged.first[std::size_t(i)]);
 
-    detail::choose_polynomial(d.model, d.setup.degree, X, s.rbf.polynomial_rank_tolerance);
-    d.P = d.model.polynomial_matrix(X);
-    const Eigen::MatrixXd& Pall = d.P;
-    const Eigen::Index p = Pall.cols();
-    const std::vector<Eigen::Index> U = unisolvent_rows(Pall);
-    std::vector<char> is_centre(std::size_t(N), 0), rejected(std::size_t(N), 0);
+    const std::vector<Eigen::Index> U = unisolvent_rows(d.P);
+    CentreMarks marks(N);
     for (Eigen::Index u : U)
-        is_centre[std::size_t(u)] = 1;
-
-    // Farthest-point sampling for the initial centres, seeded by U (or the largest
-    // displacement when there is no polynomial).
+        marks.is_centre[std::size_t(u)] = 1;
     const Eigen::Index budget = std::max<Eigen::Index>(s.max_centres, p);
-    Eigen::Index n0 = s.initial_centres > 0
-                          ? s.initial_centres
-                          : std::max<Eigen::Index>(p, std::min<Eigen::Index>(20, N));
-    n0 = std::min({n0, N, budget});
-    std::vector<Eigen::Index> initial;
-    Eigen::VectorXd mind = Eigen::VectorXd::Constant(N, std::numeric_limits<double>::infinity());
-    const auto update = [&](Eigen::Index c)
-    {
-        for (Eigen::Index i = 0; i < N; ++i)
-            mind[i] = std::min(mind[i], (X.row(i) - X.row(c)).squaredNorm());
-    };
-    for (Eigen::Index u : U)
-        update(u);
-    if (U.empty())
-    {
-        const Eigen::Index first = first_largest(H.rowwise().norm());
-        initial.push_back(first);
-        is_centre[std::size_t(first)] = 1;
-        update(first);
-    }
-    while (Eigen::Index(U.size() + initial.size()) < n0)
-    {
-        // The farthest point; distances equal but for round-off (symmetric meshes) tie.
-        Eigen::Index best = -1;
-        double farthest = 0.0;
-        for (Eigen::Index i = 0; i < N; ++i)
-            if (!is_centre[std::size_t(i)] && (best < 0 || coarsened(mind[i]) > farthest))
-            {
-                best = i;
-                farthest = coarsened(mind[i]);
-            }
-        if (best < 0)
-            break;
-        initial.push_back(best);
-        is_centre[std::size_t(best)] = 1;
-        update(best);
-    }
+    const Eigen::Index n0 =
+        std::min({s.initial_centres > 0 ? s.initial_centres
+                                        : std::max<Eigen::Index>(p, std::min<Eigen::Index>(20, N)),
+                  N, budget});
+    const std::vector<Eigen::Index> initial = farthest_point_centres(X, H, U, n0, marks);
+    d.system = std::make_unique<IncrementalSystem>(d.model, d.setup.sign, X, d.P, U);
+    add_centres(*d.system, initial, marks);
+    const Eigen::Index iterations = refine(Xphys, H, budget, marks, clock);
+    finish_report(constraints, displacements, Index(iterations), budget);
+}
 
-    d.system = std::make_unique<IncrementalSystem>(d.model, d.setup.sign, X, Pall, U);
+Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::MatrixXd& H,
+                                          Eigen::Index budget, CentreMarks& marks,
+                                          const Stopwatch& clock)
+{
+    Impl& d = *impl_;
+    const GreedySettings& s = d.settings;
     IncrementalSystem& system = *d.system;
-    const auto add = [&](const std::vector<Eigen::Index>& cand)
-    {
-        std::vector<Eigen::Index> rest = cand;
-        while (!rest.empty())
-        {
-            Eigen::Index bad = -1;
-            const Eigen::Index kept = system.add(rest, bad);
-            for (Eigen::Index j = kept; j < Eigen::Index(rest.size()); ++j)
-                is_centre[std::size_t(rest[std::size_t(j)])] = 0;
-            if (bad < 0)
-                break;
-            rejected[std::size_t(bad)] = 1;
-            rest.erase(rest.begin(), rest.begin() + kept + 1);
-            for (Eigen::Index j : rest)
-                is_centre[std::size_t(j)] = 1;
-        }
-    };
-    add(initial);
-
+    const Eigen::Index N = Xphys.rows(), p = d.P.cols();
     const double max_disp = H.rows() > 0 ? H.rowwise().norm().maxCoeff() : 0.0;
     const double rel = 1.0 / std::max(max_disp, 1e-300);
-    const auto set_model = [&]
-    {
-        Eigen::MatrixXd W, Q;
-        system.solve(H, W, Q);
-        Points C(p + system.size(), 3);
-        for (Eigen::Index a = 0; a < p; ++a)
-            C.row(a) = X.row(U[std::size_t(a)]);
-        for (Eigen::Index i = 0; i < system.size(); ++i)
-            C.row(p + i) = X.row(system.selected()[std::size_t(i)]);
-        d.model.set_centres(C);
-        d.model.set_coefficients(W, Q);
-    };
     Points got(N, 3);
     Eigen::Index iterations = 0;
     double best_rms = std::numeric_limits<double>::infinity();
     Eigen::Index best_size = 0;
     while (true)
     {
-        set_model();
+        set_model(H);
         d.model.evaluate(Xphys, got);
         const Eigen::VectorXd err = (Eigen::MatrixXd(got) - H).rowwise().norm();
         const double max_err = err.maxCoeff();
@@ -401,7 +471,7 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
         if (max_err <= s.tolerance * max_disp && rms <= s.rms_tolerance * max_disp)
         {
             d.converged = true;
-            break;
+            return iterations;
         }
         if (rms > best_rms)
         {
@@ -410,65 +480,70 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
             // interpolant oscillates. Keep the best round; the caller's local correction
             // (CorrectedDeformation) takes up the rest.
             system.truncate(best_size);
-            set_model();
+            set_model(H);
             d.stopped_growing = true;
             d.history.pop_back(); // the histories end with the model kept
             d.rms_history.pop_back();
-            --iterations;
             log::info() << "    greedy RBF: the rms residual grew (" << rms * rel << " > "
                         << best_rms * rel << "): keeping the " << p + best_size
                         << " centres of the best round";
-            break;
+            return iterations - 1;
         }
         best_rms = rms;
         best_size = system.size();
-        std::vector<Eigen::Index> cand;
-        for (Eigen::Index i = 0; i < N; ++i)
-            if (!is_centre[std::size_t(i)] && !rejected[std::size_t(i)] && err[i] > 0.0)
-                cand.push_back(i);
+        std::vector<Eigen::Index> cand = candidates(err, marks);
         if (cand.empty())
         {
             d.converged = true; // every constraint is a centre: interpolated exactly
-            break;
+            return iterations;
         }
         const Eigen::Index centres = p + system.size();
         if (centres >= budget)
-            break;
+            return iterations;
         // Automatic: half the centres, at most 4096 a round (the new rows and columns of the
         // factor are r x b and b x b: 4096 keeps them below ~0.7 GB at r = 20000).
-        Eigen::Index b =
+        const Eigen::Index b =
             s.batch_size > 0 ? s.batch_size : std::clamp<Eigen::Index>(centres / 2, 1, 4096);
-        b = std::min({b, Eigen::Index(cand.size()), budget - centres});
-        // Largest residuals first; residuals equal but for round-off tie (lowest index first).
-        std::partial_sort(cand.begin(), cand.begin() + b, cand.end(),
-                          [&](Eigen::Index a, Eigen::Index c)
-                          {
-                              const double ea = coarsened(err[a]), ec = coarsened(err[c]);
-                              return ea > ec || (ea == ec && a < c);
-                          });
-        cand.resize(std::size_t(b));
+        keep_largest_residuals(cand, err,
+                               std::min({b, Eigen::Index(cand.size()), budget - centres}));
         for (Eigen::Index j : cand)
-            is_centre[std::size_t(j)] = 1;
-        add(cand);
+            marks.is_centre[std::size_t(j)] = 1;
+        add_centres(system, cand, marks);
         ++iterations;
     }
+}
+
+void GreedyRbfDeformation::finish_report(const Eigen::Ref<const Points>& constraints,
+                                         const Eigen::Ref<const Points>& displacements,
+                                         Index iterations, Eigen::Index budget)
+{
+    Impl& d = *impl_;
+    const IncrementalSystem& system = *d.system;
+    const Eigen::Index p = d.P.cols();
     d.centre_indices.clear();
     for (Eigen::Index a = 0; a < p; ++a)
-        d.centre_indices.push_back(merged.first[std::size_t(U[std::size_t(a)])]);
+        d.centre_indices.push_back(
+            d.merged.first[std::size_t(system.unisolvent()[std::size_t(a)])]);
     for (Eigen::Index j : system.selected())
-        d.centre_indices.push_back(merged.first[std::size_t(j)]);
+        d.centre_indices.push_back(d.merged.first[std::size_t(j)]);
     d.fitted = true;
-    d.report.num_handles = Index(N);
-    d.report.num_merged_duplicates = Index(constraints.rows() - N);
+    d.report.num_handles = Index(d.merged.centres.rows());
+    d.report.num_merged_duplicates = Index(constraints.rows() - d.merged.centres.rows());
     d.report.num_centres = Index(d.centre_indices.size());
     d.report.polynomial_terms = Index(p);
-    d.report.iterations = Index(iterations);
+    d.report.iterations = iterations;
     d.report.condition_estimate = system.condition_lower_bound();
     detail::residual_report(*this, constraints, displacements, d.report);
     if (!d.converged && !d.stopped_growing)
+    {
+        const double max_disp = d.merged.displacements.rows() > 0
+                                    ? d.merged.displacements.rowwise().norm().maxCoeff()
+                                    : 0.0;
+        const double rel = 1.0 / std::max(max_disp, 1e-300);
         log::info() << "    greedy RBF: the budget of " << budget << " centres (maxCentres) "
                     << "ends the refinement at max residual " << d.report.max_residual * rel
-                    << " (relative; tolerance " << s.tolerance << ")";
+                    << " (relative; tolerance " << d.settings.tolerance << ")";
+    }
 }
 
 void GreedyRbfDeformation::write_field(FieldWriter& out) const

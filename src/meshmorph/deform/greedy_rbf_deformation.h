@@ -11,6 +11,12 @@
 namespace meshmorph
 {
 
+class Stopwatch;
+namespace detail
+{
+struct CentreMarks;
+}
+
 struct GreedySettings
 {
     RbfSettings rbf; //!< kernel, polynomial, tolerances of the underlying RBF
@@ -84,6 +90,15 @@ public:
 
 private:
     struct Impl;
+    //! The fit's stages (fit() runs them in order).
+    void prepare(const Eigen::Ref<const Points>& constraints,
+                 const Eigen::Ref<const Points>& displacements);
+    void set_model(const Eigen::MatrixXd& H);
+    Eigen::Index refine(const Points& Xphys, const Eigen::MatrixXd& H, Eigen::Index budget,
+                        detail::CentreMarks& marks, const Stopwatch& clock);
+    void finish_report(const Eigen::Ref<const Points>& constraints,
+                       const Eigen::Ref<const Points>& displacements, Index iterations,
+                       Eigen::Index budget);
     std::unique_ptr<Impl> impl_;
 };
 
