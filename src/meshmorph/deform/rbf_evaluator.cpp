@@ -272,88 +272,111 @@ Eigen::MatrixXd RbfModel::kernel_matrix(const Eigen::Ref<const Points>& x) const
     return K;
 }
 
+namespace
+{
+
+//! A block of points, normalised; a short last block repeats its last point (the kernels
+//! run on whole blocks).
+void load_block(const RbfModel& m, const Eigen::Ref<const Points>& points, Eigen::Index i0,
+                int count, double* px, double* py, double* pz)
+{
+    const double inv = 1.0 / m.scale;
+    for (int i = 0; i < point_block; ++i)
+    {
+        const Eigen::Index src = i0 + std::min(i, count - 1);
+        px[i] = (points(src, 0) - m.centre[0]) * inv;
+        py[i] = (points(src, 1) - m.centre[1]) * inv;
+        pz[i] = (points(src, 2) - m.centre[2]) * inv;
+    }
+}
+
+//! The kernel sum of a compactly supported kernel: only the centres within its support,
+//! found in the grid.
+template <class Phi>
+void sum_compact_block(const Phi& phi, const RbfModel& m, int count, const double* px,
+                       const double* py, const double* pz, double* ax, double* ay, double* az)
+{
+    const double support2 = m.kernel.support * m.kernel.support;
+    for (int i = 0; i < count; ++i)
+    {
+        double sx = 0.0, sy = 0.0, sz = 0.0;
+        m.grid.for_each_near(px[i], py[i], pz[i],
+                             [&](Eigen::Index j)
+                             {
+                                 const std::size_t u = std::size_t(j);
+                                 const double dx = px[i] - m.cx[u], dy = py[i] - m.cy[u],
+                                              dz = pz[i] - m.cz[u];
+                                 const double r2 = dx * dx + dy * dy + dz * dz;
+                                 if (r2 < support2)
+                                 {
+                                     const double f = phi(r2);
+                                     sx += f * m.wx[u];
+                                     sy += f * m.wy[u];
+                                     sz += f * m.wz[u];
+                                 }
+                             });
+        ax[i] = sx;
+        ay[i] = sy;
+        az[i] = sz;
+    }
+}
+
+//! Adds the polynomial part to the kernel sums and stores the block's displacements.
+void store_block(const RbfModel& m, Eigen::Index i0, int count, const double* px, const double* py,
+                 const double* pz, const double* ax, const double* ay, const double* az,
+                 Eigen::Ref<Points> out)
+{
+    const Eigen::Index p = static_cast<Eigen::Index>(m.exponents.size());
+    for (int i = 0; i < count; ++i)
+    {
+        double dx = ax[i], dy = ay[i], dz = az[i];
+        if (p > 0)
+        {
+            const Vector3 xh(px[i], py[i], pz[i]);
+            const Vector3 t = m.rotation.transpose() * xh;
+            for (Eigen::Index k = 0; k < p; ++k)
+            {
+                const std::array<int, 3>& e = m.exponents[std::size_t(k)];
+                const double v =
+                    power_int(t[0], e[0]) * power_int(t[1], e[1]) * power_int(t[2], e[2]);
+                dx += v * m.q(k, 0);
+                dy += v * m.q(k, 1);
+                dz += v * m.q(k, 2);
+            }
+        }
+        out(i0 + i, 0) = dx;
+        out(i0 + i, 1) = dy;
+        out(i0 + i, 2) = dz;
+    }
+}
+
+} // namespace
+
 void RbfModel::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const
 {
     const Eigen::Index n = points.rows();
     const Eigen::Index nblocks = (n + point_block - 1) / point_block;
-    const double inv = 1.0 / scale;
-    const Eigen::Index p = static_cast<Eigen::Index>(exponents.size());
     const bool compact = kernel.type == KernelType::wendland_c2;
-
-    with_kernel(
-        kernel,
-        [&](const auto& phi)
-        {
+    with_kernel(kernel,
+                [&](const auto& phi)
+                {
 #pragma omp parallel for schedule(dynamic,                                                         \
                                   8) if (n * std::max <Eigen::Index>(num_centres, 64) > 50000)
-            for (Eigen::Index b = 0; b < nblocks; ++b)
-            {
-                alignas(64) double px[point_block], py[point_block], pz[point_block];
-                alignas(64) double ax[point_block], ay[point_block], az[point_block];
-                const Eigen::Index i0 = b * point_block;
-                const int count = static_cast<int>(std::min<Eigen::Index>(point_block, n - i0));
-                for (int i = 0; i < point_block; ++i)
-                {
-                    const Eigen::Index src = i0 + std::min(i, count - 1);
-                    px[i] = (points(src, 0) - centre[0]) * inv;
-                    py[i] = (points(src, 1) - centre[1]) * inv;
-                    pz[i] = (points(src, 2) - centre[2]) * inv;
-                }
-                if (compact)
-                {
-                    // Declared inside the parallel region: clang 14 rejects a nested lambda's
-                    // use of a local from outside the OpenMP region's enclosing lambda.
-                    const double support2 = kernel.support * kernel.support;
-                    for (int i = 0; i < count; ++i)
+                    for (Eigen::Index b = 0; b < nblocks; ++b)
                     {
-                        double sx = 0.0, sy = 0.0, sz = 0.0;
-                        grid.for_each_near(px[i], py[i], pz[i],
-                                           [&](Eigen::Index j)
-                                           {
-                                               const std::size_t u = std::size_t(j);
-                                               const double dx = px[i] - cx[u], dy = py[i] - cy[u],
-                                                            dz = pz[i] - cz[u];
-                                               const double r2 = dx * dx + dy * dy + dz * dz;
-                                               if (r2 < support2)
-                                               {
-                                                   const double f = phi(r2);
-                                                   sx += f * wx[u];
-                                                   sy += f * wy[u];
-                                                   sz += f * wz[u];
-                                               }
-                                           });
-                        ax[i] = sx;
-                        ay[i] = sy;
-                        az[i] = sz;
+                        alignas(64) double px[point_block], py[point_block], pz[point_block];
+                        alignas(64) double ax[point_block], ay[point_block], az[point_block];
+                        const Eigen::Index i0 = b * point_block;
+                        const int count =
+                            static_cast<int>(std::min<Eigen::Index>(point_block, n - i0));
+                        load_block(*this, points, i0, count, px, py, pz);
+                        if (compact)
+                            sum_compact_block(phi, *this, count, px, py, pz, ax, ay, az);
+                        else
+                            sum_block(phi, *this, px, py, pz, ax, ay, az);
+                        store_block(*this, i0, count, px, py, pz, ax, ay, az, out);
                     }
-                }
-                else
-                {
-                    sum_block(phi, *this, px, py, pz, ax, ay, az);
-                }
-                for (int i = 0; i < count; ++i)
-                {
-                    double dx = ax[i], dy = ay[i], dz = az[i];
-                    if (p > 0)
-                    {
-                        const Vector3 xh(px[i], py[i], pz[i]);
-                        const Vector3 t = rotation.transpose() * xh;
-                        for (Eigen::Index k = 0; k < p; ++k)
-                        {
-                            const std::array<int, 3>& e = exponents[std::size_t(k)];
-                            const double v = power_int(t[0], e[0]) * power_int(t[1], e[1]) *
-                                             power_int(t[2], e[2]);
-                            dx += v * q(k, 0);
-                            dy += v * q(k, 1);
-                            dz += v * q(k, 2);
-                        }
-                    }
-                    out(i0 + i, 0) = dx;
-                    out(i0 + i, 1) = dy;
-                    out(i0 + i, 2) = dz;
-                }
-            }
-        });
+                });
 }
 
 } // namespace meshmorph::detail
