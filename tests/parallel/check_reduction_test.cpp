@@ -22,7 +22,7 @@ const parallel::Communicator& comm()
 //! Rank r's results: numbers that depend on r, a set on odd ranks only, a failure on the last.
 std::vector<CheckResult> results_of_rank(int r, int n)
 {
-    CheckResult ortho("faceOrthogonality");
+    CheckResult ortho(CheckId::face_orthogonality);
     const double cos_sum = 0.9 * (r + 1), count = r + 1;
     ortho.add("maxNonOrthogonality", 10.0 * (r + 1));
     ortho.add_average("avgNonOrthogonality", non_orthogonality_degrees(cos_sum / count), cos_sum,
@@ -33,7 +33,7 @@ std::vector<CheckResult> results_of_rank(int r, int n)
     if (r % 2 == 1)
         ortho.add_set("nonOrthoFaces", MeshSet::Kind::face, {Index(r), Index(r + 1)},
                       "non-orthogonal faces");
-    CheckResult volumes("cellVolumes");
+    CheckResult volumes(CheckId::cell_volumes);
     volumes.add("minVolume", 1.0 + r);
     volumes.add("totalVolume", 2.0);
     volumes.add("boundaryOpenness", Vector3(r, 0, 0)); // computed globally: the master's

@@ -13,8 +13,8 @@
 
 #include "helpers.h"
 #include "meshmorph/core/exceptions.h"
-#include "meshmorph/quality/check_mesh.h"
 #include "meshmorph/mesh/mesh_geometry.h"
+#include "meshmorph/quality/check_mesh.h"
 #include "meshmorph/quality/report_text.h"
 
 using namespace meshmorph;

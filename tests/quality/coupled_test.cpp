@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "helpers.h"
+#include "meshmorph/mesh/coupled_patches.h"
 #include "meshmorph/quality/cell_determinant.h"
 #include "meshmorph/quality/check_mesh.h"
-#include "meshmorph/mesh/coupled_patches.h"
 #include "meshmorph/quality/coupled_points.h"
 #include "meshmorph/quality/face_orthogonality.h"
 #include "meshmorph/quality/face_weights.h"

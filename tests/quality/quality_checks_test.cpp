@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "helpers.h"
+#include "meshmorph/mesh/point_faces.h"
 #include "meshmorph/quality/cell_regions.h"
 #include "meshmorph/quality/cell_validity.h"
 #include "meshmorph/quality/check_mesh.h"
@@ -14,7 +15,6 @@
 #include "meshmorph/quality/face_skewness.h"
 #include "meshmorph/quality/geometry_checks.h"
 #include "meshmorph/quality/mesh_quality_checks.h"
-#include "meshmorph/mesh/point_faces.h"
 #include "meshmorph/quality/quality_json.h"
 #include "meshmorph/quality/report_text.h"
 #include "meshmorph/quality/topology_checks.h"
@@ -24,7 +24,7 @@ using namespace meshmorph;
 
 TEST(CheckResult, sets_are_sorted_distinct_and_empty_ones_dropped)
 {
-    CheckResult r("test");
+    CheckResult r(CheckId::face_areas);
     r.add_set("empty", MeshSet::Kind::face, {}, "nothing");
     r.add_set("some", MeshSet::Kind::cell, {5, 1, 5, 3}, "cells");
     ASSERT_EQ(r.sets.size(), 1u);
@@ -137,7 +137,8 @@ TEST(QualityReport, failures_sets_and_headline_numbers_come_from_the_checks)
 TEST(QualityReport, a_new_check_reaches_the_json_without_touching_the_json_writer)
 {
     QualityReport r = check_mesh(test::make_box_mesh(1, 1, 1), CheckMeshSettings{});
-    CheckResult extra("extraCheck");
+    // A check the report has no lines for yet (one past the last id).
+    CheckResult extra(static_cast<CheckId>(static_cast<int>(CheckId::mesh_quality) + 1));
     extra.add("extraMetric", 0.25);
     extra.add("extraTextOnly", Index{2}, false);
     r.checks.push_back(extra);

@@ -7,11 +7,11 @@
 #include <cmath>
 
 #include "helpers.h"
+#include "meshmorph/mesh/wedge_geometry.h"
 #include "meshmorph/quality/check_mesh.h"
 #include "meshmorph/quality/geometry_checks.h"
 #include "meshmorph/quality/quality_json.h"
 #include "meshmorph/quality/wedge_alignment.h"
-#include "meshmorph/mesh/wedge_geometry.h"
 
 using namespace meshmorph;
 
@@ -48,12 +48,12 @@ PolyMesh z_axis_wedge()
                                  {"patch", "patch", "patch", "patch", "wedge", "wedge"});
 }
 
-const CheckResult& check_of(const QualityReport& r, const std::string& id)
+const CheckResult& check_of(const QualityReport& r, CheckId id)
 {
     for (const CheckResult& c : r.checks)
         if (c.id == id)
             return c;
-    throw std::logic_error("no check " + id);
+    throw std::logic_error("no check " + std::string(check_name(id)));
 }
 
 } // namespace
@@ -113,7 +113,7 @@ TEST(WedgeCheck, sound_wedge_reports_its_angles_and_passes)
                                  "    Boundary openness";
     EXPECT_NE(r.text.find(expected), std::string::npos) << r.text;
     EXPECT_TRUE(r.mesh_ok()) << r.text;
-    const CheckResult& c = check_of(r, "wedges");
+    const CheckResult& c = check_of(r, CheckId::wedges);
     EXPECT_FALSE(c.failed());
     EXPECT_EQ(c.count("nonAlignedEdges"), 0);
     const nlohmann::json j = quality_json(r);

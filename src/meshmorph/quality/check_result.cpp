@@ -8,6 +8,45 @@
 namespace meshmorph
 {
 
+std::string_view check_name(CheckId id)
+{
+    static const std::pair<CheckId, std::string_view> names[] = {
+        {CheckId::boundary_definition, "boundaryDefinition"},
+        {CheckId::empty_patches, "emptyPatches"},
+        {CheckId::cell_addressing, "cellAddressing"},
+        {CheckId::point_usage, "pointUsage"},
+        {CheckId::upper_triangular, "upperTriangular"},
+        {CheckId::face_vertices, "faceVertices"},
+        {CheckId::cells_zip_up, "cellsZipUp"},
+        {CheckId::face_faces, "faceFaces"},
+        {CheckId::internal_face_cells, "internalFaceCells"},
+        {CheckId::regions, "regions"},
+        {CheckId::edge_alignment, "edgeAlignment"},
+        {CheckId::wedges, "wedges"},
+        {CheckId::closed_boundary, "closedBoundary"},
+        {CheckId::closed_cells, "closedCells"},
+        {CheckId::face_areas, "faceAreas"},
+        {CheckId::cell_volumes, "cellVolumes"},
+        {CheckId::face_orthogonality, "faceOrthogonality"},
+        {CheckId::face_pyramids, "facePyramids"},
+        {CheckId::face_skewness, "faceSkewness"},
+        {CheckId::coupled_points, "coupledPoints"},
+        {CheckId::face_tets, "faceTets"},
+        {CheckId::edge_length, "edgeLength"},
+        {CheckId::face_angles, "faceAngles"},
+        {CheckId::face_flatness, "faceFlatness"},
+        {CheckId::cell_determinant, "cellDeterminant"},
+        {CheckId::concave_cells, "concaveCells"},
+        {CheckId::face_weight, "faceWeight"},
+        {CheckId::volume_ratio, "volumeRatio"},
+        {CheckId::mesh_quality, "meshQuality"},
+    };
+    for (const auto& [check, name] : names)
+        if (check == id)
+            return name;
+    return "?";
+}
+
 namespace
 {
 
@@ -15,8 +54,8 @@ template <typename T> const T& typed(const CheckResult& result, std::string_view
 {
     const Statistic* s = result.find(key);
     if (s == nullptr || !std::holds_alternative<T>(s->value))
-        throw std::logic_error("check " + result.id + " has no statistic " + std::string(key) +
-                               " of the requested type");
+        throw std::logic_error("check " + std::string(check_name(result.id)) +
+                               " has no statistic " + std::string(key) + " of the requested type");
     return std::get<T>(s->value);
 }
 

@@ -63,18 +63,56 @@ struct Statistic
     Index parts_count = 0;
 };
 
+//! The checks, in checkMesh's report order: what joins a check function's result to its
+//! report lines (report_text.cpp), so that a misspelt check is a compile error.
+enum class CheckId
+{
+    boundary_definition,
+    empty_patches,
+    cell_addressing,
+    point_usage,
+    upper_triangular,
+    face_vertices,
+    cells_zip_up,
+    face_faces,
+    internal_face_cells,
+    regions,
+    edge_alignment,
+    wedges,
+    closed_boundary,
+    closed_cells,
+    face_areas,
+    cell_volumes,
+    face_orthogonality,
+    face_pyramids,
+    face_skewness,
+    coupled_points,
+    face_tets,
+    edge_length,
+    face_angles,
+    face_flatness,
+    cell_determinant,
+    concave_cells,
+    face_weight,
+    volume_ratio,
+    mesh_quality,
+};
+
+//! The check's name in messages and tests, e.g. "faceOrthogonality".
+std::string_view check_name(CheckId id);
+
 //! What one check found: its numbers, whether it failed, and the offending elements.
 struct CheckResult
 {
-    //! Which check this is (e.g. "faceOrthogonality"): the text report's key for its lines.
-    std::string id;
+    //! Which check this is.
+    CheckId id;
     //! checkMesh's name of the failed check (e.g. "nonOrthogonality"); empty when it passed.
     //! Checks that only warn ("   *" lines) never fail.
     std::string failure;
     std::vector<Statistic> statistics; //!< in report order
     std::vector<OffenderSet> sets;     //!< non-empty sets only, in report order
 
-    explicit CheckResult(std::string check_id) : id(std::move(check_id)) {}
+    explicit CheckResult(CheckId check_id) : id(check_id) {}
 
     bool failed() const { return !failure.empty(); }
     //! Append a statistic (integers are counts: Index, never int or size_t).

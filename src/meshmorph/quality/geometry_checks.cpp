@@ -58,7 +58,7 @@ FieldRange field_range(const Eigen::VectorXd& values, double threshold)
 //! values below a threshold fail (face weights, volume ratios).
 struct LowValueCheck
 {
-    const char* id;
+    CheckId id;
     const char* min_key;
     const char* avg_key;
     const char* count_key;
@@ -118,7 +118,7 @@ void add_edge_alignment(const std::vector<Edge>& non_aligned, CheckResult& r)
 
 CheckResult check_edge_alignment(const std::vector<Edge>& non_aligned)
 {
-    CheckResult r("edgeAlignment");
+    CheckResult r(CheckId::edge_alignment);
     add_edge_alignment(non_aligned, r);
     return r;
 }
@@ -127,7 +127,7 @@ CheckResult check_wedges(const PolyMesh& mesh, const std::vector<WedgeGeometry>&
                          const WedgeFindings& found)
 {
     using Problem = WedgeFindings::Problem;
-    CheckResult r("wedges");
+    CheckResult r(CheckId::wedges);
     Statistic::Reals angles;
     for (std::size_t i = 0; i < found.n_examined; ++i)
         angles.emplace_back(mesh.patches[static_cast<std::size_t>(wedges[i].patch)].name,
@@ -157,7 +157,7 @@ CheckResult check_wedges(const PolyMesh& mesh, const std::vector<WedgeGeometry>&
 
 CheckResult check_closed_boundary(const Vector3& openness)
 {
-    CheckResult r("closedBoundary");
+    CheckResult r(CheckId::closed_boundary);
     r.add("boundaryOpenness", openness);
     if (std::max({std::abs(openness.x()), std::abs(openness.y()), std::abs(openness.z())}) > 1e-6)
         r.failure = "boundaryOpenness";
@@ -179,7 +179,7 @@ CheckResult check_closed_cells(const Eigen::VectorXd& openness, const Eigen::Vec
         if (aspect[cell] > 1000)
             aspect_cells.push_back(cell);
     }
-    CheckResult r("closedCells");
+    CheckResult r(CheckId::closed_cells);
     r.add("maxCellOpenness", max_open);
     r.add("maxAspectRatio", max_ar);
     r.add("highAspectRatioCells", size_of(aspect_cells));
@@ -197,7 +197,7 @@ CheckResult check_closed_cells(const Eigen::VectorXd& openness, const Eigen::Vec
 CheckResult check_face_areas(const Eigen::VectorXd& mag_area)
 {
     FieldRange range = field_range(mag_area, vsmall);
-    CheckResult r("faceAreas");
+    CheckResult r(CheckId::face_areas);
     r.add("minFaceArea", range.min);
     r.add("maxFaceArea", range.max);
     if (range.min < vsmall)
@@ -209,7 +209,7 @@ CheckResult check_face_areas(const Eigen::VectorXd& mag_area)
 CheckResult check_cell_volumes(const Eigen::VectorXd& volumes)
 {
     FieldRange range = field_range(volumes, vsmall);
-    CheckResult r("cellVolumes");
+    CheckResult r(CheckId::cell_volumes);
     r.add("minVolume", range.min);
     r.add("maxVolume", range.max);
     r.add("totalVolume", range.sum);
@@ -243,7 +243,7 @@ CheckResult check_face_orthogonality(const Eigen::VectorXd& ortho, const std::ve
         }
     }
     const double avg_cos = sum_cos / static_cast<double>(std::max<Index>(n_summed, 1));
-    CheckResult r("faceOrthogonality");
+    CheckResult r(CheckId::face_orthogonality);
     r.add("maxNonOrthogonality", n_summed > 0 ? non_orthogonality_degrees(min_cos) : 0.0);
     // The parts are of the cosines: the average angle is that of the average cosine.
     r.add_average("avgNonOrthogonality", n_summed > 0 ? non_orthogonality_degrees(avg_cos) : 0.0,
@@ -260,7 +260,7 @@ CheckResult check_face_orthogonality(const Eigen::VectorXd& ortho, const std::ve
 CheckResult check_face_pyramids(const std::vector<char>& errors)
 {
     auto [total, faces] = error_faces(errors);
-    CheckResult r("facePyramids");
+    CheckResult r(CheckId::face_pyramids);
     r.add("incorrectlyOrientedFacePyramids", total);
     if (total > 0)
         r.failure = "facePyramids";
@@ -283,7 +283,7 @@ CheckResult check_face_skewness(const Eigen::VectorXd& skewness, const std::vect
             n_counted += counted.empty() || counted[static_cast<std::size_t>(f)];
         }
     }
-    CheckResult r("faceSkewness");
+    CheckResult r(CheckId::face_skewness);
     r.add("maxSkewness", max_skew);
     r.add("highlySkewedFaces", n_counted);
     if (!faces.empty())
@@ -294,7 +294,7 @@ CheckResult check_face_skewness(const Eigen::VectorXd& skewness, const std::vect
 
 CheckResult check_coupled_points(const CoupledPointMatch& match)
 {
-    CheckResult r("coupledPoints");
+    CheckResult r(CheckId::coupled_points);
     r.add("averageCoupledMismatch", match.average_mismatch);
     r.add("mismatchedCoupledFaces", size_of(match.mismatched_faces));
     if (!match.mismatched_faces.empty())
@@ -307,7 +307,7 @@ CheckResult check_coupled_points(const CoupledPointMatch& match)
 CheckResult check_face_tets(const std::vector<char>& errors)
 {
     auto [total, faces] = error_faces(errors);
-    CheckResult r("faceTets");
+    CheckResult r(CheckId::face_tets);
     r.add("faceTetErrors", total);
     if (total > 0)
         r.failure = "faceTets";
@@ -319,7 +319,7 @@ CheckResult check_face_tets(const std::vector<char>& errors)
 CheckResult check_edge_length(const EdgeLengths& lengths, const std::vector<char>& near,
                               double min_length_sqr)
 {
-    CheckResult r("edgeLength");
+    CheckResult r(CheckId::edge_length);
     r.add("minEdgeLength", lengths.min_length);
     r.add("maxEdgeLength", lengths.max_length);
     r.add("shortEdges", lengths.n_short, false);
@@ -347,7 +347,7 @@ CheckResult check_face_angles(const Eigen::VectorXd& concavity)
         if (concavity[f] > small)
             faces.push_back(static_cast<Index>(f));
     }
-    CheckResult r("faceAngles");
+    CheckResult r(CheckId::face_angles);
     r.add("concaveFaces", size_of(faces));
     r.add("maxConcaveAngle", detail::rad_to_deg(std::asin(std::min(1.0, max_sin))));
     r.add_set("concaveFaces", MeshSet::Kind::face, std::move(faces), "faces with concave angles");
@@ -369,7 +369,7 @@ CheckResult check_face_flatness(const PolyMesh& mesh, const Eigen::VectorXd& mag
             if (flatness[f] < 0.8)
                 faces.push_back(f);
         }
-    CheckResult r("faceFlatness");
+    CheckResult r(CheckId::face_flatness);
     r.add("minFaceFlatness", n_summed > 0 ? min_flat : 1.0);
     r.add("warpedFaces", size_of(faces));
     r.add_average("avgFaceFlatness", n_summed > 0 ? sum_flat / n_summed : 1.0, sum_flat, n_summed,
@@ -391,7 +391,7 @@ CheckResult check_cell_determinant(const Eigen::VectorXd& det)
         if (det[cell] < 1e-3)
             cells.push_back(cell);
     }
-    CheckResult r("cellDeterminant");
+    CheckResult r(CheckId::cell_determinant);
     r.add("minDeterminant", min_det);
     r.add_average("avgDeterminant", n_cells > 0 ? sum_det / n_cells : 0.0, sum_det, n_cells);
     r.add("smallDeterminantCells", size_of(cells));
@@ -405,7 +405,7 @@ CheckResult check_cell_determinant(const Eigen::VectorXd& det)
 CheckResult check_concave_cells(const std::vector<char>& concave)
 {
     std::vector<Index> cells = flagged(concave);
-    CheckResult r("concaveCells");
+    CheckResult r(CheckId::concave_cells);
     r.add("concaveCells", size_of(cells));
     if (!cells.empty())
         r.failure = "concaveCells";
@@ -415,15 +415,15 @@ CheckResult check_concave_cells(const std::vector<char>& concave)
 
 CheckResult check_face_weight(const Eigen::VectorXd& weights, const std::vector<char>& summed)
 {
-    return check_low_values({"faceWeight", "minFaceWeight", "avgFaceWeight", "lowWeightFaces", 0.05,
-                             "faceWeight", "lowWeightFaces",
+    return check_low_values({CheckId::face_weight, "minFaceWeight", "avgFaceWeight",
+                             "lowWeightFaces", 0.05, "faceWeight", "lowWeightFaces",
                              "faces with low interpolation weights"},
                             weights, summed);
 }
 
 CheckResult check_volume_ratio(const Eigen::VectorXd& ratios, const std::vector<char>& summed)
 {
-    return check_low_values({"volumeRatio", "minVolumeRatio", "avgVolumeRatio",
+    return check_low_values({CheckId::volume_ratio, "minVolumeRatio", "avgVolumeRatio",
                              "lowVolumeRatioFaces", 0.01, "volumeRatio", "lowVolRatioFaces",
                              "faces with low volume ratio cells"},
                             ratios, summed);

@@ -203,7 +203,7 @@ CheckResult check_mesh_quality(const PolyMesh& mesh, const CompactList& cell_fac
         failures.emplace_back(c.key, added);
     }
     std::vector<Index> faces = flagged(in_error);
-    CheckResult r("meshQuality");
+    CheckResult r(CheckId::mesh_quality);
     r.add("meshQualityFailures", std::move(failures));
     r.add("meshQualityFaces", size_of(faces));
     if (!faces.empty())

@@ -456,7 +456,7 @@ enum class Section
 
 struct Format
 {
-    std::string_view id;
+    CheckId id;
     Section section;
     Formatter print;
     //! Lines after the sets' "<<Writing" lines (-writeSets only), or nullptr.
@@ -464,35 +464,35 @@ struct Format
 };
 
 const Format formats[] = {
-    {"boundaryDefinition", Section::topology, boundary_definition, nullptr},
-    {"emptyPatches", Section::topology, empty_patches, nullptr},
-    {"cellAddressing", Section::topology, cell_addressing, nullptr},
-    {"pointUsage", Section::topology, point_usage, nullptr},
-    {"upperTriangular", Section::topology, upper_triangular, nullptr},
-    {"faceVertices", Section::topology, face_vertices, nullptr},
-    {"cellsZipUp", Section::topology, cells_zip_up, nullptr},
-    {"faceFaces", Section::topology, face_faces, nullptr},
-    {"internalFaceCells", Section::topology, no_lines, nullptr},
-    {"regions", Section::topology, regions, nullptr},
-    {"edgeAlignment", Section::geometry, edge_alignment, nullptr},
-    {"wedges", Section::geometry, wedges, nullptr},
-    {"closedBoundary", Section::geometry, closed_boundary, nullptr},
-    {"closedCells", Section::geometry, closed_cells, nullptr},
-    {"faceAreas", Section::geometry, face_areas, nullptr},
-    {"cellVolumes", Section::geometry, cell_volumes, nullptr},
-    {"faceOrthogonality", Section::geometry, face_orthogonality, nullptr},
-    {"facePyramids", Section::geometry, face_pyramids, nullptr},
-    {"faceSkewness", Section::geometry, face_skewness, nullptr},
-    {"coupledPoints", Section::geometry, coupled_points, nullptr},
-    {"faceTets", Section::geometry, face_tets, nullptr},
-    {"edgeLength", Section::geometry, edge_length, near_points},
-    {"faceAngles", Section::geometry, face_angles, nullptr},
-    {"faceFlatness", Section::geometry, face_flatness, nullptr},
-    {"cellDeterminant", Section::geometry, cell_determinant, nullptr},
-    {"concaveCells", Section::geometry, concave_cells, nullptr},
-    {"faceWeight", Section::geometry, face_weight, nullptr},
-    {"volumeRatio", Section::geometry, volume_ratio, nullptr},
-    {"meshQuality", Section::geometry, mesh_quality, nullptr},
+    {CheckId::boundary_definition, Section::topology, boundary_definition, nullptr},
+    {CheckId::empty_patches, Section::topology, empty_patches, nullptr},
+    {CheckId::cell_addressing, Section::topology, cell_addressing, nullptr},
+    {CheckId::point_usage, Section::topology, point_usage, nullptr},
+    {CheckId::upper_triangular, Section::topology, upper_triangular, nullptr},
+    {CheckId::face_vertices, Section::topology, face_vertices, nullptr},
+    {CheckId::cells_zip_up, Section::topology, cells_zip_up, nullptr},
+    {CheckId::face_faces, Section::topology, face_faces, nullptr},
+    {CheckId::internal_face_cells, Section::topology, no_lines, nullptr},
+    {CheckId::regions, Section::topology, regions, nullptr},
+    {CheckId::edge_alignment, Section::geometry, edge_alignment, nullptr},
+    {CheckId::wedges, Section::geometry, wedges, nullptr},
+    {CheckId::closed_boundary, Section::geometry, closed_boundary, nullptr},
+    {CheckId::closed_cells, Section::geometry, closed_cells, nullptr},
+    {CheckId::face_areas, Section::geometry, face_areas, nullptr},
+    {CheckId::cell_volumes, Section::geometry, cell_volumes, nullptr},
+    {CheckId::face_orthogonality, Section::geometry, face_orthogonality, nullptr},
+    {CheckId::face_pyramids, Section::geometry, face_pyramids, nullptr},
+    {CheckId::face_skewness, Section::geometry, face_skewness, nullptr},
+    {CheckId::coupled_points, Section::geometry, coupled_points, nullptr},
+    {CheckId::face_tets, Section::geometry, face_tets, nullptr},
+    {CheckId::edge_length, Section::geometry, edge_length, near_points},
+    {CheckId::face_angles, Section::geometry, face_angles, nullptr},
+    {CheckId::face_flatness, Section::geometry, face_flatness, nullptr},
+    {CheckId::cell_determinant, Section::geometry, cell_determinant, nullptr},
+    {CheckId::concave_cells, Section::geometry, concave_cells, nullptr},
+    {CheckId::face_weight, Section::geometry, face_weight, nullptr},
+    {CheckId::volume_ratio, Section::geometry, volume_ratio, nullptr},
+    {CheckId::mesh_quality, Section::geometry, mesh_quality, nullptr},
 };
 
 const Format& format_of(const CheckResult& c)
@@ -500,7 +500,8 @@ const Format& format_of(const CheckResult& c)
     for (const Format& f : formats)
         if (f.id == c.id)
             return f;
-    throw std::logic_error("the report has no formatter for check " + c.id);
+    throw std::logic_error("the report has no formatter for check " +
+                           std::string(check_name(c.id)));
 }
 
 //! Every check of `section`, in order, each followed by its sets' "<<Writing" lines.

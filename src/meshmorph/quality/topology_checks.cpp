@@ -92,7 +92,7 @@ CheckResult check_boundary_definition(const PolyMesh& mesh)
     }
     if (next != mesh.n_faces())
         ok = false;
-    CheckResult r("boundaryDefinition");
+    CheckResult r(CheckId::boundary_definition);
     r.add("boundaryDefinitionOK", Index{ok}, false);
     return r;
 }
@@ -103,7 +103,7 @@ CheckResult check_empty_patches(const PolyMesh& mesh)
     for (const Patch& p : mesh.patches)
         if (p.type == "empty")
             n_empty += p.n_faces;
-    CheckResult r("emptyPatches");
+    CheckResult r(CheckId::empty_patches);
     r.add("emptyFacesDivisible", Index{!(mesh.n_cells > 0 && n_empty % mesh.n_cells != 0)}, false);
     return r;
 }
@@ -120,7 +120,7 @@ CheckResult check_cell_addressing(const PolyMesh& mesh, const CompactList& cell_
         if (bad)
             illegal.push_back(cell);
     }
-    CheckResult r("cellAddressing");
+    CheckResult r(CheckId::cell_addressing);
     r.add("illegalCells", size_of(illegal), false);
     if (!illegal.empty())
         r.failure = "illegalCells";
@@ -137,7 +137,7 @@ CheckResult check_point_usage(const PolyMesh& mesh)
     for (Index p = 0; p < mesh.n_points(); ++p)
         if (!used[p])
             unused.push_back(p);
-    CheckResult r("pointUsage");
+    CheckResult r(CheckId::point_usage);
     // Every face has an owner cell, so points unused by faces are exactly the points unused
     // by cells.
     r.add("unusedPoints", size_of(unused), false);
@@ -166,7 +166,7 @@ CheckResult check_upper_triangular(const PolyMesh& mesh, const CompactList& cell
         n_multiple += multiple;
         error = error || order_error;
     }
-    CheckResult r("upperTriangular");
+    CheckResult r(CheckId::upper_triangular);
     r.add("cellsWithMultipleFaces", n_multiple, false);
     if (error)
         r.failure = "upperTriangular";
@@ -185,7 +185,7 @@ CheckResult check_face_vertices(const PolyMesh& mesh)
             n_error += repeats;
             bad.push_back(f);
         }
-    CheckResult r("faceVertices");
+    CheckResult r(CheckId::face_vertices);
     r.add("faceVertexErrors", n_error, false);
     if (n_error > 0)
         r.failure = "faceVertices";
@@ -204,7 +204,7 @@ CheckResult check_cells_zip_up(const CellEdgeUsage& usage)
         if (usage.open[cell] || usage.over_used[cell])
             zip.push_back(static_cast<Index>(cell));
     }
-    CheckResult r("cellsZipUp");
+    CheckResult r(CheckId::cells_zip_up);
     r.add("openCells", n_open, false);
     if (n_open > 0)
     {
@@ -223,7 +223,7 @@ CheckResult check_face_faces(const FaceFaceConnectivity& c)
         duplicates += c.duplicates[f];
         order_errors += c.order_errors[f];
     }
-    CheckResult r("faceFaces");
+    CheckResult r(CheckId::face_faces);
     r.add("baffleFaces", baffles, false);
     r.add("duplicateFaces", duplicates, false);
     r.add("nonConsecutiveFaces", order_errors, false);
@@ -257,7 +257,7 @@ CheckResult check_internal_face_cells(const PolyMesh& mesh, const ProcessorFaces
         else if (n_internal[cell] == 2)
             two.push_back(cell);
     }
-    CheckResult r("internalFaceCells");
+    CheckResult r(CheckId::internal_face_cells);
     r.add_set("oneInternalFaceCells", MeshSet::Kind::cell, std::move(one),
               "cells with zero or one non-boundary face");
     r.add_set("twoInternalFacesCells", MeshSet::Kind::cell, std::move(two),
@@ -268,7 +268,7 @@ CheckResult check_internal_face_cells(const PolyMesh& mesh, const ProcessorFaces
 CheckResult check_regions(const PolyMesh& mesh, const std::vector<std::vector<Index>>& regions,
                           bool all_topology)
 {
-    CheckResult r("regions");
+    CheckResult r(CheckId::regions);
     r.add("regions", size_of(regions), false);
     if (regions.size() <= 1)
         return r;
