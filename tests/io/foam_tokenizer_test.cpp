@@ -387,6 +387,36 @@ TEST(FoamHeader, format_header_reproduces_openfoam_output)
     }
 }
 
+TEST(FoamHeader, format_header_with_a_framed_banner)
+{
+    // The header checkMeshQuality writes on its sets (formerly written by hand in app/).
+    FoamHeader h;
+    h.class_name = "faceSet";
+    h.location = "0";
+    h.object = "nonOrthoFaces";
+    const std::string text =
+        format_header(h, framed_banner("Written by meshMorph 1.2.3 (checkMeshQuality)"));
+    EXPECT_EQ(
+        text,
+        "/*--------------------------------*- C++ -*----------------------------------*\\\n"
+        "  Written by meshMorph 1.2.3 (checkMeshQuality)\n"
+        "\\*---------------------------------------------------------------------------*/\n"
+        "FoamFile\n{\n"
+        "    version     2.0;\n"
+        "    format      ascii;\n"
+        "    class       faceSet;\n"
+        "    location    \"0\";\n"
+        "    object      nonOrthoFaces;\n"
+        "}\n"
+        "// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //\n\n");
+    // The default banner is OpenFOAM's, which shares the frame.
+    EXPECT_EQ(format_header(h),
+              std::string(openfoam_banner()) + text.substr(text.find("FoamFile")));
+    EXPECT_EQ(openfoam_banner().substr(0, 80), text.substr(0, 80));
+    FoamTokenizer tok(text, "nonOrthoFaces");
+    EXPECT_EQ(parse_header(tok).object, "nonOrthoFaces");
+}
+
 TEST(FoamHeader, format_header_writes_arch_only_for_binary)
 {
     FoamHeader h;

@@ -641,193 +641,151 @@ struct detail_dictionary_access
         for (;;)
         {
             FoamToken key = tok.next();
-            if (key.is_end())
+            if (key.is_end() || key.is_punct('}'))
             {
-                if (nested)
-                    throw tok.error_at(dict.line_, "unterminated dictionary '" + dict.scope_name() +
-                                                       "' (no closing '}' before end of file)");
-                if (!is_include)
-                    dict.end_line_ = tok.line();
-                return;
-            }
-            if (key.is_punct('}'))
-            {
-                if (!nested)
-                    throw tok.error_at(key.line, "unexpected '}' (no open dictionary)");
-                dict.end_line_ = key.line;
+                end_entries(tok, dict, key, nested, is_include);
                 return;
             }
             if (key.is_punct(';'))
                 continue; // a stray ';' is harmless
             if (key.is_word() && key.text.size() > 1 && key.text[0] == '#')
-            {
                 directive(tok, dict, key);
-                continue;
-            }
-            if (key.is_word() && key.text.size() > 1 && key.text[0] == '$')
-            {
-                // `$dict` at keyword position: merge a copy of that dictionary's entries.
-                // Like OpenFOAM, an undefined name or a value there is ignored (with a warning).
-                const FoamEntry* src = try_resolve(tok, key);
-                if (!src || !src->is_dict())
-                {
-                    log::warning() << tok.path() << ":" << key.line << ": '" << key.text
-                                   << "' at keyword position "
-                                   << (src ? "names a value, not a dictionary" : "is undefined")
-                                   << "; ignored";
-                    tok.accept(';');
-                    continue;
-                }
-                const FoamDictionary copy = src->dict();
-                for (const FoamEntry& e : copy.entries_)
-                {
-                    FoamEntry c = e;
-                    c.scope_ = dict.scope_;
-                    if (c.dict_)
-                        rescope(*c.dict_, child_scope(dict.scope_, c.keyword_));
-                    insert(dict, std::move(c), mode);
-                }
-                tok.accept(';');
-                continue;
-            }
-            if (key.type == TokenType::punctuation)
+            else if (key.is_word() && key.text.size() > 1 && key.text[0] == '$')
+                merge_variable_dict(tok, dict, key);
+            else if (key.type == TokenType::punctuation)
                 throw tok.error_at(key.line, "expected a keyword but found " + key.describe());
-
-            FoamEntry e;
-            e.keyword_ = key.text;
-            e.line_ = key.line;
-            e.path_ = tok.path();
-            e.scope_ = dict.scope_;
-            if (key.is_string())
-                e.regex_ = std::make_shared<const std::regex>(
-                    compile_keyword_regex(tok, key, "regular expression keyword"));
-            const FoamToken& ahead = tok.peek();
-            if (ahead.is_punct('{'))
-            {
-                const std::size_t open_offset = ahead.offset;
-                const std::size_t open_line = ahead.line;
-                if (scopes.size() > max_dictionary_nesting)
-                    throw tok.error_at(open_line,
-                                       "dictionary '" + child_scope(dict.scope_, key.text) +
-                                           "' is nested deeper than " +
-                                           std::to_string(max_dictionary_nesting) + " levels");
-                tok.next();
-                auto sub = std::make_unique<FoamDictionary>(
-                    tok.path(), child_scope(dict.scope_, key.text), open_line);
-                scopes.push_back(sub.get());
-                try
-                {
-                    parse_entries(tok, *sub, true);
-                }
-                catch (...)
-                {
-                    scopes.pop_back();
-                    throw;
-                }
-                scopes.pop_back();
-                e.source_ = std::string(tok.slice(open_offset, tok.offset()));
-                e.dict_ = std::move(sub);
-            }
-            else if (ahead.is_word() && is_code_directive(ahead.text) && !options.skip_unsupported)
-                throw_code_directive(tok, ahead.line, ahead.text);
             else
-                parse_value(tok, e);
-            insert(dict, std::move(e), mode);
+            {
+                FoamEntry e = parse_entry(tok, dict, key);
+                insert(dict, std::move(e), mode); // the mode after the entry (#inputMode inside)
+            }
         }
     }
 
+    // The end of a dictionary's entries: end of input (top level or an included file) or its
+    // closing '}' (sub-dictionary).
+    static void end_entries(const FoamTokenizer& tok, FoamDictionary& dict, const FoamToken& key,
+                            bool nested, bool is_include)
+    {
+        if (key.is_end())
+        {
+            if (nested)
+                throw tok.error_at(dict.line_, "unterminated dictionary '" + dict.scope_name() +
+                                                   "' (no closing '}' before end of file)");
+            if (!is_include)
+                dict.end_line_ = tok.line();
+            return;
+        }
+        if (!nested)
+            throw tok.error_at(key.line, "unexpected '}' (no open dictionary)");
+        dict.end_line_ = key.line;
+    }
+
+    // `$dict` at keyword position: merge a copy of that dictionary's entries. Like OpenFOAM,
+    // an undefined name or a value there is ignored (with a warning).
+    void merge_variable_dict(FoamTokenizer& tok, FoamDictionary& dict, const FoamToken& key)
+    {
+        const FoamEntry* src = try_resolve(tok, key);
+        if (!src || !src->is_dict())
+        {
+            log::warning() << tok.path() << ":" << key.line << ": '" << key.text
+                           << "' at keyword position "
+                           << (src ? "names a value, not a dictionary" : "is undefined")
+                           << "; ignored";
+            tok.accept(';');
+            return;
+        }
+        const FoamDictionary copy = src->dict();
+        for (const FoamEntry& e : copy.entries_)
+        {
+            FoamEntry c = e;
+            c.scope_ = dict.scope_;
+            if (c.dict_)
+                rescope(*c.dict_, child_scope(dict.scope_, c.keyword_));
+            insert(dict, std::move(c), mode);
+        }
+        tok.accept(';');
+    }
+
+    // The entry starting with keyword `key`: a sub-dictionary `{ … }` or a value up to ';'.
+    FoamEntry parse_entry(FoamTokenizer& tok, const FoamDictionary& dict, const FoamToken& key)
+    {
+        FoamEntry e;
+        e.keyword_ = key.text;
+        e.line_ = key.line;
+        e.path_ = tok.path();
+        e.scope_ = dict.scope_;
+        if (key.is_string())
+            e.regex_ = std::make_shared<const std::regex>(
+                compile_keyword_regex(tok, key, "regular expression keyword"));
+        const FoamToken& ahead = tok.peek();
+        if (ahead.is_punct('{'))
+            parse_sub_dict(tok, dict, key, ahead.offset, ahead.line, e);
+        else if (ahead.is_word() && is_code_directive(ahead.text) && !options.skip_unsupported)
+            throw_code_directive(tok, ahead.line, ahead.text);
+        else
+            parse_value(tok, e);
+        return e;
+    }
+
+    // The sub-dictionary whose '{' is next (at open_offset, open_line), parsed recursively
+    // with its own scope for $variables.
+    void parse_sub_dict(FoamTokenizer& tok, const FoamDictionary& dict, const FoamToken& key,
+                        std::size_t open_offset, std::size_t open_line, FoamEntry& e)
+    {
+        if (scopes.size() > max_dictionary_nesting)
+            throw tok.error_at(open_line, "dictionary '" + child_scope(dict.scope_, key.text) +
+                                              "' is nested deeper than " +
+                                              std::to_string(max_dictionary_nesting) + " levels");
+        tok.next();
+        auto sub = std::make_unique<FoamDictionary>(tok.path(), child_scope(dict.scope_, key.text),
+                                                    open_line);
+        scopes.push_back(sub.get());
+        try
+        {
+            parse_entries(tok, *sub, true);
+        }
+        catch (...)
+        {
+            scopes.pop_back();
+            throw;
+        }
+        scopes.pop_back();
+        e.source_ = std::string(tok.slice(open_offset, tok.offset()));
+        e.dict_ = std::move(sub);
+    }
+
+    // ---- values -----------------------------------------------------------------------
+
+    // The value of entry `e` up to its ';' (outside brackets): its tokens, with compounds
+    // read whole and $variables expanded, and its source text.
     void parse_value(FoamTokenizer& tok, FoamEntry& e)
     {
         std::size_t first = std::string::npos;
         std::size_t last = 0;
-        int depth = 0;
-        std::vector<std::size_t> open_lines;
+        std::vector<std::size_t> open_lines; // the line of each open bracket
         for (;;)
         {
             FoamToken t = tok.next();
             if (t.is_end())
-            {
-                if (!open_lines.empty())
-                    throw tok.error_at(open_lines.back(),
-                                       "unterminated list in entry '" + e.keyword_ +
-                                           "' (bracket opened here is never closed)");
-                throw tok.error_at(e.line_, "unexpected end of file in entry '" + e.keyword_ +
-                                                "' (missing ';')");
-            }
-            if (depth == 0 && t.is_punct(';'))
+                throw_unterminated_value(tok, e, open_lines);
+            if (open_lines.empty() && t.is_punct(';'))
                 break;
-            if (depth == 0 && t.is_punct('}'))
+            if (open_lines.empty() && t.is_punct('}'))
                 throw tok.error_at(t.line, "expected ';' after the value of '" + e.keyword_ +
                                                "' but found '}'");
             if (first == std::string::npos)
                 first = t.offset;
             last = t.end;
             if (t.type == TokenType::punctuation)
-            {
-                if (t.punct == '(' || t.punct == '[' || t.punct == '{')
-                {
-                    ++depth;
-                    open_lines.push_back(t.line);
-                }
-                else if (t.punct == ')' || t.punct == ']' || t.punct == '}')
-                {
-                    if (depth == 0)
-                        throw tok.error_at(t.line, "unbalanced " + t.describe() + " in entry '" +
-                                                       e.keyword_ + "'");
-                    --depth;
-                    open_lines.pop_back();
-                }
-            }
+                track_brackets(tok, e, t, open_lines);
             else if (t.is_word())
             {
-                if (is_compound_type(t.text))
-                {
-                    const FoamToken& n = tok.peek();
-                    if (n.is_label() || n.is_punct('('))
-                    {
-                        FoamValueToken vt;
-                        static_cast<FoamToken&>(vt) = t;
-                        vt.compound = std::make_shared<const FoamCompound>(
-                            read_compound(tok, t.text, options, e.keyword_));
-                        last = tok.offset();
-                        e.tokens_.push_back(std::move(vt));
-                        continue;
-                    }
-                }
-                else if (is_code_directive(t.text) && options.skip_unsupported)
-                {
-                    // Kept as the directive word: reading this entry names it.
-                    FoamValueToken vt;
-                    static_cast<FoamToken&>(vt) = t;
-                    e.tokens_.push_back(std::move(vt));
-                    skip_code_argument(tok);
-                    last = tok.offset();
+                const ValueWord word = expand_word(tok, e, t, last);
+                if (word == ValueWord::whole_dict)
+                    return;
+                if (word == ValueWord::expanded)
                     continue;
-                }
-                else if (is_code_directive(t.text))
-                    throw_code_directive(tok, t.line, t.text);
-                else if (t.text.size() > 1 && t.text[0] == '$')
-                {
-                    const FoamEntry& src = resolve(tok, t);
-                    if (src.is_dict() && (!e.tokens_.empty() || !tok.peek().is_punct(';')))
-                    {
-                        // Inside a list (`fields ( rho { $meanOnly; } )`): splice the entries.
-                        dict_tokens(src.dict(), t.line, e.tokens_);
-                        continue;
-                    }
-                    if (src.is_dict())
-                    {
-                        // `key $dict;` copies the whole dictionary.
-                        tok.next();
-                        e.dict_ = std::make_unique<FoamDictionary>(src.dict());
-                        rescope(*e.dict_, child_scope(e.scope_, e.keyword_));
-                        e.source_ = t.text;
-                        return;
-                    }
-                    for (const FoamValueToken& s : src.tokens_)
-                        e.tokens_.push_back(s);
-                    continue;
-                }
             }
             FoamValueToken vt;
             static_cast<FoamToken&>(vt) = std::move(t);
@@ -835,6 +793,98 @@ struct detail_dictionary_access
         }
         if (first != std::string::npos)
             e.source_ = std::string(tok.slice(first, last));
+    }
+
+    [[noreturn]] static void throw_unterminated_value(const FoamTokenizer& tok, const FoamEntry& e,
+                                                      const std::vector<std::size_t>& open_lines)
+    {
+        if (!open_lines.empty())
+            throw tok.error_at(open_lines.back(), "unterminated list in entry '" + e.keyword_ +
+                                                      "' (bracket opened here is never closed)");
+        throw tok.error_at(e.line_,
+                           "unexpected end of file in entry '" + e.keyword_ + "' (missing ';')");
+    }
+
+    // Brackets inside a value must balance.
+    static void track_brackets(const FoamTokenizer& tok, const FoamEntry& e, const FoamToken& t,
+                               std::vector<std::size_t>& open_lines)
+    {
+        if (t.punct == '(' || t.punct == '[' || t.punct == '{')
+            open_lines.push_back(t.line);
+        else if (t.punct == ')' || t.punct == ']' || t.punct == '}')
+        {
+            if (open_lines.empty())
+                throw tok.error_at(t.line,
+                                   "unbalanced " + t.describe() + " in entry '" + e.keyword_ + "'");
+            open_lines.pop_back();
+        }
+    }
+
+    // What expand_word did with a word of a value.
+    enum class ValueWord
+    {
+        plain,      //!< nothing: the word is a value token
+        expanded,   //!< stored in e.tokens_ (compound, code directive, $variable)
+        whole_dict, //!< `key $dict;`: e is now a copy of that dictionary, and complete
+    };
+
+    // A word of a value: a compound (`List<scalar> N(…)`), a code directive, a $variable.
+    // `last` is moved past what was read after the word.
+    ValueWord expand_word(FoamTokenizer& tok, FoamEntry& e, const FoamToken& t, std::size_t& last)
+    {
+        if (is_compound_type(t.text))
+        {
+            const FoamToken& n = tok.peek();
+            if (!n.is_label() && !n.is_punct('('))
+                return ValueWord::plain;
+            FoamValueToken vt;
+            static_cast<FoamToken&>(vt) = t;
+            vt.compound = std::make_shared<const FoamCompound>(
+                read_compound(tok, t.text, options, e.keyword_));
+            last = tok.offset();
+            e.tokens_.push_back(std::move(vt));
+            return ValueWord::expanded;
+        }
+        if (is_code_directive(t.text) && options.skip_unsupported)
+        {
+            // Kept as the directive word: reading this entry names it.
+            FoamValueToken vt;
+            static_cast<FoamToken&>(vt) = t;
+            e.tokens_.push_back(std::move(vt));
+            skip_code_argument(tok);
+            last = tok.offset();
+            return ValueWord::expanded;
+        }
+        if (is_code_directive(t.text))
+            throw_code_directive(tok, t.line, t.text);
+        if (t.text.size() > 1 && t.text[0] == '$')
+            return expand_variable(tok, e, t);
+        return ValueWord::plain;
+    }
+
+    // `$name` in a value: its tokens, or a dictionary's entries inside a list, or (alone)
+    // a copy of the whole dictionary.
+    ValueWord expand_variable(FoamTokenizer& tok, FoamEntry& e, const FoamToken& t)
+    {
+        const FoamEntry& src = resolve(tok, t);
+        if (src.is_dict() && (!e.tokens_.empty() || !tok.peek().is_punct(';')))
+        {
+            // Inside a list (`fields ( rho { $meanOnly; } )`): splice the entries.
+            dict_tokens(src.dict(), t.line, e.tokens_);
+            return ValueWord::expanded;
+        }
+        if (src.is_dict())
+        {
+            // `key $dict;` copies the whole dictionary.
+            tok.next();
+            e.dict_ = std::make_unique<FoamDictionary>(src.dict());
+            rescope(*e.dict_, child_scope(e.scope_, e.keyword_));
+            e.source_ = t.text;
+            return ValueWord::whole_dict;
+        }
+        for (const FoamValueToken& s : src.tokens_)
+            e.tokens_.push_back(s);
+        return ValueWord::expanded;
     }
 };
 

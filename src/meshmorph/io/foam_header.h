@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 
 #include "meshmorph/io/foam_tokenizer.h"
 
@@ -55,12 +56,23 @@ void parse_arch(const std::string& arch, FoamHeader& header, const std::string& 
 //! The arch string OpenFOAM writes: "LSB;label=<32|64>;scalar=<32|64>".
 std::string arch_string(int label_bytes, int scalar_bytes);
 
-//! \brief Banner + `FoamFile` block + divider, byte for byte as OpenFOAM v1912 (Debian build)
-//! writes them, ending with "// * * ... * //\n\n". Keys in OpenFOAM's order: version, format,
-//! class, arch (binary only; built from label_bytes/scalar_bytes when `arch` is empty),
-//! note, location (quoted; omitted when empty), object.
+//! The banner OpenFOAM v1912 (Debian build) writes at the top of its files, byte for byte
+//! (7 lines, each ending in '\n').
+std::string_view openfoam_banner();
+
+//! \brief A 3-line banner for files meshmorph writes on its own account: the first and last
+//! lines of openfoam_banner() around the line "  <text>\n" (two spaces, then `text`, e.g.
+//! "Written by meshMorph 1.0 (checkMeshQuality)").
+std::string framed_banner(std::string_view text);
+
+//! \brief The one writer of `FoamFile` headers: `banner` + `FoamFile` block + divider, byte
+//! for byte as OpenFOAM v1912 (Debian build) writes them, ending with "// * * ... * //\n\n".
+//! Keys in OpenFOAM's order: version ("2.0" when empty), format, class, arch (binary only;
+//! built from label_bytes/scalar_bytes when `arch` is empty), note (quoted; omitted when
+//! empty), location (quoted; omitted when empty), object.
 //! A complete file is `format_header(h) + body + format_footer()`.
-std::string format_header(const FoamHeader& header);
+//! \param banner written first as is: OpenFOAM's by default, or framed_banner(...).
+std::string format_header(const FoamHeader& header, std::string_view banner = openfoam_banner());
 
 //! The closing divider OpenFOAM writes after a body: "\n\n// ***...*** //\n".
 std::string format_footer();

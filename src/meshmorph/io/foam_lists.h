@@ -14,6 +14,10 @@
 //!
 //! Errors are ParseError: ASCII ones carry the file and line; binary ones the line where
 //! the block starts plus "byte offset B" inside the file.
+//!
+//! Implemented in foam_lists.cpp (lists of one-size elements), foam_face_lists.cpp (faces)
+//! and foam_list_writers.cpp (append_*), over internal parts: foam_list_start.h (sizes and
+//! brackets), foam_list_kernels.h (fast ASCII kernels), foam_list_binary.h (binary blocks).
 #pragma once
 
 #include <cstddef>

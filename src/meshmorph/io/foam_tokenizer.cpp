@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Tokenizer for OpenFOAM's text syntax; number parsing uses std::from_chars in place.
+// Tokenizer for OpenFOAM's text syntax; numbers are recognised and converted in place by
+// io/number_lexer.h (Dialect::tokenizer).
 #include "meshmorph/io/foam_tokenizer.h"
 
-#include <charconv>
-#include <cmath>
-#include <cstdlib>
 #include <cstring>
+
+#include "meshmorph/io/number_lexer.h"
 
 namespace meshmorph::io
 {
@@ -13,67 +13,10 @@ namespace meshmorph::io
 namespace
 {
 
-inline bool is_space(char c)
-{
-    return c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
-}
-
-inline bool is_punct(char c)
-{
-    switch (c)
-    {
-    case '(':
-    case ')':
-    case '{':
-    case '}':
-    case '[':
-    case ']':
-    case ';':
-    case ',':
-        return true;
-    default:
-        return false;
-    }
-}
-
-inline bool is_digit(char c)
-{
-    return c >= '0' && c <= '9';
-}
-
-// Whether the byte at p ends a word or number token.
-inline bool is_delimiter(const char* p, const char* end)
-{
-    if (p == end)
-        return true;
-    const char c = *p;
-    if (is_space(c) || is_punct(c) || c == '"')
-        return true;
-    if (c == '/' && p + 1 < end && (p[1] == '/' || p[1] == '*'))
-        return true;
-    return false;
-}
-
-// A run that looks like a number: digit, or sign/dot followed by a digit or dot-digit.
-inline bool starts_number(const char* p, const char* end)
-{
-    if (p == end)
-        return false;
-    if (is_digit(*p))
-        return true;
-    if (*p == '-' || *p == '+')
-    {
-        ++p;
-        if (p == end)
-            return false;
-        if (is_digit(*p))
-            return true;
-        return *p == '.' && p + 1 < end && is_digit(p[1]);
-    }
-    if (*p == '.')
-        return p + 1 < end && is_digit(p[1]);
-    return false;
-}
+using number_lexer::Dialect;
+using number_lexer::is_punct;
+using number_lexer::is_space;
+using number_lexer::starts_number;
 
 std::string quote_text(std::string_view s)
 {
@@ -275,50 +218,23 @@ FoamToken FoamTokenizer::scan()
 
 bool FoamTokenizer::scan_number(FoamToken& t)
 {
+    using Kind = number_lexer::NumberToken::Kind;
     const char* const begin = buffer_.data();
     const char* const end = begin + buffer_.size();
     const char* p = begin + pos_;
     if (!starts_number(p, end))
         return false;
-    const char* q = p;
-    while (!is_delimiter(q, end))
-        ++q;
-    const char* num = (*p == '+') ? p + 1 : p;
-    std::int64_t ival = 0;
-    auto ir = std::from_chars(num, q, ival);
-    if (ir.ec == std::errc() && ir.ptr == q)
-    {
-        t.type = TokenType::label;
-        t.label = ival;
-        t.scalar = static_cast<double>(ival);
-    }
-    else
-    {
-        double dval = 0.0;
-        auto dr = std::from_chars(num, q, dval);
-        if (dr.ptr != q || (dr.ec != std::errc() && dr.ec != std::errc::result_out_of_range))
-            throw error_at(line_, "malformed number '" + std::string(p, q) + "'");
-        if (dr.ec == std::errc::result_out_of_range)
-        {
-            // Out-of-range integers are read as scalars; overflowing floats are an error,
-            // underflow (denormal / zero) is accepted like strtod does.
-            bool is_integer_spelling = true;
-            for (const char* s = num; s < q; ++s)
-                if (!is_digit(*s) && *s != '-')
-                    is_integer_spelling = false;
-            if (!is_integer_spelling)
-            {
-                const double probe = std::strtod(std::string(num, q).c_str(), nullptr);
-                if (probe == HUGE_VAL || probe == -HUGE_VAL)
-                    throw error_at(line_, "number out of range '" + std::string(p, q) + "'");
-                dval = probe;
-            }
-            else
-                dval = std::strtod(std::string(num, q).c_str(), nullptr);
-        }
-        t.type = TokenType::scalar;
-        t.scalar = dval;
-    }
+    const char* const q = number_lexer::token_end(p, end);
+    const number_lexer::NumberToken n = number_lexer::convert_number_token(p, q);
+    if (n.kind == Kind::malformed)
+        throw error_at(line_, "malformed number '" + std::string(p, q) + "'");
+    // Out-of-range integers are read as scalars; overflowing floats are an error,
+    // underflow (denormal / zero) is accepted like strtod does.
+    if (n.kind == Kind::out_of_range)
+        throw error_at(line_, "number out of range '" + std::string(p, q) + "'");
+    t.type = n.kind == Kind::label ? TokenType::label : TokenType::scalar;
+    t.label = n.label;
+    t.scalar = n.scalar;
     t.text.assign(p, q);
     pos_ = static_cast<std::size_t>(q - begin);
     return true;
@@ -540,31 +456,9 @@ bool FoamTokenizer::read_label(std::int64_t& value)
     const char* p = begin + pos_;
     if (p == end)
         return false;
-    // Fast path: up to 18 plain digits cannot overflow int64.
-    {
-        const char* q = p;
-        const bool negative = *q == '-';
-        if (negative || *q == '+')
-            ++q;
-        const char* const digits = q;
-        std::int64_t v = 0;
-        while (q < end && q - digits < 18 && static_cast<unsigned char>(*q - '0') < 10)
-            v = 10 * v + (*q++ - '0');
-        if (q > digits && (q == end || static_cast<unsigned char>(*q - '0') >= 10) &&
-            is_delimiter(q, end))
-        {
-            value = negative ? -v : v;
-            pos_ = static_cast<std::size_t>(q - begin);
-            return true;
-        }
-    }
-    const char* num = p;
-    if (*num == '+')
-        ++num;
-    auto r = std::from_chars(num, end, value);
-    if (r.ec != std::errc() || !is_delimiter(r.ptr, end) || r.ptr == num)
+    if (!number_lexer::lex_label<Dialect::tokenizer>(p, end, value))
         return false;
-    pos_ = static_cast<std::size_t>(r.ptr - begin);
+    pos_ = static_cast<std::size_t>(p - begin);
     return true;
 }
 
@@ -584,11 +478,9 @@ bool FoamTokenizer::read_scalar(double& value)
     const char* p = begin + pos_;
     if (!starts_number(p, end))
         return false;
-    const char* num = (*p == '+') ? p + 1 : p;
-    auto r = std::from_chars(num, end, value);
-    if (r.ec == std::errc() && is_delimiter(r.ptr, end))
+    if (number_lexer::lex_scalar<Dialect::tokenizer>(p, end, value))
     {
-        pos_ = static_cast<std::size_t>(r.ptr - begin);
+        pos_ = static_cast<std::size_t>(p - begin);
         return true;
     }
     // Rare paths (underflow, out-of-range, malformed): let the general scanner decide.

@@ -81,6 +81,111 @@ Points read_vector_value(const FoamEntry& entry, std::size_t expected, const std
     return values;
 }
 
+// The dictionary's FoamFile header, which must say pointVectorField.
+FoamHeader field_header(const FoamDictionary& dict, const fs::path& path)
+{
+    if (!dict.header())
+        throw ParseError(path.string(), 1, "missing FoamFile header");
+    const FoamHeader& header = *dict.header();
+    if (header.class_name != "pointVectorField")
+        throw ParseError(path.string(), header.line,
+                         "wrong class '" + header.class_name +
+                             "' in FoamFile header, expected pointVectorField");
+    return header;
+}
+
+// The plain (not regex) entry named `patch`, the entry written last winning.
+const FoamEntry* find_by_name(const std::vector<FoamEntry>& entries, const Patch& patch)
+{
+    for (auto it = entries.rbegin(); it != entries.rend(); ++it)
+        if (!it->is_regex() && it->keyword() == patch.name)
+            return &*it;
+    return nullptr;
+}
+
+// The plain entry named after one of the patch's groups, the entry written last winning.
+const FoamEntry* find_by_group(const std::vector<FoamEntry>& entries, const Patch& patch)
+{
+    const std::vector<std::string> groups = patch_groups(patch);
+    for (auto it = entries.rbegin(); it != entries.rend(); ++it)
+        if (!it->is_regex() &&
+            std::find(groups.begin(), groups.end(), it->keyword()) != groups.end())
+            return &*it;
+    return nullptr;
+}
+
+// The regex entry matching the patch name, the one written last first.
+const FoamEntry* find_by_regex(const FoamDictionary& boundary, const Patch& patch)
+{
+    const FoamEntry* e = boundary.find(patch.name);
+    return e && e->is_regex() ? e : nullptr;
+}
+
+// The boundaryField entry of `patch`, in OpenFOAM's order of matching (recorded in
+// pf.matched_by); nullptr for an empty patch without entry (then pf.type is `empty`).
+// \throw the boundary's error when no entry matches.
+const FoamEntry* match_patch_entry(const FoamDictionary& boundary, const Patch& patch,
+                                   PointPatchField& pf)
+{
+    // 1. exact name.
+    if (const FoamEntry* e = find_by_name(boundary.entries(), patch))
+    {
+        pf.matched_by = PointPatchField::Match::name;
+        return e;
+    }
+    // 2. patch group (the entry written last wins).
+    if (const FoamEntry* e = find_by_group(boundary.entries(), patch))
+    {
+        pf.matched_by = PointPatchField::Match::group;
+        return e;
+    }
+    // 3. an empty patch without entry is `empty` (before regex keys, as OpenFOAM).
+    if (patch.type == "empty")
+    {
+        pf.type = "empty";
+        pf.matched_by = PointPatchField::Match::empty_default;
+        return nullptr;
+    }
+    // 4. regex keys, the one written last first.
+    if (const FoamEntry* e = find_by_regex(boundary, patch))
+    {
+        pf.matched_by = PointPatchField::Match::regex;
+        return e;
+    }
+    throw boundary.error("Cannot find patchField entry for " + patch.name);
+}
+
+// The patchField `entry` of `patch`: a constraint type (which must be the patch's), or
+// fixedValue / calculated with a value per patch point.
+void read_patch_field(const FoamEntry& entry, const PolyMesh& mesh, const Patch& patch,
+                      PointPatchField& pf)
+{
+    pf.key = entry.keyword();
+    if (!entry.is_dict())
+        throw entry.error("expected a dictionary { type ...; } for patch " + patch.name);
+    const FoamDictionary& bc = entry.dict();
+    pf.type = bc.get<std::string>("type");
+    const std::string where = "patch '" + patch.name + "' (entry '" + entry.keyword() + "')";
+    if (is_constraint_type(patch.type) || is_constraint_type(pf.type))
+    {
+        if (pf.type != patch.type)
+            throw bc.entry("type").error(
+                where + ": a patch of type " + patch.type + " needs the patchField type " +
+                (is_constraint_type(patch.type) ? patch.type : "of its patch") + ", not " +
+                pf.type);
+        return;
+    }
+    if (pf.type != "fixedValue" && pf.type != "calculated")
+        throw bc.entry("type").error(where + ": unsupported patchField type '" + pf.type +
+                                     "' (meshmorph supports fixedValue, calculated with a "
+                                     "value, and the constraint types)");
+    if (!bc.found("value"))
+        throw bc.error(where + ": type " + pf.type + " needs a 'value' entry");
+    const std::size_t n_patch_points = patch_points(mesh, patch).size();
+    pf.value =
+        read_vector_value(bc.entry("value"), n_patch_points, "patch " + patch.name, pf.is_uniform);
+}
+
 } // namespace
 
 PointVectorField read_point_vector_field(const fs::path& path, const PolyMesh& mesh)
@@ -88,92 +193,21 @@ PointVectorField read_point_vector_field(const fs::path& path, const PolyMesh& m
     const FoamDictionary dict = read_dictionary(path);
     PointVectorField field;
     field.path = path;
-    if (!dict.header())
-        throw ParseError(path.string(), 1, "missing FoamFile header");
-    field.header = *dict.header();
-    if (field.header.class_name != "pointVectorField")
-        throw ParseError(path.string(), field.header.line,
-                         "wrong class '" + field.header.class_name +
-                             "' in FoamFile header, expected pointVectorField");
+    field.header = field_header(dict, path);
 
     const std::size_t n_points = static_cast<std::size_t>(mesh.n_points());
     field.internal = read_vector_value(dict.entry("internalField"), n_points, "the mesh",
                                        field.internal_is_uniform);
 
     const FoamDictionary& boundary = dict.sub_dict("boundaryField");
-    const std::vector<FoamEntry>& entries = boundary.entries();
     field.patches.resize(mesh.patches.size());
-    std::vector<const FoamEntry*> chosen(mesh.patches.size(), nullptr);
-
     for (std::size_t p = 0; p < mesh.patches.size(); ++p)
     {
         const Patch& patch = mesh.patches[p];
         PointPatchField& pf = field.patches[p];
         pf.patch = patch.name;
-        // 1. exact name.
-        for (auto it = entries.rbegin(); it != entries.rend() && !chosen[p]; ++it)
-            if (!it->is_regex() && it->keyword() == patch.name)
-            {
-                chosen[p] = &*it;
-                pf.matched_by = PointPatchField::Match::name;
-            }
-        // 2. patch group (the entry written last wins).
-        if (!chosen[p])
-        {
-            const std::vector<std::string> groups = patch_groups(patch);
-            for (auto it = entries.rbegin(); it != entries.rend() && !chosen[p]; ++it)
-                if (!it->is_regex() &&
-                    std::find(groups.begin(), groups.end(), it->keyword()) != groups.end())
-                {
-                    chosen[p] = &*it;
-                    pf.matched_by = PointPatchField::Match::group;
-                }
-        }
-        // 3. an empty patch without entry is `empty` (before regex keys, as OpenFOAM).
-        if (!chosen[p] && patch.type == "empty")
-        {
-            pf.type = "empty";
-            pf.matched_by = PointPatchField::Match::empty_default;
-            continue;
-        }
-        // 4. regex keys, the one written last first.
-        if (!chosen[p])
-        {
-            const FoamEntry* e = boundary.find(patch.name);
-            if (e && e->is_regex())
-            {
-                chosen[p] = e;
-                pf.matched_by = PointPatchField::Match::regex;
-            }
-        }
-        if (!chosen[p])
-            throw boundary.error("Cannot find patchField entry for " + patch.name);
-
-        const FoamEntry& entry = *chosen[p];
-        pf.key = entry.keyword();
-        if (!entry.is_dict())
-            throw entry.error("expected a dictionary { type ...; } for patch " + patch.name);
-        const FoamDictionary& bc = entry.dict();
-        pf.type = bc.get<std::string>("type");
-        const std::string where = "patch '" + patch.name + "' (entry '" + entry.keyword() + "')";
-        if (is_constraint_type(patch.type) || is_constraint_type(pf.type))
-        {
-            if (pf.type != patch.type)
-                throw bc.entry("type").error(
-                    where + ": a patch of type " + patch.type + " needs the patchField type " +
-                    (is_constraint_type(patch.type) ? patch.type : "of its patch") + ", not " +
-                    pf.type);
-            continue;
-        }
-        if (pf.type != "fixedValue" && pf.type != "calculated")
-            throw bc.entry("type").error(where + ": unsupported patchField type '" + pf.type +
-                                         "' (meshmorph supports fixedValue, calculated with a "
-                                         "value, and the constraint types)");
-        if (!bc.found("value"))
-            throw bc.error(where + ": type " + pf.type + " needs a 'value' entry");
-        const std::size_t n_patch_points = patch_points(mesh, patch).size();
-        pf.value = read_vector_value(bc.entry("value"), n_patch_points, "patch " + patch.name,
-                                     pf.is_uniform);
+        if (const FoamEntry* entry = match_patch_entry(boundary, patch, pf))
+            read_patch_field(*entry, mesh, patch, pf);
     }
     return field;
 }

@@ -10,6 +10,11 @@ set(MESHMORPH_IO_SOURCES
     meshmorph/io/foam_file.cpp
     meshmorph/io/temp_file.cpp
     meshmorph/io/foam_lists.cpp
+    meshmorph/io/foam_list_start.cpp
+    meshmorph/io/foam_list_kernels.cpp
+    meshmorph/io/foam_list_binary.cpp
+    meshmorph/io/foam_face_lists.cpp
+    meshmorph/io/foam_list_writers.cpp
     meshmorph/io/case_instance.cpp
     meshmorph/io/decomposed_case.cpp
     meshmorph/io/read_poly_mesh.cpp
