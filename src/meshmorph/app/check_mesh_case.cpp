@@ -18,6 +18,7 @@
 #include "meshmorph/io/decomposed_case.h"
 #include "meshmorph/io/foam_dictionary.h"
 #include "meshmorph/io/foam_file.h"
+#include "meshmorph/io/foam_header.h"
 #include "meshmorph/io/read_poly_mesh.h"
 #include "meshmorph/parallel/collective.h"
 #include "meshmorph/quality/parallel_report.h"
@@ -70,19 +71,12 @@ std::string resolve_include_etc(const std::string& text)
 std::string file_header(const std::string& cls, const std::string& location,
                         const std::string& object)
 {
-    std::ostringstream out;
-    out << "/*--------------------------------*- C++ -*----------------------------------*\\\n"
-        << "  Written by meshMorph " << MESHMORPH_VERSION << " (checkMeshQuality)\n"
-        << "\\*---------------------------------------------------------------------------*/\n"
-        << "FoamFile\n{\n"
-        << "    version     2.0;\n"
-        << "    format      ascii;\n"
-        << "    class       " << cls << ";\n"
-        << "    location    \"" << location << "\";\n"
-        << "    object      " << object << ";\n"
-        << "}\n"
-        << "// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //\n\n";
-    return out.str();
+    io::FoamHeader header;
+    header.class_name = cls;
+    header.location = location;
+    header.object = object;
+    return io::format_header(header, io::framed_banner(std::string("Written by meshMorph ") +
+                                                       MESHMORPH_VERSION + " (checkMeshQuality)"));
 }
 
 } // namespace

@@ -2,6 +2,7 @@
 // The list writers of io/foam_lists.h (append_*): OpenFOAM's ASCII layout of lists
 // (List::writeList: short lists on one line, uniform lists as `N{v}`) and binary blocks, so
 // that every file meshmorph writes lays out its lists as OpenFOAM does.
+#include "meshmorph/core/number_format.h"
 #include "meshmorph/io/foam_lists.h"
 
 #include <array>
@@ -101,14 +102,6 @@ void append_ascii_list(std::string& out, std::size_t n, Elem elem, AppendOne app
 }
 
 } // namespace
-
-void append_scalar(std::string& out, double value, int digits)
-{
-    char buf[40];
-    const std::to_chars_result r =
-        std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, digits);
-    out.append(buf, r.ptr);
-}
 
 void append_label_list(std::string& out, const std::vector<Index>& values, FoamFormat format,
                        int label_bytes, bool allow_uniform)

@@ -120,10 +120,6 @@ ElementLocation locate_list_element(FoamTokenizer& tokenizer, const FoamHeader& 
 //! \throw ParseError "unexpected ... after the list" naming file and line.
 void expect_end_of_file(FoamTokenizer& tokenizer, const std::string& what);
 
-//! \brief Append `value` to `out` in the shortest form that reads back to the same double
-//! when `digits` is 17 (round trip), or `%.<digits>g` otherwise, as OpenFOAM prints scalars.
-void append_scalar(std::string& out, double value, int digits = 17);
-
 //! \brief Append a label list body: binary `\nN\n(` raw `)` (`0` alone when empty) or, ASCII,
 //! OpenFOAM's layout (`N(a b)` for N <= 10 on one line, else `N\n(\na\nb\n)`; `N{v}` for
 //! uniform lists with N >= 2 when `allow_uniform`). No leading/trailing newline for ASCII.
