@@ -11,8 +11,8 @@
 
 #include "meshmorph/core/cell_shapes.h"
 #include "meshmorph/io/read_poly_mesh.h"
-#include "meshmorph/quality/check_mesh.h"
 #include "meshmorph/mesh/mesh_geometry.h"
+#include "meshmorph/quality/check_mesh.h"
 #include "meshmorph/quality/scaled_jacobian.h"
 
 using namespace meshmorph;

@@ -151,7 +151,8 @@ TEST(Options, vtk_flag_writes_into_the_case_and_vtk_file_anywhere)
     EXPECT_TRUE(vtk_requested(o));
     EXPECT_TRUE(vtk_file_argument(o).empty());
     EXPECT_EQ(io::default_vtk_file("/c", "morphMesh", "", "0.5"), "/c/VTK/morphMesh_0.5.vtu");
-    EXPECT_EQ(io::default_vtk_file("/c", "morphMesh", "fluid", "1"), "/c/VTK/morphMesh_fluid_1.vtu");
+    EXPECT_EQ(io::default_vtk_file("/c", "morphMesh", "fluid", "1"),
+              "/c/VTK/morphMesh_fluid_1.vtu");
     parse(o, {"-vtkFile", "out/q.vtu"});
     EXPECT_TRUE(vtk_requested(o));
     EXPECT_EQ(vtk_file_argument(o), std::filesystem::absolute("out/q.vtu"));

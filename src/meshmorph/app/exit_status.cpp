@@ -4,7 +4,7 @@
 
 #include <new>
 
-#include "meshmorph/app/options.h"
+#include "meshmorph/app/usage_error.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
 

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "meshmorph/app/exit_status.h"
+#include "meshmorph/app/usage_error.h"
 #include <filesystem>
 #include <iosfwd>
 #include <map>
@@ -22,13 +23,6 @@
 
 namespace meshmorph::app
 {
-
-//! A bad command line (unknown option, missing or malformed argument).
-class UsageError : public InvalidInput
-{
-public:
-    using InvalidInput::InvalidInput;
-};
 
 //! One row of the option table.
 struct OptionSpec

@@ -5,8 +5,8 @@
 
 #include <vector>
 
-#include "meshmorph/deform/rbf_deformation.h"
 #include "meshmorph/deform/rbf_evaluator.h"
+#include "meshmorph/deform/rbf_settings.h"
 
 namespace meshmorph::detail
 {

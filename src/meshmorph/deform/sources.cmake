@@ -4,6 +4,8 @@ set(MESHMORPH_DEFORM_SOURCES
     meshmorph/deform/space_deformation.cpp
     meshmorph/deform/field_io.cpp
     meshmorph/deform/rbf_evaluator.cpp
+    meshmorph/deform/rbf_settings.cpp
+    meshmorph/deform/rbf_setup.cpp
     meshmorph/deform/rbf_deformation.cpp
     meshmorph/deform/bspline_basis.cpp
     meshmorph/deform/ffd_deformation.cpp

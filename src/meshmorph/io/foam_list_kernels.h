@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "meshmorph/core/types.h"
+#include "meshmorph/io/foam_list_options.h"
 #include "meshmorph/io/foam_list_start.h"
-#include "meshmorph/io/foam_lists.h"
 #include "meshmorph/io/foam_tokenizer.h"
 #include "meshmorph/io/number_lexer.h"
 

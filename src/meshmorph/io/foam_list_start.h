@@ -12,7 +12,7 @@
 
 #include "meshmorph/core/types.h"
 #include "meshmorph/io/foam_header.h"
-#include "meshmorph/io/foam_lists.h"
+#include "meshmorph/io/foam_list_options.h"
 #include "meshmorph/io/foam_tokenizer.h"
 
 namespace meshmorph::io::list_detail

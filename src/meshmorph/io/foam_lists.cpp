@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The list readers of io/foam_lists.h for elements of one fixed size (labels, scalars, bools,
-// words, vectors), and locate_list_element. The pieces they share are in their own files:
+// words, vectors). The pieces they share are in their own files:
 // io/foam_list_start.h (size and brackets), io/foam_list_kernels.h (fast ASCII kernels, run
 // here so that they inline), io/foam_list_binary.h (binary blocks); faces are in
 // io/foam_face_lists.cpp and the writers in io/foam_list_writers.cpp.
@@ -11,7 +11,6 @@
 #include <limits>
 #include <type_traits>
 
-#include "meshmorph/io/foam_face_lists.h"
 #include "meshmorph/io/foam_list_binary.h"
 #include "meshmorph/io/foam_list_kernels.h"
 #include "meshmorph/io/foam_list_start.h"
@@ -180,72 +179,6 @@ void read_ascii_word(FoamTokenizer& tok, std::string& out, const ListStart& star
 }
 
 } // namespace
-
-ElementLocation locate_list_element(FoamTokenizer& tok, const FoamHeader& header, ListKind kind,
-                                    std::size_t index)
-{
-    try
-    {
-        ListReadOptions options;
-        options.what = "list";
-        options.parallel = false;
-        if (kind == ListKind::face_compact_value)
-        {
-            read_label_list(tok, header, options); // offsets
-            kind = ListKind::label;
-        }
-        std::size_t element_bytes = 0;
-        if (header.is_binary())
-            element_bytes = kind == ListKind::label    ? header.label_bytes
-                            : kind == ListKind::scalar ? header.scalar_bytes
-                            : kind == ListKind::vector ? 3 * header.scalar_bytes
-                                                       : 0;
-        const ListStart start = read_list_start(tok, header, options,
-                                                kind == ListKind::vector ? min_chars_vector
-                                                : kind == ListKind::face ? min_chars_face
-                                                                         : min_chars_label,
-                                                element_bytes);
-        if (start.open != '(' || (start.has_size && index >= start.size))
-            return {};
-        if (element_bytes > 0)
-            return {start.line, tok.offset() + index * element_bytes};
-        std::vector<Index> scratch;
-        for (std::size_t i = 0; i < index; ++i)
-        {
-            std::int64_t l;
-            double d;
-            double v[3];
-            switch (kind)
-            {
-            case ListKind::label:
-                if (!tok.read_label(l))
-                    return {};
-                break;
-            case ListKind::scalar:
-                if (!tok.read_scalar(d))
-                    return {};
-                break;
-            case ListKind::vector:
-                tok.read_vector(v);
-                break;
-            case ListKind::face:
-            case ListKind::face_compact_value:
-                scratch.clear();
-                if (header.is_binary())
-                    read_binary_face(tok, header, scratch, i, options.what);
-                else
-                    read_ascii_face(tok, scratch, start, i, options.what);
-                break;
-            }
-        }
-        tok.skip_whitespace_and_comments();
-        return {tok.line(), tok.offset()};
-    }
-    catch (const Error&)
-    {
-        return {};
-    }
-}
 
 void expect_end_of_file(FoamTokenizer& tok, const std::string& what)
 {

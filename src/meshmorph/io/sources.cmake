@@ -10,6 +10,7 @@ set(MESHMORPH_IO_SOURCES
     meshmorph/io/foam_file.cpp
     meshmorph/io/temp_file.cpp
     meshmorph/io/foam_lists.cpp
+    meshmorph/io/foam_list_locate.cpp
     meshmorph/io/foam_list_start.cpp
     meshmorph/io/foam_list_kernels.cpp
     meshmorph/io/foam_list_binary.cpp

@@ -225,7 +225,7 @@ std::unique_ptr<SpaceDeformation> make_deformation(const DeformationSettings& se
                                                    const Eigen::Ref<const Points>& points,
                                                    Index n_constraints)
 {
-    check_fit_memory(settings, n_constraints);
+    check_fit_memory(fit_size(settings, n_constraints));
     return row(settings.method).make(settings, points, n_constraints);
 }
 

@@ -11,6 +11,7 @@
 #include "meshmorph/core/types.h"
 #include "meshmorph/deform/space_deformation.h"
 #include "meshmorph/morph/deformation_settings.h"
+#include "meshmorph/morph/fit_memory.h"
 
 namespace meshmorph::morph
 {
@@ -37,15 +38,6 @@ bool is_exact(const DeformationSettings& settings);
 
 //! Short description for the log, e.g. "rbf (triharmonic, linear polynomial, direct)".
 std::string describe(const DeformationSettings& settings, Index n_constraints);
-
-//! The size of a fit: its bytes at least, the entry that sets it (nullptr: the mesh alone)
-//! and what it is, for messages ("a lattice of 1000 control points fitted to ...").
-struct FitSize
-{
-    double bytes = 0;
-    const SizeEntry* entry = nullptr;
-    std::string what;
-};
 
 //! \brief The size of the fit of `settings` to `n_constraints` constraints: DM-FFD its
 //! dense m x n basis and SVD factors, the RBF its dense systems (direct: m x m; greedy: up

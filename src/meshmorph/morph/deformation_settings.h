@@ -29,11 +29,6 @@
 #include "meshmorph/deform/idw_deformation.h"
 #include "meshmorph/deform/rbf_deformation.h"
 
-namespace meshmorph::io
-{
-class FoamDictionary;
-}
-
 namespace meshmorph::morph
 {
 
@@ -77,11 +72,5 @@ struct DeformationSettings
     SizeEntry dmffd_lattice{"", 0, "dmffd.lattice"};          //!< sets the DM-FFD basis size
     SizeEntry greedy_centres{"", 0, "rbf.greedy.maxCentres"}; //!< sets the greedy RBF size
 };
-
-//! \brief Read `method` (or `method_override`, the -method option) and the sub-dictionary of
-//! the chosen method (absent: defaults). Unknown keywords and bad values are errors.
-//! \throw ParseError naming the file, line and keyword; InvalidInput for a bad override.
-DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
-                                              const std::optional<std::string>& method_override);
 
 } // namespace meshmorph::morph

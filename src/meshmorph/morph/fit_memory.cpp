@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Memory checks of the fits (see fit_memory.h); each method's size is its row's
-// (deformation_methods.cpp).
+// Memory checks of the fits (see fit_memory.h); each method's size comes from its row
+// (deformation_methods.cpp: fit_size).
 #include "meshmorph/morph/fit_memory.h"
 
 #include <cstdio>
@@ -8,7 +8,6 @@
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/memory_budget.h"
-#include "meshmorph/morph/deformation_methods.h"
 
 namespace meshmorph::morph
 {
@@ -25,9 +24,8 @@ std::string format_count(double count)
     return text;
 }
 
-void check_fit_memory(const DeformationSettings& s, Index n_constraints)
+void check_fit_memory(const FitSize& size)
 {
-    const FitSize size = fit_size(s, n_constraints);
     const std::optional<std::string> shortfall = memory_shortfall(size.bytes);
     if (!shortfall)
         return;

@@ -18,10 +18,19 @@ double ffd_lattice_bytes(double count);
 //! "1e+12" or "4096": a count that may exceed any integer type.
 std::string format_count(double count);
 
+//! The size of a fit: its bytes at least, the entry that sets it (nullptr: the mesh alone)
+//! and what it is, for messages ("a lattice of 1000 control points fitted to ...").
+struct FitSize
+{
+    double bytes = 0;
+    const SizeEntry* entry = nullptr;
+    std::string what;
+};
+
 //! \brief Throws when the fit's size (fit_size(), deformation_methods.h) exceeds the memory
 //! this process may still allocate.
 //! \throw ParseError naming the entry that sets the size (dmffd.lattice,
 //! rbf.greedy.maxCentres), or InvalidInput for a size given by the mesh alone.
-void check_fit_memory(const DeformationSettings& settings, Index n_constraints);
+void check_fit_memory(const FitSize& size);
 
 } // namespace meshmorph::morph

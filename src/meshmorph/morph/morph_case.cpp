@@ -17,6 +17,7 @@
 #include "meshmorph/io/foam_dictionary.h"
 #include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/morph/constraints.h"
+#include "meshmorph/morph/deformation_dict.h"
 #include "meshmorph/morph/deformation_methods.h"
 #include "meshmorph/morph/distributed_case.h"
 #include "meshmorph/morph/duplicate_points.h"

@@ -7,7 +7,7 @@
 
 #include "meshmorph/morph/constraint_set.h"
 #include "meshmorph/morph/deformation_methods.h"
-#include "meshmorph/morph/morph_case.h"
+#include "meshmorph/morph/morph_result.h"
 #include "meshmorph/quality/quality_report.h"
 
 namespace meshmorph::morph

@@ -9,7 +9,7 @@
 
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/io/read_poly_mesh.h"
-#include "meshmorph/morph/morph_case.h"
+#include "meshmorph/morph/morph_result.h"
 
 namespace meshmorph::morph
 {

@@ -24,7 +24,7 @@ set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/point_morph.cpp
     meshmorph/morph/morph_steps.cpp
     meshmorph/morph/local_untangle.cpp
-    meshmorph/morph/deformation_settings.cpp
+    meshmorph/morph/deformation_dict.cpp
     meshmorph/morph/deformation_methods.cpp
     meshmorph/morph/fit_memory.cpp
     meshmorph/morph/surface_projector.cpp

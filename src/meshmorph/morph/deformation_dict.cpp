@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // morphDict deformation settings: one reader per sub-dictionary.
-#include "meshmorph/morph/deformation_settings.h"
+#include "meshmorph/morph/deformation_dict.h"
 
 #include <algorithm>
 #include <limits>
