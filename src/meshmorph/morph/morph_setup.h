@@ -48,7 +48,7 @@ struct HandleEntry
 };
 
 //! The morphDict contents that decide the constraints (deformation settings live in
-//! app/deformation_factory.h, steps in morph_steps.h).
+//! deformation_dict.h, steps in morph_steps.h).
 struct MorphSetup
 {
     std::string dict_path = "system/morphDict"; //!< for messages

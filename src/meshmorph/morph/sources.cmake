@@ -4,8 +4,11 @@
 # constraint set (constraints); one fit and evaluation (point_morph), the step loop
 # (morph_steps) and the repair of cells a step inverts (local_untangle). 2D cases keep
 # their empty planes (empty_planes); slip and wedge patches their plane (patch_plane).
-# A -parallel run resolves the constraints on the master (distributed_constraints).
-# Depends on core, parallel, io (morphDict), quality (geometry, validity) and deform.
+# A -parallel run resolves the constraints on the master (distributed_constraints). The
+# deformation methods, one row each (deformation_methods; settings read by deformation_dict,
+# memory by fit_memory), and the whole morph of a case as one call (morph_case: its stages'
+# parts in surface_projector, point_displacement_input, distributed_case, morph_log,
+# morph_output). Depends on core, parallel, mesh, io, quality and deform.
 set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/motion.cpp
     meshmorph/morph/morph_setup.cpp
