@@ -17,6 +17,8 @@
 #   -out   where to write "case file sha256" lines
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source=natural_morph.sh
+source "$root/benchmarks/morph/natural_morph.sh"
 bin="" out="" work=$root/build/identical_points motorbike=$root/build/cases/motorBike-full
 while [[ $# -gt 0 ]]; do
     case "$1" in
@@ -74,16 +76,7 @@ else
 fi
 
 if [[ -f $motorbike/constant/polyMesh/faces ]]; then
-    mkdir -p "$work/motorBike" && cp -r "$motorbike/constant" "$motorbike/system" "$work/motorBike/"
-    cat > "$work/motorBike/system/morphDict" <<'DICT'
-FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }
-method rbf;
-boundary
-{
-    "motorBike_.*" { type translate; vector (0 0 0.0675781); }
-    default        { type fixed; }
-}
-DICT
+    natural_motorbike_case "$motorbike" "$work/motorBike"
     morph "$work/motorBike" && record motorBike "$work/motorBike"
 else
     echo "identical_points.sh: no motorBike mesh at $motorbike: skipped" | tee -a "$out"

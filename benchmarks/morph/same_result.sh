@@ -20,6 +20,8 @@
 #   -out           work directory (default build/same_result)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source=natural_morph.sh
+source "$root/benchmarks/morph/natural_morph.sh"
 release=$root/build/release ci=$root/build/ci motorbike=$root/build/cases/motorBike-full
 out=$root/build/same_result
 while [[ $# -gt 0 ]]; do
@@ -75,17 +77,7 @@ venturi_case "$out/src/bent" 0.8 1.0 ""
 venturi_case "$out/src/greedy" 0.3 0 "rbf { greedy { tolerance 1e-2; } }"
 cases="venturi bent greedy"
 if [[ -f $motorbike/constant/polyMesh/faces ]]; then
-    mkdir -p "$out/src/motorBike"
-    cp -r "$motorbike/constant" "$motorbike/system" "$out/src/motorBike/"
-    cat > "$out/src/motorBike/system/morphDict" <<'DICT'
-FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }
-method rbf;
-boundary
-{
-    "motorBike_.*" { type translate; vector (0 0 0.0675781); }
-    default        { type fixed; }
-}
-DICT
+    natural_motorbike_case "$motorbike" "$out/src/motorBike"
     cases="$cases motorBike"
 else
     echo "same_result.sh: no motorBike mesh at $motorbike (skipped; scripts/openfoam/motorbike.sh $motorbike full)"

@@ -378,13 +378,7 @@ void GreedyRbfDeformation::prepare(const Eigen::Ref<const Points>& constraints,
     d.report = FitReport{};
     d.report.method = "greedy-rbf";
     d.report.solver = "incremental Lagrange null-space Cholesky (dtrsm + dpotrf)";
-    d.model = detail::RbfModel{};
-    d.model.kernel = d.setup.params;
-    const detail::Normalisation nrm = detail::normalisation_of(constraints);
-    d.model.centre = nrm.centre;
-    d.model.scale = nrm.scale;
-    d.model.kernel.eps = d.setup.params.eps * nrm.scale;
-    d.model.kernel.support = d.setup.params.support / nrm.scale;
+    d.model = detail::normalised_model(d.setup, constraints);
     d.system.reset();
     d.merged = detail::merge_duplicates(constraints, d.model.normalise(constraints), displacements,
                                         d.settings.rbf.duplicate_tolerance);

@@ -271,13 +271,7 @@ void RbfDeformation::fit(const Eigen::Ref<const Points>& handles,
     d.fitted = false;
     d.report = FitReport{};
     d.report.method = "rbf";
-    d.model = detail::RbfModel{};
-    d.model.kernel = d.setup.params;
-    const detail::Normalisation nrm = detail::normalisation_of(handles);
-    d.model.centre = nrm.centre;
-    d.model.scale = nrm.scale;
-    d.model.kernel.eps = d.setup.params.eps * nrm.scale;
-    d.model.kernel.support = d.setup.params.support / nrm.scale;
+    d.model = detail::normalised_model(d.setup, handles);
     const Points normalised = d.model.normalise(handles);
     d.merged = detail::merge_duplicates(handles, normalised, displacements,
                                         d.settings.duplicate_tolerance);

@@ -127,6 +127,18 @@ std::string point_text(const Eigen::Ref<const Points>& p, Eigen::Index i)
 }
 } // namespace
 
+RbfModel normalised_model(const RbfKernelSetup& setup, const Eigen::Ref<const Points>& points)
+{
+    RbfModel model;
+    model.kernel = setup.params;
+    const Normalisation nrm = normalisation_of(points);
+    model.centre = nrm.centre;
+    model.scale = nrm.scale;
+    model.kernel.eps = setup.params.eps * nrm.scale;
+    model.kernel.support = setup.params.support / nrm.scale;
+    return model;
+}
+
 MergedHandles merge_duplicates(const Eigen::Ref<const Points>& handles,
                                const Eigen::Ref<const Points>& normalised,
                                const Eigen::Ref<const Points>& displacements, double tolerance)

@@ -29,6 +29,10 @@ struct Normalisation
 //! Bounding-box centre and largest extent (1 if all points coincide).
 Normalisation normalisation_of(const Eigen::Ref<const Points>& x);
 
+//! \brief An empty model in the normalised frame of `points` (their bounding-box centre and
+//! largest extent), its kernel's shape and support scaled to that frame.
+RbfModel normalised_model(const RbfKernelSetup& setup, const Eigen::Ref<const Points>& points);
+
 struct MergedHandles
 {
     Points centres;                    //!< normalised, kept handles
