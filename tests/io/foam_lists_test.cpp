@@ -133,6 +133,17 @@ TEST(FoamLists, reads_int64_labels_beyond_the_build_label_range)
     EXPECT_EQ(read_int64_list(a, ascii_header()), v);
     FoamTokenizer u("3{-7}", "d");
     EXPECT_EQ(read_int64_list(u, ascii_header()), (std::vector<std::int64_t>(3, -7)));
+    // The int64 range, to its ends; one past it is an error naming the line, never a value
+    // wrapped around modulo 2^64 (the fast ASCII kernel once read 19 digits unchecked).
+    FoamTokenizer ends("2(9223372036854775807 -9223372036854775808)", "d");
+    EXPECT_EQ(read_int64_list(ends, ascii_header()),
+              (std::vector<std::int64_t>{INT64_MAX, INT64_MIN}));
+    for (const char* text :
+         {"3(1 9999999999999999999 2)", "1(9223372036854775808)", "(1 9999999999999999999 2)"})
+    {
+        FoamTokenizer big(text, "d");
+        EXPECT_THROW(read_int64_list(big, ascii_header()), ParseError) << text;
+    }
     // 32-bit labels widen.
     const std::vector<std::int32_t> narrow{-1, 2147483647};
     const std::string nb = raw_block(narrow);

@@ -9,10 +9,9 @@
 //! - Where a number ends: for the tokenizer at the end, space, `( ) { } [ ] ; ,`, `"`, or the
 //!   start of a comment (`//`, `/*`); for the list kernels the same but not at `/` (they run
 //!   over comment-free text).
-//! - Labels: a sign `+`/`-` then digits. The tokenizer reads up to 18 digits in a loop, longer
-//!   spellings with std::from_chars over the whole int64 range (out of range: not a label).
-//!   The kernels read up to 19 digits in a loop and nothing longer; a 19-digit value above
-//!   INT64_MAX wraps around modulo 2^64 (as it always did).
+//! - Labels: a sign `+`/`-` then digits. Both read up to 18 digits in a loop; the tokenizer
+//!   reads longer spellings with std::from_chars over the whole int64 range (out of range:
+//!   not a label), the kernels refuse them (their caller re-parses with the tokenizer).
 //! - Scalars: for the tokenizer a number must start like one (a digit, a sign then a digit or
 //!   `.digit`, or `.digit`), so `nan` and `inf` are words. The kernels skip one leading `+`
 //!   and take whatever std::from_chars reads: `nan`, `inf`, `infinity`, `-inf`, `+-1`.
@@ -22,8 +21,7 @@
 //!
 //! A kernel that rejects a number makes its caller re-parse the list with the tokenizer,
 //! which then reports the precise error; so the differences only show where the kernels
-//! accept more: `nan`/`inf` in sized ASCII scalar and vector lists, and the wrap-around of
-//! 19-digit labels in sized ASCII int64 lists (and Index lists with 64-bit labels).
+//! accept more: `nan`/`inf` in sized ASCII scalar and vector lists.
 #pragma once
 
 #include <charconv>
@@ -124,10 +122,11 @@ inline const char* token_end(const char* p, const char* end)
 //! (the tokenizer dialect may have stored a number that is not followed by a delimiter).
 template <Dialect D> inline bool lex_label(const char*& p, const char* end, std::int64_t& value)
 {
-    // Up to 18 digits cannot overflow an int64; 19 can (list_kernel wraps, see the file
-    // comment). Negation in unsigned arithmetic gives the same two's-complement result
-    // without signed overflow.
-    constexpr std::ptrdiff_t max_digits = D == Dialect::tokenizer ? 18 : 19;
+    // Up to 18 digits cannot overflow an int64; longer spellings are range-checked by
+    // std::from_chars (tokenizer) or refused here, so that the list kernel hands the list to
+    // the tokenizer, whose error names the label (a 19-digit label used to wrap around).
+    // Negation in unsigned arithmetic gives the two's-complement result without overflow.
+    constexpr std::ptrdiff_t max_digits = 18;
     const char* q = p;
     const bool negative = q < end && *q == '-';
     if (q < end && (*q == '-' || *q == '+'))
