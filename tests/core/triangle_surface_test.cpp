@@ -142,6 +142,26 @@ TEST(TriangleSurface, a_point_equally_near_two_slopes_goes_to_the_slope_listed_f
     }
 }
 
+TEST(TriangleSurface, a_point_near_a_shared_edge_gets_its_exact_foot_not_the_edge)
+{
+    // A flat square of two triangles sharing the diagonal x = y; the one listed first is
+    // below it. A query above the second one, its foot 1e-5 from the diagonal: the first
+    // triangle's closest point (on the diagonal) is only e^2 / 2d = 1.5e-10 farther, inside
+    // the tie band, but it is the same place, and the exact foot must be returned.
+    TriangleSurface s;
+    s.vertices.resize(4, 3);
+    s.vertices << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
+    s.triangles.resize(2, 3);
+    s.triangles << 0, 1, 2, 0, 2, 3; // first: below the diagonal (x > y)
+    const SurfaceTree tree(s);
+    const double e = 1e-5 / std::sqrt(2.0);
+    const Vector3 query(0.5 - e, 0.5 + e, 0.33);
+    const SurfacePoint p = tree.closest_point(query);
+    EXPECT_EQ(p.triangle, 1);
+    EXPECT_LE((p.point - Vector3(0.5 - e, 0.5 + e, 0.0)).norm(), 1e-15);
+    EXPECT_NEAR(p.distance, 0.33, 1e-15);
+}
+
 TEST(TriangleSurface, tree_rejects_bad_surfaces)
 {
     EXPECT_THROW(SurfaceTree(TriangleSurface{}), InvalidInput);

@@ -166,17 +166,72 @@ void SurfaceTree::build(Index node, Index begin, Index end,
     build(left + 1, mid, end, centroids);
 }
 
+namespace
+{
+
+//! A triangle's closest point to the query, kept while it may lie within the tie band.
+struct Candidate
+{
+    double distance;
+    Index triangle;
+    Vector3 point;
+};
+
+//! The nearest of `near` whose point lies within `radius` of `centre` (lowest triangle on
+//! equal distances).
+const Candidate& nearest_around(const std::vector<Candidate>& near, const Vector3& centre,
+                                double radius)
+{
+    const Candidate* best = nullptr;
+    for (const Candidate& c : near)
+        if ((c.point - centre).norm() <= radius &&
+            (!best || c.distance < best->distance ||
+             (c.distance == best->distance && c.triangle < best->triangle)))
+            best = &c;
+    return *best;
+}
+
+//! The tie rule over the candidates within the band of the nearest distance `best`. Near
+//! an edge or vertex the neighbouring triangles' closest points fall within the band too
+//! (a foot e from an edge is only e^2 / 2d farther from it), but they are the same place:
+//! within `same_place` = 2 sqrt(2 d tol) + tol of the nearest point, the exact nearest wins.
+//! Only when the band holds another place (the two slopes of a symmetric target) does the
+//! lowest triangle index choose the place; within it, again the exact nearest point.
+SurfacePoint choose(const std::vector<Candidate>& near, double best, double tol)
+{
+    SurfacePoint result;
+    if (near.empty())
+        return result;
+    const double same_place = 2.0 * std::sqrt(2.0 * best * tol) + tol;
+    const Candidate* nearest = &near.front();
+    const Candidate* first_listed = &near.front();
+    for (const Candidate& c : near)
+    {
+        if (c.distance < nearest->distance ||
+            (c.distance == nearest->distance && c.triangle < nearest->triangle))
+            nearest = &c;
+        if (c.triangle < first_listed->triangle)
+            first_listed = &c;
+    }
+    const bool another_place = std::any_of(
+        near.begin(), near.end(),
+        [&](const Candidate& c) { return (c.point - nearest->point).norm() > same_place; });
+    const Candidate& chosen =
+        another_place ? nearest_around(near, first_listed->point, same_place) : *nearest;
+    result.point = chosen.point;
+    result.triangle = chosen.triangle;
+    result.distance = chosen.distance;
+    return result;
+}
+
+} // namespace
+
 SurfacePoint SurfaceTree::closest_point(const Vector3& query) const
 {
     // One traversal keeps every triangle that may lie within the tie band of the nearest
-    // (pruned against the best distance plus the band), then picks by the tie rule.
-    struct Candidate
-    {
-        double distance;
-        Index triangle;
-        Vector3 point;
-    };
-    std::vector<Candidate> near;
+    // (pruned against the best distance plus the band), then the tie rule picks.
+    thread_local std::vector<Candidate> near;
+    near.clear();
     double best = std::numeric_limits<double>::infinity();
     const auto reach2 = [&]
     {
@@ -220,16 +275,9 @@ SurfacePoint SurfaceTree::closest_point(const Vector3& query) const
         stack[top++] = left_first ? r : l;
         stack[top++] = left_first ? l : r;
     }
-    SurfacePoint result;
-    for (const Candidate& c : near)
-        if (c.distance <= best + tie_tolerance_ &&
-            (result.triangle < 0 || c.triangle < result.triangle))
-        {
-            result.point = c.point;
-            result.triangle = c.triangle;
-            result.distance = c.distance;
-        }
-    return result;
+    // Candidates kept before `best` dropped may have left the band since.
+    std::erase_if(near, [&](const Candidate& c) { return c.distance > best + tie_tolerance_; });
+    return choose(near, best, tie_tolerance_);
 }
 
 Points SurfaceTree::closest_points(const Eigen::Ref<const Points>& queries) const

@@ -51,12 +51,13 @@ public:
     //! coordinate is not finite.
     explicit SurfaceTree(TriangleSurface surface);
 
-    //! \brief The closest surface point to query (exact). Ties are broken by a rule that
-    //! does not depend on round-off: of the triangles whose distance is within
-    //! tie_tolerance() of the smallest, the one listed first in the surface wins. (A wall
-    //! point equally near two slopes of a target, e.g. on a venturi's plane of symmetry,
-    //! otherwise went to whichever slope the last bit of the arithmetic favoured: up or down
-    //! the pipe, depending on the processor and the build.)
+    //! \brief The closest surface point to query (exact). When the surface has another
+    //! place as near as the nearest, to within tie_tolerance() (a wall point equally near
+    //! two slopes of a target, e.g. on a venturi's plane of symmetry), the place of the
+    //! triangle listed first in the surface wins, and within it the exact nearest point;
+    //! without the rule the point went to whichever slope the last bit of the arithmetic
+    //! favoured: up or down the pipe, depending on the processor and the build. Neighbouring
+    //! triangles near an edge are one place, not a tie (the exact nearest point is returned).
     SurfacePoint closest_point(const Vector3& query) const;
 
     //! \brief Distances closer than this count as equal: 1e-9 of the surface's size (its

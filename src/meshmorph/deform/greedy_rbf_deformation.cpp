@@ -218,7 +218,11 @@ std::vector<Eigen::Index> unisolvent_rows(const Eigen::MatrixXd& P)
     for (Eigen::Index k = 0; k < P.cols(); ++k)
     {
         const Eigen::Index i = first_largest(R.rowwise().squaredNorm());
-        const Eigen::VectorXd q = R.row(i).transpose() / R.row(i).norm();
+        const double norm = R.row(i).norm();
+        if (!(norm > 0.0)) // choose_polynomial keeps only terms the constraints determine
+            throw SolverError("greedy RBF: the constraints do not determine the polynomial "
+                              "terms (too few or degenerate points): set rbf { polynomial none; }");
+        const Eigen::VectorXd q = R.row(i).transpose() / norm;
         R -= (R * q) * q.transpose();
         R.row(i).setZero();
         rows.push_back(i);

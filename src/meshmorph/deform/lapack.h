@@ -29,8 +29,10 @@ extern "C"
 namespace meshmorph::detail
 {
 
-//! Makes OpenBLAS single-threaded (once per process), so that the fits give the same bits
-//! whatever OMP_NUM_THREADS or OPENBLAS_NUM_THREADS say. A no-op with another BLAS.
+//! Makes OpenBLAS's pthread build single-threaded (once per process), so that the fits give
+//! the same bits whatever OMP_NUM_THREADS or OPENBLAS_NUM_THREADS say. A no-op with another
+//! BLAS, and with OpenBLAS's OpenMP build (its thread count is OpenMP's: there the fits agree
+//! across thread counts to round-off, docs/same-result.md).
 void use_one_blas_thread();
 
 //! Checked narrowing of a matrix dimension to LAPACK's 32-bit int. Every BLAS/LAPACK call

@@ -22,4 +22,4 @@ set_source_files_properties(meshmorph/deform/rbf_evaluator.cpp meshmorph/deform/
 meshmorph_add_component(deform
     SOURCES ${MESHMORPH_DEFORM_SOURCES}
     DEPENDS meshmorph::core
-    PRIVATE_DEPENDS LAPACK::LAPACK BLAS::BLAS)
+    PRIVATE_DEPENDS LAPACK::LAPACK BLAS::BLAS ${CMAKE_DL_LIBS})

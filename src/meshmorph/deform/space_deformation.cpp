@@ -46,14 +46,20 @@ void use_one_blas_thread()
     // last bits of the result follow (2.4e-13 of the displacement on the venturi squeeze
     // between OPENBLAS_NUM_THREADS 1 and 2). The fits are a small part of a morph; the
     // evaluation, which is most of it, runs on OpenMP's threads. Looked up at run time so
-    // that any other BLAS (reference, BLIS) links as well.
+    // that any other BLAS (reference, BLIS) links as well. Only OpenBLAS's pthread build
+    // (Debian's default, openblas_get_parallel() == 1) is told: in its OpenMP build the call
+    // would also set OpenMP's thread count, making every later parallel loop serial.
     static std::once_flag once;
     std::call_once(once,
                    []
                    {
+                       using GetParallel = int (*)();
                        using SetThreads = void (*)(int);
-                       if (auto* set = reinterpret_cast<SetThreads>(
-                               ::dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+                       auto* parallel = reinterpret_cast<GetParallel>(
+                           ::dlsym(RTLD_DEFAULT, "openblas_get_parallel"));
+                       auto* set = reinterpret_cast<SetThreads>(
+                           ::dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+                       if (parallel && set && parallel() == 1)
                            set(1);
                    });
 }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file The one lexer of OpenFOAM numbers (labels and scalars): where a number may start and
 //! end, and how its spelling becomes an int64 or a double. The tokenizer
-//! (io/foam_tokenizer.cpp) and the fast kernels of big ASCII lists (io/ascii_list_kernels.h)
+//! (io/foam_tokenizer.cpp) and the fast kernels of big ASCII lists (io/foam_list_kernels.h)
 //! both use it, so that the rules are written once; its functions are inline because they
 //! run once per number in the hot loops.
 //!
