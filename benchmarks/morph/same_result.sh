@@ -96,19 +96,13 @@ for c in $cases; do
     done
 done
 
-/usr/bin/python3 - "$out" <<'PY'
-import json, re, struct, sys
+/usr/bin/python3 - "$out" "$root/scripts/parallel" <<'PY'
+import json, sys
 out = sys.argv[1]
+sys.path.insert(0, sys.argv[2])
+from compare_decomposed import points as read_points  # noqa: E402 (ascii or binary points)
 def points(path):
-    data = open(path, "rb").read()
-    end = data.index(b"}", data.index(b"FoamFile"))
-    binary = re.search(rb"format\s+binary", data[:end]) is not None
-    m = re.compile(rb"\n(\d+)\s*\n\(").search(data, end)
-    n, rest = int(m.group(1)), data[m.end():]
-    if binary:
-        return [struct.unpack_from("<3d", rest, 24 * i) for i in range(n)]
-    return [tuple(map(float, p)) for p in
-            re.findall(rb"\(([-+0-9.eE]+) ([-+0-9.eE]+) ([-+0-9.eE]+)\)", rest)[:n]]
+    return read_points(path)[0]
 runs = [line.split() for line in open(f"{out}/runs.txt")]
 print("| case | build | threads | exit | verdict | max difference / max prescribed displacement |")
 print("| --- | --- | --- | --- | --- | --- |")

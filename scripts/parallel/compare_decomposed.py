@@ -42,21 +42,26 @@ def labels(path):
     return [int(v) for v in re.findall(rb"-?\d+", rest[: rest.index(b")")])][:n]
 
 
-case, time, n_procs, serial_file = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
-serial, _ = points(serial_file)
-extent = max(max(p[k] for p in serial) - min(p[k] for p in serial) for k in range(3))
-worst, mismatched, shared = 0.0, 0, 0
-seen = {}
-for r in range(n_procs):
-    values, texts = points(f"{case}/processor{r}/{time}/polyMesh/points")
-    addressing = labels(f"{case}/processor{r}/constant/polyMesh/pointProcAddressing")
-    for p, text, g in zip(values, texts, addressing):
-        worst = max(worst, max(abs(p[k] - serial[g][k]) for k in range(3)))
-        if g in seen:
-            shared += 1
-            mismatched += seen[g] != text
-        else:
-            seen[g] = text
-print(f"largest difference to the serial morph: {worst:.3e} ({worst / extent:.3e} of the extent)")
-print(f"shared point copies: {shared}, not bit-identical: {mismatched}")
-sys.exit(0 if worst <= 1e-12 * extent and mismatched == 0 else 1)
+def main():
+    case, time, n_procs, serial_file = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
+    serial, _ = points(serial_file)
+    extent = max(max(p[k] for p in serial) - min(p[k] for p in serial) for k in range(3))
+    worst, mismatched, shared = 0.0, 0, 0
+    seen = {}
+    for r in range(n_procs):
+        values, texts = points(f"{case}/processor{r}/{time}/polyMesh/points")
+        addressing = labels(f"{case}/processor{r}/constant/polyMesh/pointProcAddressing")
+        for p, text, g in zip(values, texts, addressing):
+            worst = max(worst, max(abs(p[k] - serial[g][k]) for k in range(3)))
+            if g in seen:
+                shared += 1
+                mismatched += seen[g] != text
+            else:
+                seen[g] = text
+    print(f"largest difference to the serial morph: {worst:.3e} ({worst / extent:.3e} of the extent)")
+    print(f"shared point copies: {shared}, not bit-identical: {mismatched}")
+    return 0 if worst <= 1e-12 * extent and mismatched == 0 else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -10,6 +10,8 @@ The wall and inlet values are written `nonuniform List<vector>` in each patch's 
 order (the order of first appearance in the patch's faces, as OpenFOAM's PrimitivePatch
 numbers them), so that decomposePar splits them per processor and writes an empty list
 for a processor that holds none of a patch's points. Reads the ASCII polyMesh of CASE.
+(benchmarks/morph/pipe_motion.py writes such fields too, but needs numpy, an optional
+dependency; this test must run without it.)
 """
 import math
 import re

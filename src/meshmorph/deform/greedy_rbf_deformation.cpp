@@ -359,12 +359,10 @@ std::vector<Eigen::Index> candidates(const Eigen::VectorXd& err, const CentreMar
 void keep_largest_residuals(std::vector<Eigen::Index>& cand, const Eigen::VectorXd& err,
                             Eigen::Index b)
 {
+    const Eigen::VectorXd key = err.unaryExpr([](double e) { return coarsened(e); });
     std::partial_sort(cand.begin(), cand.begin() + b, cand.end(),
                       [&](Eigen::Index a, Eigen::Index c)
-                      {
-                          const double ea = coarsened(err[a]), ec = coarsened(err[c]);
-                          return ea > ec || (ea == ec && a < c);
-                      });
+                      { return key[a] > key[c] || (key[a] == key[c] && a < c); });
     cand.resize(std::size_t(b));
 }
 

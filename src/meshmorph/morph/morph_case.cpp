@@ -143,11 +143,6 @@ void check_output_options(const MorphOptions& options)
 #endif
 }
 
-double max_norm(const Points& d)
-{
-    return d.rows() > 0 ? d.rowwise().norm().maxCoeff() : 0.0;
-}
-
 //! The motion in steps (morph_steps.h), with its timings and the constraint error.
 SteppedMorph fit_in_steps(const MorphOptions& options, const CaseInputs& in, const CompactList& cf,
                           MorphResult& result)

@@ -310,11 +310,6 @@ double max_error(const Points& displacement, const Prescription& p)
     return error;
 }
 
-double max_norm(const Points& values)
-{
-    return values.rows() == 0 ? 0.0 : values.rowwise().norm().maxCoeff();
-}
-
 double diagonal(const Points& x)
 {
     return x.rows() > 0 ? (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm() : 1.0;
@@ -457,6 +452,11 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
     result.max_constraint_error = max_error(result.displacement, p);
     result.relative_constraint_error = result.max_constraint_error / scale;
     return result;
+}
+
+double max_norm(const Points& values)
+{
+    return values.rows() == 0 ? 0.0 : values.rowwise().norm().maxCoeff();
 }
 
 } // namespace meshmorph::morph

@@ -54,4 +54,7 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& constraints,
                         SpaceDeformation& deformation, bool fit = true, bool snap = false,
                         const Decomposition* decomposition = nullptr);
 
+//! The largest row norm of an n x 3 array (0 for none): the largest displacement.
+double max_norm(const Points& values);
+
 } // namespace meshmorph::morph
