@@ -5,7 +5,7 @@
 check-layers.py [SRC]   (SRC: the src/ directory; default: the one beside this script)
 
 1. Between folders, includes go only downwards:
-     core <- parallel <- mesh <- {io, quality} <- morph <- app,   core <- deform <- morph
+     core <- parallel <- mesh <- {io, quality} <- morph <- design <- app,   core <- deform <- morph
    (a folder may include any folder below it).
 2. Inside a folder, no include runs back up: the files (a .h and its .cpp count as one)
    form no cycle.
@@ -23,7 +23,8 @@ BELOW = {
     "quality": {"core", "parallel", "mesh"},
     "deform": {"core"},
     "morph": {"core", "parallel", "mesh", "io", "quality", "deform"},
-    "app": {"core", "parallel", "mesh", "io", "quality", "deform", "morph"},
+    "design": {"core", "parallel", "mesh", "io", "quality", "deform", "morph"},
+    "app": {"core", "parallel", "mesh", "io", "quality", "deform", "morph", "design"},
 }
 INCLUDE = re.compile(r'#include "meshmorph/([a-z_]+)/([a-z_0-9]+)\.h"')
 

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "meshmorph/app/banner.h"
+#include "meshmorph/app/design_commands.h"
 #include "meshmorph/app/exit_status.h"
 #include "meshmorph/app/options.h"
 #include "meshmorph/app/parallel_run.h"
@@ -114,6 +115,13 @@ int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostr
     morph.parallel = options.found("parallel");
 
     print_banner(out, {"morphMesh", options.command_line(), morph.case_dir.string()});
+    if (is_design_command(options))
+    {
+        const int status = run_design_command(options, morph, json_path, out);
+        if (status == exit_ok)
+            print_end(out);
+        return status;
+    }
     const morph::MorphResult result = morph::morph_case(morph);
     if (!json_path.empty() && parallel::Communicator::world().master())
     {
@@ -176,10 +184,23 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
          {"force", "", "Write even if the morph creates invalid cells"},
          {"parallel", "",
           "Morph the decomposed case (processor*/) under mpirun, one rank per processor "
-          "directory"}},
+          "directory"},
+         {"variables", "",
+          "Set up the morphDict's designVariables once: one field per variable, stored in "
+          "constant/designBasis (see tutorials/designVariables)"},
+         {"variant", "(a1 a2 ...)",
+          "Write the design with these amplitudes (one per design variable) from the set-up: "
+          "no fit"},
+         {"variants", "FILE",
+          "Write every row of amplitudes in FILE (a design-of-experiments table) to its own "
+          "time directory"},
+         {"sensitivity", "FILE",
+          "dJ/da of every design variable from dJ/dx at the points (a pointVectorField; "
+          "relative to the case): printed and written to postProcessing/morphMesh/dJda"}},
         {{exit_ok, "morphed mesh written"},
          {exit_input_error, "bad option, dictionary, mesh or surface file; nothing written"},
-         {exit_refused, "the morph creates invalid cells; nothing written (see -force)"},
+         {exit_refused, "the morph (or a variant) creates invalid cells; nothing written (see "
+                        "-force)"},
          {exit_fit_failed, "the deformation could not be fitted; nothing written"},
          {exit_internal_error, "unexpected internal error"}});
     if (const std::optional<int> code = parse_command_line(options, argc, argv, out))

@@ -7,9 +7,10 @@ set(MESHMORPH_APP_SOURCES
     meshmorph/app/banner.cpp
     meshmorph/app/check_mesh_case.cpp
     meshmorph/app/parallel_run.cpp
+    meshmorph/app/design_commands.cpp
     meshmorph/app/morph_mesh.cpp
 )
 meshmorph_add_component(app
     SOURCES ${MESHMORPH_APP_SOURCES}
     DEPENDS meshmorph::core meshmorph::io meshmorph::quality meshmorph::deform meshmorph::morph
-            nlohmann_json::nlohmann_json)
+            meshmorph::design nlohmann_json::nlohmann_json)

@@ -18,47 +18,9 @@ namespace meshmorph::morph
 namespace
 {
 
-std::array<int, 3> read_lattice(const io::FoamDictionary& d)
-{
-    const io::FoamEntry& e = d.entry("lattice");
-    const std::vector<std::int32_t> n = e.get<std::vector<std::int32_t>>();
-    if (n.size() != 3)
-        throw e.error("expected three control-point counts (nx ny nz)");
-    for (std::int32_t v : n)
-        if (v < 4)
-            throw e.error("a cubic B-spline lattice needs at least 4 control points per "
-                          "direction, got " +
-                          std::to_string(v));
-    // Checked before anything is sized by it: the count overflows a label long before a
-    // lattice stops fitting in memory.
-    const double count = double(n[0]) * double(n[1]) * double(n[2]);
-    if (count > double(std::numeric_limits<Index>::max()))
-        throw e.error(format_count(count) + " control points, more than a label counts");
-    if (const std::optional<std::string> shortfall = memory_shortfall(ffd_lattice_bytes(count)))
-        throw e.error(format_count(count) + " control points " + *shortfall);
-    return {n[0], n[1], n[2]};
-}
-
 SizeEntry size_entry(const io::FoamEntry& e, const std::string& name)
 {
     return {e.path(), e.line(), name};
-}
-
-std::optional<FfdBox> read_bounds(const io::FoamDictionary& d)
-{
-    const io::FoamEntry* e = d.find("bounds");
-    if (e == nullptr)
-        return std::nullopt;
-    const std::vector<Vector3> corners = e->get<std::vector<Vector3>>();
-    if (corners.size() != 2)
-        throw e->error("expected ((x0 y0 z0) (x1 y1 z1))");
-    const Vector3 extent = corners[1] - corners[0];
-    if ((extent.array() <= 0.0).any())
-        throw e->error("bounds: the second corner must exceed the first in x, y and z");
-    FfdBox box;
-    box.origin = corners[0];
-    box.axes = extent.asDiagonal();
-    return box;
 }
 
 //! Expect punctuation c at tokens[i] and advance.
@@ -237,6 +199,44 @@ void require_ffd_displacements(const io::FoamDictionary& dict)
 }
 
 } // namespace
+
+std::array<int, 3> read_lattice(const io::FoamDictionary& d)
+{
+    const io::FoamEntry& e = d.entry("lattice");
+    const std::vector<std::int32_t> n = e.get<std::vector<std::int32_t>>();
+    if (n.size() != 3)
+        throw e.error("expected three control-point counts (nx ny nz)");
+    for (std::int32_t v : n)
+        if (v < 4)
+            throw e.error("a cubic B-spline lattice needs at least 4 control points per "
+                          "direction, got " +
+                          std::to_string(v));
+    // Checked before anything is sized by it: the count overflows a label long before a
+    // lattice stops fitting in memory.
+    const double count = double(n[0]) * double(n[1]) * double(n[2]);
+    if (count > double(std::numeric_limits<Index>::max()))
+        throw e.error(format_count(count) + " control points, more than a label counts");
+    if (const std::optional<std::string> shortfall = memory_shortfall(ffd_lattice_bytes(count)))
+        throw e.error(format_count(count) + " control points " + *shortfall);
+    return {n[0], n[1], n[2]};
+}
+
+std::optional<FfdBox> read_bounds(const io::FoamDictionary& d, const std::string& key)
+{
+    const io::FoamEntry* e = d.find(key);
+    if (e == nullptr)
+        return std::nullopt;
+    const std::vector<Vector3> corners = e->get<std::vector<Vector3>>();
+    if (corners.size() != 2)
+        throw e->error("expected ((x0 y0 z0) (x1 y1 z1))");
+    const Vector3 extent = corners[1] - corners[0];
+    if ((extent.array() <= 0.0).any())
+        throw e->error(key + ": the second corner must exceed the first in x, y and z");
+    FfdBox box;
+    box.origin = corners[0];
+    box.axes = extent.asDiagonal();
+    return box;
+}
 
 DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
                                               const std::optional<std::string>& method_override)

@@ -3,6 +3,7 @@
 //! `dmffd` and `ffd` sub-dictionaries, validated, each error naming its entry.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -17,5 +18,13 @@ namespace meshmorph::morph
 //! \throw ParseError naming the file, line and keyword; InvalidInput for a bad override.
 DeformationSettings read_deformation_settings(const io::FoamDictionary& dict,
                                               const std::optional<std::string>& method_override);
+
+//! `lattice (nx ny nz);` of `d`: at least 4 per axis, a count that fits in memory.
+//! \throw ParseError naming the entry.
+std::array<int, 3> read_lattice(const io::FoamDictionary& d);
+
+//! The optional `<key> ((x0 y0 z0) (x1 y1 z1));` of `d` as an axis-aligned box.
+//! \throw ParseError naming the entry when the corners are not ordered.
+std::optional<FfdBox> read_bounds(const io::FoamDictionary& d, const std::string& key = "bounds");
 
 } // namespace meshmorph::morph

@@ -58,11 +58,14 @@ Vector3 read_scale_factor(const io::FoamEntry& f)
     return f.get<Vector3>();
 }
 
-//! The parameters of `m.type` from its entry (keywords checked first).
-void read_motion_parameters(const io::FoamDictionary& d, Motion& m)
+//! The parameters of `m.type` from its entry (keywords checked first; `other` are allowed
+//! besides the type's own).
+void read_motion_parameters(const io::FoamDictionary& d, Motion& m,
+                            const std::vector<std::string>& other = {})
 {
     std::vector<std::string> allowed = motion_keywords(m.type);
     allowed.push_back("type");
+    allowed.insert(allowed.end(), other.begin(), other.end());
     d.check_keywords(allowed, "type " + to_string(m.type));
     switch (m.type)
     {
@@ -102,10 +105,7 @@ BoundaryEntry read_boundary_entry(const io::FoamEntry& e)
     entry.key = e.keyword();
     entry.is_regex = e.is_regex();
     entry.line = e.line();
-    entry.motion.type = read_motion_type(e.dict());
-    read_motion_parameters(e.dict(), entry.motion);
-    if (!is_finite(entry.motion))
-        throw e.error("non-finite value");
+    entry.motion = read_motion(e);
     return entry;
 }
 
@@ -204,13 +204,23 @@ ConflictRule read_conflict_rule(const io::FoamEntry& e)
 
 } // namespace
 
+Motion read_motion(const io::FoamEntry& e, const std::vector<std::string>& other_keywords)
+{
+    Motion motion;
+    motion.type = read_motion_type(e.dict());
+    read_motion_parameters(e.dict(), motion, other_keywords);
+    if (!is_finite(motion))
+        throw e.error("non-finite value");
+    return motion;
+}
+
 MorphSetup read_morph_setup(const io::FoamDictionary& dict)
 {
     MorphSetup setup;
     setup.dict_path = dict.path();
     // Other top-level entries are allowed when used as $variables (helper entries).
     dict.check_keywords({"method", "rbf", "dmffd", "ffd", "idw", "steps", "untangle", "boundary",
-                         "handles", "conflicts"},
+                         "handles", "conflicts", "designVariables"},
                         "morphDict", dict.referenced_variables());
     if (const io::FoamEntry* e = dict.find("conflicts"))
         setup.conflicts = read_conflict_rule(*e);

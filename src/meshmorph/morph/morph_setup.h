@@ -14,7 +14,8 @@
 namespace meshmorph::io
 {
 class FoamDictionary;
-}
+class FoamEntry;
+} // namespace meshmorph::io
 
 namespace meshmorph::morph
 {
@@ -58,6 +59,11 @@ struct MorphSetup
     std::vector<HandleEntry> handles;
     ConflictRule conflicts = ConflictRule::fixed;
 };
+
+//! \brief The motion of a sub-dictionary entry { type <fixed|translate|...>; <parameters> }
+//! as a boundary entry writes it; `other_keywords` may appear besides the type's own.
+//! \throw ParseError naming the entry for an unknown type or keyword, a bad or non-finite value.
+Motion read_motion(const io::FoamEntry& e, const std::vector<std::string>& other_keywords = {});
 
 //! \brief Read `conflicts`, `boundary` and `handles` of a parsed morphDict.
 //! Every entry is checked: an unknown top-level keyword, an entry that is not a

@@ -1,0 +1,233 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// -variables, -variant, -variants, -sensitivity: the design/ module's calls with morphMesh's
+// log lines and JSON.
+#include "meshmorph/app/design_commands.h"
+
+#include <ostream>
+
+#include <nlohmann/json.hpp>
+
+#include "meshmorph/app/exit_status.h"
+#include "meshmorph/core/log.h"
+#include "meshmorph/core/number_format.h"
+#include "meshmorph/core/stopwatch.h"
+#include "meshmorph/design/amplitude_table.h"
+#include "meshmorph/design/design_sensitivity.h"
+#include "meshmorph/design/design_setup.h"
+#include "meshmorph/design/design_variant.h"
+#include "meshmorph/io/foam_file.h"
+#include "meshmorph/quality/quality_json.h"
+#include "meshmorph/quality/quality_summary.h"
+
+namespace meshmorph::app
+{
+
+namespace fs = std::filesystem;
+
+namespace
+{
+
+constexpr const char* commands[] = {"variables", "variant", "variants", "sensitivity"};
+
+void check_design_options(const Options& options)
+{
+    int n = 0;
+    for (const char* c : commands)
+        n += options.found(c) ? 1 : 0;
+    if (n > 1)
+        throw UsageError("-variables, -variant, -variants and -sensitivity are mutually "
+                         "exclusive (one design command per run)");
+    for (const char* other : {"vtk", "vtkFile", "parallel"})
+        if (options.found(other))
+            throw UsageError(std::string("-") + other +
+                             " is not available with the design commands yet");
+    if (options.found("method") && !options.found("variables"))
+        throw UsageError("-method goes with -variables (a variant uses its set-up's method)");
+}
+
+void write_json(const fs::path& path, const nlohmann::json& j, std::ostream& out)
+{
+    if (path.empty())
+        return;
+    io::write_file_atomic(path, j.dump(2) + "\n");
+    out << "Wrote " << path.string() << "\n";
+}
+
+int run_setup(const morph::MorphOptions& morph, const fs::path& json_path, std::ostream& out)
+{
+    const design::DesignSetupResult r = design::setup_design(morph);
+    nlohmann::json variables = nlohmann::json::array();
+    for (std::size_t j = 0; j < r.names.size(); ++j)
+        variables.push_back({{"name", r.names[j]},
+                             {"movesPoints", bool(r.moves[j])},
+                             {"maxConstraintError", r.fits[j].max_constraint_error},
+                             {"relativeConstraintError", r.fits[j].relative_constraint_error},
+                             {"centres", r.fits[j].centres},
+                             {"seconds", r.fits[j].seconds}});
+    write_json(json_path,
+               {{"exitStatus", exit_ok},
+                {"setupFile", r.basis_file.string()},
+                {"method", r.method},
+                {"points", r.n_points},
+                {"constrainedPoints", r.n_constrained},
+                {"variables", variables},
+                {"bytes", r.bytes},
+                {"seconds", r.seconds},
+                {"before", quality_json(r.before)}},
+               out);
+    out << "\nDesign set-up written: " << r.names.size() << " variables in "
+        << format_seconds(r.seconds) << " s.\n";
+    return exit_ok;
+}
+
+nlohmann::json variant_json(const design::DesignStudy& study, const design::VariantResult& r)
+{
+    nlohmann::json amplitudes;
+    for (std::size_t j = 0; j < r.amplitudes.size(); ++j)
+        amplitudes[study.names()[j]] = r.amplitudes[j];
+    nlohmann::json j = {
+        {"setupReused", true},
+        {"setupFile",
+         design::design_basis_path(study.design_case().case_dir, "").lexically_normal().string()},
+        {"amplitudes", amplitudes},
+        {"valid", !r.refused},
+        {"written", r.written},
+        {"outputInstance", r.output_instance},
+        {"path", r.points_file.string()},
+        {"maxPrescribedDisplacement", r.max_prescribed},
+        {"maxConstraintError", r.max_constraint_error},
+        {"relativeConstraintError", r.relative_constraint_error},
+        {"maxDisplacement", r.max_displacement},
+        {"timings",
+         {{"combine", r.combine_seconds}, {"check", r.check_seconds}, {"write", r.write_seconds}}},
+        {"after", quality_json(r.after)}};
+    if (r.refused)
+    {
+        j["refusal"] = r.refusal;
+        j["backOff"] = r.back_off;
+    }
+    return j;
+}
+
+//! The log of one variant; true when it was refused.
+bool report_variant(const design::VariantResult& r, std::ostream& out)
+{
+    log::info() << "Variant: max displacement " << format_scalar(r.max_displacement, 4)
+                << ", constraint error " << format_scalar(r.relative_constraint_error, 3)
+                << " of the largest prescribed displacement";
+    std::ostringstream summary;
+    print_quality_summary(summary, nullptr, &r.after);
+    log::info() << "Mesh quality of the variant:\n" << summary.str();
+    if (r.refused)
+    {
+        log::error() << r.refusal << ". Nothing written"
+                     << (r.back_off.empty() ? std::string(".") : ": back off " + r.back_off + ".");
+        return true;
+    }
+    log::info() << "Wrote " << r.points_file.string();
+    out << (r.after.mesh_ok() ? "Mesh OK."
+                              : "Failed " + std::to_string(r.after.failed_checks) + " mesh checks.")
+        << "\n";
+    return false;
+}
+
+std::string first_instance(const design::DesignStudy& study, const morph::MorphOptions& morph)
+{
+    const io::FoamPolyMesh& foam = study.design_case().foam;
+    return morph.overwrite ? foam.points_instance : study.next_instance(foam.time);
+}
+
+int run_variant(const morph::MorphOptions& morph, const std::string& text,
+                const fs::path& json_path, std::ostream& out)
+{
+    const std::vector<double> a = design::parse_amplitudes(text);
+    design::DesignStudy study(morph);
+    study.check_amplitudes(a);
+    const design::VariantResult r = study.apply(a, first_instance(study, morph));
+    const bool refused = report_variant(r, out);
+    const int status = refused ? exit_refused : exit_ok;
+    nlohmann::json j = variant_json(study, r);
+    j["exitStatus"] = status;
+    write_json(json_path, j, out);
+    out << "\nTimings [s]: read " << format_seconds(study.read_seconds()) << ", combine "
+        << format_seconds(r.combine_seconds) << ", check " << format_seconds(r.check_seconds)
+        << ", write " << format_seconds(r.write_seconds) << "\n";
+    return status;
+}
+
+int run_variants(const morph::MorphOptions& morph, const fs::path& table, const fs::path& json_path,
+                 std::ostream& out)
+{
+    if (morph.overwrite)
+        throw UsageError("-variants writes each row to its own time directory: -overwrite "
+                         "would keep only the last");
+    design::DesignStudy study(morph);
+    const std::vector<std::vector<double>> rows =
+        design::read_amplitude_table(table, study.names());
+    for (const std::vector<double>& row : rows) // every row checked before any is written
+        study.check_amplitudes(row);
+    nlohmann::json list = nlohmann::json::array();
+    std::string instance = study.design_case().foam.time;
+    int refused = 0;
+    for (std::size_t k = 0; k < rows.size(); ++k)
+    {
+        instance = study.next_instance(instance);
+        log::info() << "Row " << k + 1 << " of " << rows.size() << " -> " << instance;
+        const design::VariantResult r = study.apply(rows[k], instance);
+        refused += report_variant(r, out) ? 1 : 0;
+        nlohmann::json j = variant_json(study, r);
+        j["row"] = k + 1;
+        list.push_back(j);
+    }
+    const int status = refused > 0 ? exit_refused : exit_ok;
+    write_json(json_path, {{"exitStatus", status}, {"rows", list}}, out);
+    out << "\n"
+        << rows.size() - std::size_t(refused) << " of " << rows.size() << " variants written"
+        << (refused > 0 ? " (the others refused)" : "") << ".\n";
+    return status;
+}
+
+int run_sensitivity(const morph::MorphOptions& morph, const fs::path& file,
+                    const fs::path& json_path, std::ostream& out)
+{
+    design::DesignStudy study(morph);
+    const design::SensitivityResult r = design::design_sensitivity(study, file);
+    nlohmann::json gradient;
+    for (std::size_t j = 0; j < r.names.size(); ++j)
+        gradient[r.names[j]] = r.gradient[j];
+    write_json(json_path,
+               {{"exitStatus", exit_ok},
+                {"setupReused", true},
+                {"input", r.input.string()},
+                {"output", r.output.string()},
+                {"names", r.names},
+                {"dJda", gradient},
+                {"nonzeroPoints", r.nonzero_points}},
+               out);
+    return exit_ok;
+}
+
+} // namespace
+
+bool is_design_command(const Options& options)
+{
+    for (const char* c : commands)
+        if (options.found(c))
+            return true;
+    return false;
+}
+
+int run_design_command(const Options& options, const morph::MorphOptions& morph,
+                       const fs::path& json_path, std::ostream& out)
+{
+    check_design_options(options);
+    if (options.found("variables"))
+        return run_setup(morph, json_path, out);
+    if (const std::optional<std::string> v = options.get("variant"))
+        return run_variant(morph, *v, json_path, out);
+    if (const std::optional<std::string> t = options.get("variants"))
+        return run_variants(morph, fs::absolute(*t), json_path, out);
+    return run_sensitivity(morph, *options.get("sensitivity"), json_path, out);
+}
+
+} // namespace meshmorph::app

@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file morphMesh's design-study options: -variables (set up), -variant and -variants
+//! (designs from the set-up), -sensitivity (dJ/da by the transpose product); their log,
+//! JSON and exit status. The work is the design/ module's.
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+
+#include "meshmorph/app/options.h"
+#include "meshmorph/morph/morph_result.h"
+
+namespace meshmorph::app
+{
+
+//! Whether the command line asks for a design-study command.
+bool is_design_command(const Options& options);
+
+//! \brief Run the design command of the command line (exactly one of them).
+//! \throw UsageError for two commands or an option that does not go with them; the library's
+//! errors otherwise. \return the exit status (exit_refused when a variant is refused).
+int run_design_command(const Options& options, const morph::MorphOptions& morph,
+                       const std::filesystem::path& json_path, std::ostream& out);
+
+} // namespace meshmorph::app

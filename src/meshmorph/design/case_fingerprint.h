@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Fingerprints that tie a design set-up to what it was computed from: the points, the
+//! topology (faces, owner, neighbour, patches) and the morphDict's bytes. A set-up whose
+//! fingerprints differ from the case's is stale and refused, never silently reused.
+//!
+//! 64-bit FNV-1a over the raw bytes (8-byte words at a time), printed as 16 hex digits: a change
+//! detector, not a cryptographic hash (a case is not an adversary).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "meshmorph/core/poly_mesh.h"
+
+namespace meshmorph::design
+{
+
+//! The fingerprint of `bytes`, 16 lower-case hex digits.
+std::string fingerprint(std::string_view bytes);
+
+//! Of the point coordinates' bits (any change of any coordinate changes it).
+std::string points_fingerprint(const Points& points);
+
+//! Of the faces, owner, neighbour and the patches' names, starts and sizes.
+std::string topology_fingerprint(const PolyMesh& mesh);
+
+} // namespace meshmorph::design

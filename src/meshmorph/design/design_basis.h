@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file The stored set-up of a design study (`morphMesh -variables`): for every design
+//! variable j its unit prescription P_j at the constrained points and its volume field F_j
+//! at every mesh point, so that a variant is x = x0 + sum_j a_j F_j and a gradient
+//! dJ/da_j = sum_i g_i . F_j(i) (the transpose product) without any fit.
+//!
+//! File `constant[/<region>]/designBasis` (version 1), written atomically:
+//! - line 1: `meshMorph designBasis 1`
+//! - line 2: a one-line JSON header (DesignBasisHeader: fingerprints of the points, the
+//!   topology and the morphDict, the instance the points were read from, variable names and
+//!   bounds, method, point and constraint counts, the invalid cells of the mesh before)
+//! - binary, little-endian: the constrained point labels (int64, nConstrained), then per
+//!   variable a block: 4 doubles of fit statistics (max constraint error, relative
+//!   constraint error, centres, fit seconds), P_j (nConstrained x 3 doubles, row-major),
+//!   F_j (nPoints x 3 doubles, row-major); nothing after the last block.
+//! The blocks are read one at a time, so applying a variant or a gradient needs memory for
+//! one field, not for all.
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "meshmorph/core/types.h"
+
+namespace meshmorph::design
+{
+
+//! What a set-up was computed from and for.
+struct DesignBasisHeader
+{
+    static constexpr int current_version = 1;
+    int version = current_version;
+    std::string points_fingerprint, topology_fingerprint, dict_fingerprint;
+    std::string instance; //!< the time the points were read from ("constant" or a time)
+    std::string method;
+    Index n_points = 0;
+    std::vector<std::string> names;
+    std::vector<std::optional<std::pair<double, double>>> bounds;
+    Index negative_volume_cells_before = 0;
+    Index wrong_pyramids_before = 0;
+    std::vector<Index> constrained; //!< the constrained points (same for every variable)
+};
+
+//! The statistics of one variable's fit, stored with its fields.
+struct VariableFit
+{
+    double max_constraint_error = 0.0;
+    double relative_constraint_error = 0.0;
+    double centres = 0.0;
+    double seconds = 0.0;
+};
+
+//! One variable's block.
+struct VariableBlock
+{
+    VariableFit fit;
+    Points prescribed; //!< nConstrained x 3, P_j
+    Points field;      //!< nPoints x 3, F_j
+};
+
+//! Writes a set-up block by block into a temporary file; commit() renames it over the
+//! target, so that an interrupted set-up leaves the old file (or none).
+class DesignBasisWriter
+{
+public:
+    //! \throw IoError naming the target.
+    DesignBasisWriter(const std::filesystem::path& target, const DesignBasisHeader& header);
+    ~DesignBasisWriter(); //!< removes the temporary unless committed
+    DesignBasisWriter(const DesignBasisWriter&) = delete;
+    DesignBasisWriter& operator=(const DesignBasisWriter&) = delete;
+
+    //! \pre called once per variable, in order, with the header's sizes.
+    void append(const VariableBlock& block);
+    //! \throw IoError (the target is then unchanged) or InvalidInput if blocks are missing.
+    void commit();
+
+private:
+    std::filesystem::path target_, temp_;
+    std::ofstream out_;
+    const DesignBasisHeader& header_;
+    std::size_t written_ = 0;
+    bool committed_ = false;
+};
+
+//! Reads a set-up: the header at once, the blocks one at a time.
+class DesignBasisReader
+{
+public:
+    //! \throw IoError if the file cannot be opened; ParseError naming the file for a foreign
+    //! file, another version, a bad header or a size that does not match the header.
+    explicit DesignBasisReader(const std::filesystem::path& path);
+
+    const DesignBasisHeader& header() const { return header_; }
+    const std::filesystem::path& path() const { return path_; }
+    //! The next variable's block into `block` (buffers reused). \throw ParseError if truncated.
+    void next(VariableBlock& block);
+    //! Back to the first block.
+    void rewind();
+
+private:
+    std::filesystem::path path_;
+    std::ifstream in_;
+    DesignBasisHeader header_;
+    std::streamoff blocks_start_ = 0;
+};
+
+//! `<mesh case>/constant[/<region>]/designBasis`.
+std::filesystem::path design_basis_path(const std::filesystem::path& mesh_case,
+                                        const std::string& region);
+
+} // namespace meshmorph::design

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file What every design-study command reads first: the morphDict (its settings, its
+//! design variables, its fingerprint), the mesh, and where the set-up lives.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "meshmorph/design/design_variables.h"
+#include "meshmorph/io/read_poly_mesh.h"
+#include "meshmorph/morph/deformation_settings.h"
+#include "meshmorph/morph/morph_result.h"
+#include "meshmorph/morph/morph_setup.h"
+
+namespace meshmorph::design
+{
+
+struct DesignBasisHeader;
+
+//! A case read for a design study.
+struct DesignCase
+{
+    std::filesystem::path case_dir, dict_path, basis_path;
+    std::string dict_fingerprint; //!< of the morphDict's bytes
+    morph::MorphSetup setup;
+    morph::DeformationSettings settings;
+    DesignVariables variables;
+    io::FoamPolyMesh foam;
+};
+
+//! \brief Read the morphDict and the mesh of options.case_dir (options.time; a design
+//! command without -time reads the instance its set-up was made on, see design_study.h).
+//! \throw ParseError, IoError; InvalidInput when the dictionary has no designVariables, or
+//! for -parallel (not available for design variables yet).
+DesignCase read_design_case(const morph::MorphOptions& options);
+
+//! \brief Refuse a set-up that was made for other points, topology or dictionary.
+//! \throw InvalidInput saying which differs and to run morphMesh -variables again.
+void require_current(const DesignCase& dc, const DesignBasisHeader& header,
+                     const std::string& basis_file);
+
+} // namespace meshmorph::design

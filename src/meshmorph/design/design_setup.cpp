@@ -1,0 +1,166 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// -variables: read, check the mesh, one fit and evaluation per variable, streamed to disk.
+#include "meshmorph/design/design_setup.h"
+
+#include <algorithm>
+
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
+#include "meshmorph/core/number_format.h"
+#include "meshmorph/core/stopwatch.h"
+#include "meshmorph/design/case_fingerprint.h"
+#include "meshmorph/design/design_case.h"
+#include "meshmorph/design/variable_constraints.h"
+#include "meshmorph/mesh/mesh_geometry.h"
+#include "meshmorph/morph/deformation_methods.h"
+#include "meshmorph/morph/distributed_case.h"
+#include "meshmorph/morph/morph_steps.h"
+#include "meshmorph/morph/point_displacement_input.h"
+#include "meshmorph/morph/point_morph.h"
+#include "meshmorph/parallel/communicator.h"
+
+namespace meshmorph::design
+{
+
+namespace
+{
+
+bool uses_point_displacement(const DesignVariables& vars)
+{
+    return std::any_of(vars.variables.begin(), vars.variables.end(),
+                       [](const DesignVariable& v)
+                       {
+                           return v.kind == DesignVariable::Kind::patches &&
+                                  v.motion.type == morph::MotionType::point_displacement;
+                       });
+}
+
+void require_fitted_method(const morph::DeformationSettings& settings)
+{
+    if (!morph::needs_fit(settings))
+        throw InvalidInput("method ffd moves its control points as the dictionary says and "
+                           "fits nothing: for design variables use method rbf (default), idw "
+                           "or dmffd, and a designVariables entry of type ffd for a lattice");
+}
+
+DesignBasisHeader make_header(const DesignCase& dc, const QualityReport& before,
+                              const morph::Constraints& first)
+{
+    DesignBasisHeader h;
+    h.points_fingerprint = points_fingerprint(dc.foam.mesh.points);
+    h.topology_fingerprint = topology_fingerprint(dc.foam.mesh);
+    h.dict_fingerprint = dc.dict_fingerprint;
+    h.instance = dc.foam.time;
+    h.method = morph::to_string(dc.settings.method);
+    h.n_points = dc.foam.mesh.n_points();
+    for (const DesignVariable& v : dc.variables.variables)
+    {
+        h.names.push_back(v.name);
+        h.bounds.push_back(v.bounds);
+    }
+    h.negative_volume_cells_before = before.negative_volume_cells;
+    h.wrong_pyramids_before = before.incorrectly_oriented_face_pyramids;
+    h.constrained = first.points;
+    return h;
+}
+
+//! One variable's field: fit its unit constraints, evaluate at every point (one step).
+VariableBlock unit_field(const DesignCase& dc, const morph::Constraints& c,
+                         const std::vector<Index>& constrained, const std::string& name)
+{
+    if (c.points != constrained)
+        throw InvalidInput("design variable " + name +
+                           " constrains other points than the first variable (a conflict "
+                           "rule that depends on the values?): set conflicts fixed");
+    const PolyMesh& mesh = dc.foam.mesh;
+    const Index n_fit = c.n_prescribed_points + c.n_slip_points;
+    const auto deformation = morph::make_deformation(dc.settings, mesh.points, n_fit);
+    morph::PointMorph pm = morph::morph_points(mesh, c, *deformation, true, false, nullptr);
+    morph::measure_constraint_error(c, mesh.points, pm, nullptr);
+    VariableBlock block;
+    block.fit = {pm.max_constraint_error, pm.relative_constraint_error,
+                 double(pm.report.num_centres), pm.fit_seconds + pm.evaluate_seconds};
+    block.prescribed = c.displacements;
+    block.field = std::move(pm.displacement);
+    return block;
+}
+
+VariableBlock still_field(const DesignBasisHeader& h)
+{
+    return {{}, Points::Zero(Index(h.constrained.size()), 3), Points::Zero(h.n_points, 3)};
+}
+
+void log_variable(const DesignVariable& v, const VariableBlock& b, bool moves)
+{
+    if (!moves)
+    {
+        log::info() << "Variable " << v.name
+                    << ": its control point moves none of the lattice's patch points (field "
+                       "zero, gradient zero)";
+        return;
+    }
+    log::info() << "Variable " << v.name << ": max prescribed "
+                << format_scalar(b.prescribed.rowwise().norm().maxCoeff(), 4) << ", max field "
+                << format_scalar(b.field.rowwise().norm().maxCoeff(), 4) << ", constraint error "
+                << format_scalar(b.fit.relative_constraint_error, 3) << " (relative), "
+                << Index(b.fit.centres) << " centres, " << format_seconds(b.fit.seconds) << " s";
+}
+
+} // namespace
+
+DesignSetupResult setup_design(const morph::MorphOptions& options)
+{
+    const Stopwatch clock;
+    DesignCase dc = read_design_case(options);
+    require_fitted_method(dc.settings);
+    const PolyMesh& mesh = dc.foam.mesh;
+    morph::PointDisplacementInputs field;
+    if (uses_point_displacement(dc.variables))
+        field = morph::read_point_displacement(dc.case_dir, dc.foam, options.region,
+                                               parallel::Communicator::world());
+    const VariableConstraints constraints(mesh, dc.setup, dc.variables, &field);
+
+    DesignSetupResult result;
+    result.method = morph::describe(dc.settings, 0);
+    const CompactList cf = cell_faces(mesh);
+    result.before = morph::check_morph_mesh(mesh, cf, compute_geometry(mesh, cf), {}, {});
+
+    // The first moving variable fixes the constrained points of the header.
+    Index first = 0;
+    while (first < dc.variables.size() && !constraints.moves_anything(first))
+        ++first;
+    if (first == dc.variables.size())
+        throw InvalidInput(dc.dict_path.string() + ": no design variable moves any point");
+    const morph::Constraints first_set = constraints.unit(first);
+    const DesignBasisHeader header = make_header(dc, result.before, first_set);
+    log::info() << "Setting up " << dc.variables.size() << " design variables ("
+                << first_set.points.size() << " constrained points, method " << header.method
+                << ")";
+    DesignBasisWriter writer(dc.basis_path, header);
+    for (Index j = 0; j < dc.variables.size(); ++j)
+    {
+        const DesignVariable& v = dc.variables.variables[std::size_t(j)];
+        const bool moves = constraints.moves_anything(j);
+        const VariableBlock block =
+            moves ? unit_field(dc, j == first ? first_set : constraints.unit(j), header.constrained,
+                               v.name)
+                  : still_field(header);
+        log_variable(v, block, moves);
+        writer.append(block);
+        result.names.push_back(v.name);
+        result.fits.push_back(block.fit);
+        result.moves.push_back(moves);
+    }
+    writer.commit();
+    result.basis_file = dc.basis_path;
+    result.n_points = mesh.n_points();
+    result.n_constrained = Index(header.constrained.size());
+    result.bytes = std::filesystem::file_size(dc.basis_path);
+    result.seconds = clock.seconds();
+    log::info() << "Wrote design set-up " << dc.basis_path.string() << " ("
+                << format_scalar(double(result.bytes) / 1048576.0, 4) << " MB) in "
+                << format_seconds(result.seconds) << " s";
+    return result;
+}
+
+} // namespace meshmorph::design

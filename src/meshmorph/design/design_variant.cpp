@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Variants from a stored set-up: combine the fields, check, judge, write.
+#include "meshmorph/design/design_variant.h"
+
+#include <cmath>
+
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
+#include "meshmorph/core/number_format.h"
+#include "meshmorph/core/stopwatch.h"
+#include "meshmorph/io/case_instance.h"
+#include "meshmorph/mesh/mesh_geometry.h"
+#include "meshmorph/morph/morph_output.h"
+#include "meshmorph/morph/point_morph.h"
+#include "meshmorph/quality/cell_validity.h"
+#include "meshmorph/quality/check_mesh.h"
+
+namespace meshmorph::design
+{
+
+namespace
+{
+
+//! Without -time a design command reads the points its set-up was made on.
+morph::MorphOptions at_setup_instance(morph::MorphOptions options, const DesignBasisHeader& h)
+{
+    if (options.time.mode == io::TimeSelection::Mode::first)
+        options.time = io::TimeSelection::at(h.instance);
+    return options;
+}
+
+std::string refusal_text(const InvalidCells& after, const DesignBasisHeader& h)
+{
+    std::string text = "the variant has ";
+    if (after.negative_volume_cells > h.negative_volume_cells_before)
+        text += std::to_string(after.negative_volume_cells) + " negative-volume cells (" +
+                std::to_string(h.negative_volume_cells_before) + " before)";
+    else
+        text += std::to_string(after.wrong_pyramids) + " incorrectly oriented face pyramids (" +
+                std::to_string(h.wrong_pyramids_before) + " before)";
+    return text;
+}
+
+} // namespace
+
+DesignStudy::DesignStudy(const morph::MorphOptions& options)
+    : options_(options),
+      reader_(design_basis_path(std::filesystem::absolute(options.case_dir), options.region))
+{
+    const Stopwatch clock;
+    case_ = read_design_case(at_setup_instance(options, reader_.header()));
+    require_current(case_, reader_.header(), reader_.path().string());
+    cell_faces_ = cell_faces(case_.foam.mesh);
+    read_seconds_ = clock.seconds();
+    log::info() << "Reusing the design set-up " << reader_.path().string() << " (" << names().size()
+                << " variables, method " << header().method << "): no fit";
+}
+
+void DesignStudy::check_amplitudes(const std::vector<double>& a) const
+{
+    if (a.size() != names().size())
+        throw InvalidInput(std::to_string(a.size()) + " amplitudes given, the set-up has " +
+                           std::to_string(names().size()) + " design variables (" +
+                           [&]
+                           {
+                               std::string list;
+                               for (const std::string& n : names())
+                                   list += (list.empty() ? "" : " ") + n;
+                               return list;
+                           }() +
+                           ")");
+    for (std::size_t j = 0; j < a.size(); ++j)
+    {
+        if (!std::isfinite(a[j]))
+            throw InvalidInput("the amplitude of " + names()[j] + " is not finite");
+        const auto& b = header().bounds[j];
+        if (b && (a[j] < b->first || a[j] > b->second))
+            throw InvalidInput("the amplitude " + format_scalar(a[j], 6) + " of " + names()[j] +
+                               " is outside its bounds (" + format_scalar(b->first, 6) + " " +
+                               format_scalar(b->second, 6) + ")");
+    }
+}
+
+Points DesignStudy::combine(const std::vector<double>& a, Points* prescribed)
+{
+    Points sum = Points::Zero(header().n_points, 3);
+    if (prescribed != nullptr)
+        *prescribed = Points::Zero(Index(header().constrained.size()), 3);
+    reader_.rewind();
+    VariableBlock block;
+    for (double aj : a)
+    {
+        reader_.next(block);
+        if (aj == 0.0)
+            continue;
+        sum += aj * block.field;
+        if (prescribed != nullptr)
+            *prescribed += aj * block.prescribed;
+    }
+    return sum;
+}
+
+std::vector<double> DesignStudy::transpose_product(const Points& g)
+{
+    std::vector<double> out;
+    reader_.rewind();
+    VariableBlock block;
+    for (std::size_t j = 0; j < names().size(); ++j)
+    {
+        reader_.next(block);
+        out.push_back((g.array() * block.field.array()).sum());
+    }
+    return out;
+}
+
+std::string DesignStudy::next_instance(const std::string& instance) const
+{
+    return io::next_time_name(io::list_times(case_.case_dir), instance,
+                              io::read_time_settings(case_.case_dir));
+}
+
+std::string DesignStudy::back_off(const Points& moved, const std::vector<double>& a, Index invalid)
+{
+    // The variable whose removal leaves the fewest invalid cells.
+    std::string best;
+    Index best_count = invalid;
+    PolyMesh trial = case_.foam.mesh;
+    for (std::size_t j = 0; j < a.size(); ++j)
+    {
+        if (a[j] == 0.0)
+            continue;
+        std::vector<double> only(a.size(), 0.0);
+        only[j] = a[j];
+        trial.points = moved - combine(only);
+        const InvalidCells c = count_invalid_cells(trial, compute_geometry(trial, cell_faces_));
+        const Index count = c.negative_volume_cells + c.wrong_pyramids;
+        if (count < best_count)
+        {
+            best_count = count;
+            best = names()[j] + " (without it: " + std::to_string(count) + " invalid cells and " +
+                   "face pyramids, " + std::to_string(invalid) + " with it)";
+        }
+    }
+    return best;
+}
+
+VariantResult DesignStudy::apply(const std::vector<double>& amplitudes, const std::string& instance)
+{
+    check_amplitudes(amplitudes);
+    VariantResult r;
+    r.amplitudes = amplitudes;
+    r.output_instance = instance;
+    Stopwatch stage;
+    const PolyMesh& mesh = case_.foam.mesh;
+    Points prescribed;
+    const Points d = combine(amplitudes, &prescribed);
+    double error = 0.0;
+    for (std::size_t i = 0; i < header().constrained.size(); ++i)
+        error = std::max(error,
+                         (d.row(header().constrained[i]) - prescribed.row(Eigen::Index(i))).norm());
+    r.max_prescribed = morph::max_norm(prescribed);
+    r.max_constraint_error = error;
+    r.relative_constraint_error = r.max_prescribed > 0 ? error / r.max_prescribed : 0.0;
+    r.max_displacement = morph::max_norm(d);
+    PolyMesh moved = mesh;
+    moved.points += d;
+    r.combine_seconds = stage.seconds();
+
+    stage.restart();
+    const MeshGeometry geometry = compute_geometry(moved, cell_faces_);
+    r.after = check_mesh(moved, cell_faces_, geometry, CheckMeshSettings{});
+    r.check_seconds = stage.seconds();
+    const InvalidCells invalid{r.after.negative_volume_cells,
+                               r.after.incorrectly_oriented_face_pyramids};
+    if (invalid.worse_than({header().negative_volume_cells_before, header().wrong_pyramids_before}))
+    {
+        r.refusal = refusal_text(invalid, header());
+        r.back_off = back_off(moved.points, amplitudes,
+                              invalid.negative_volume_cells + invalid.wrong_pyramids);
+        if (!options_.force)
+        {
+            r.refused = true;
+            return r;
+        }
+        log::warning() << "-force: writing although " << r.refusal;
+    }
+    stage.restart();
+    if (!options_.overwrite)
+        morph::warn_if_replacing(case_.case_dir, instance, options_.region);
+    r.points_file =
+        morph::write_morphed_points(options_, moved.points, case_.foam, case_.case_dir, instance);
+    r.written = true;
+    r.write_seconds = stage.seconds();
+    return r;
+}
+
+} // namespace meshmorph::design

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file `morphMesh -variant` and `-variants`: designs from a stored set-up (design_setup.h),
+//! x = x0 + sum_j a_j F_j, with the checks of a normal morph: exactness at the constrained
+//! points, checkMesh's metrics, refusal of new invalid cells (then the variable whose
+//! removal repairs most is named), atomic writing.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "meshmorph/design/design_basis.h"
+#include "meshmorph/design/design_case.h"
+#include "meshmorph/morph/morph_result.h"
+#include "meshmorph/quality/quality_report.h"
+
+namespace meshmorph::design
+{
+
+//! What one variant did.
+struct VariantResult
+{
+    std::vector<double> amplitudes;
+    double max_prescribed = 0.0;       //!< largest prescribed displacement
+    double max_constraint_error = 0.0; //!< max |x - x0 - prescribed| at the constrained points
+    double relative_constraint_error = 0.0;
+    double max_displacement = 0.0;
+    QualityReport after;
+    bool refused = false;
+    std::string refusal;
+    std::string back_off; //!< refused: the variable whose removal repairs most
+    bool written = false;
+    std::string output_instance;
+    std::filesystem::path points_file;
+    double combine_seconds = 0.0, check_seconds = 0.0, write_seconds = 0.0;
+};
+
+//! A case with its stored set-up, read once for any number of variants.
+class DesignStudy
+{
+public:
+    //! Reads the set-up header, then the mesh at the set-up's instance (unless options.time
+    //! names one) and the morphDict, and refuses a stale set-up.
+    //! \throw IoError, ParseError, InvalidInput (stale set-up, no designVariables).
+    explicit DesignStudy(const morph::MorphOptions& options);
+
+    const DesignCase& design_case() const { return case_; }
+    const DesignBasisHeader& header() const { return reader_.header(); }
+    const std::vector<std::string>& names() const { return reader_.header().names; }
+    double read_seconds() const { return read_seconds_; }
+
+    //! \brief Check amplitudes against the variables' count and bounds.
+    //! \throw InvalidInput naming the variable.
+    void check_amplitudes(const std::vector<double>& a) const;
+    //! \brief Build, check and (unless refused, or with force) write one variant to
+    //! `instance` (the mesh's own with -overwrite).
+    VariantResult apply(const std::vector<double>& amplitudes, const std::string& instance);
+    //! The instance after `instance` (the next time), for a new variant.
+    std::string next_instance(const std::string& instance) const;
+
+    //! sum_j a_j F_j (nPoints x 3) and, into prescribed, sum_j a_j P_j.
+    Points combine(const std::vector<double>& a, Points* prescribed = nullptr);
+    //! sum_i g_i . F_j(i) for every variable j (g: nPoints x 3).
+    std::vector<double> transpose_product(const Points& g);
+
+private:
+    std::string back_off(const Points& moved, const std::vector<double>& a, Index invalid);
+
+    morph::MorphOptions options_;
+    DesignBasisReader reader_;
+    DesignCase case_;
+    CompactList cell_faces_;
+    double read_seconds_ = 0.0;
+};
+
+} // namespace meshmorph::design

@@ -1,0 +1,237 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Unit constraint sets: the base entries frozen, one variable's motion on its patches or
+// handle, rotations linearised.
+#include "meshmorph/design/variable_constraints.h"
+
+#include <cmath>
+
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/morph/constraints.h"
+#include "meshmorph/morph/patch_assignment.h"
+
+namespace meshmorph::design
+{
+
+using morph::MotionType;
+
+namespace
+{
+
+bool keeps_still(MotionType t)
+{
+    return t == MotionType::fixed || t == MotionType::slip || t == MotionType::free;
+}
+
+//! The boundary entries may fix, slip or free patches; a motion there is not a variable.
+void require_still_boundary(const morph::MorphSetup& base)
+{
+    for (const morph::BoundaryEntry& e : base.boundary)
+        if (!keeps_still(e.motion.type))
+            throw ParseError(base.dict_path, e.line,
+                             "boundary entry " + e.key + " has type " +
+                                 morph::to_string(e.motion.type) +
+                                 ": with designVariables the boundary entries only say what "
+                                 "stays fixed, slips or is free; make this motion a design "
+                                 "variable (or remove designVariables for a one-off morph)");
+}
+
+bool uses_handle(const DesignVariables& vars, const std::string& name)
+{
+    for (const DesignVariable& v : vars.variables)
+        if (v.kind == DesignVariable::Kind::handle && v.handle == name)
+            return true;
+    return false;
+}
+
+//! Handles that no variable moves must not move; every handle starts at zero.
+void freeze_handles(const DesignVariables& vars, morph::MorphSetup& base)
+{
+    for (morph::HandleEntry& h : base.handles)
+    {
+        if (!uses_handle(vars, h.name) && h.displacement.norm() != 0.0)
+            throw ParseError(base.dict_path, h.line,
+                             "handle " + h.name +
+                                 " moves, but no design variable names it: with "
+                                 "designVariables a handle moves only as a variable "
+                                 "(handle " +
+                                 h.name + "; vector (...);), set its displacement to (0 0 0)");
+        h.displacement.setZero();
+    }
+    for (const DesignVariable& v : vars.variables)
+    {
+        if (v.kind != DesignVariable::Kind::handle)
+            continue;
+        bool found = false;
+        for (const morph::HandleEntry& h : base.handles)
+            found = found || h.name == v.handle;
+        if (!found)
+            throw ParseError(vars.dict_path, v.line,
+                             "design variable " + v.name + ": no handle '" + v.handle +
+                                 "' in the handles dictionary");
+    }
+}
+
+//! The patch keys of a variable or lattice as boundary entries, resolved by OpenFOAM's rules.
+std::vector<char> patches_of(const PolyMesh& mesh, const std::string& dict_path,
+                             const std::vector<std::string>& keys,
+                             const std::vector<bool>& is_regex, std::size_t line)
+{
+    morph::MorphSetup only;
+    only.dict_path = dict_path;
+    for (std::size_t k = 0; k < keys.size(); ++k)
+        only.boundary.push_back({keys[k], bool(is_regex[k]), morph::Motion{}, line});
+    const std::vector<morph::PatchAssignment> a = morph::assign_patches(mesh, only);
+    std::vector<char> moved(a.size(), 0);
+    for (std::size_t p = 0; p < a.size(); ++p)
+        moved[p] = a[p].entry >= 0;
+    return moved;
+}
+
+//! Rotations of the unit set replaced by their linearisation theta * axis x (x - origin), so
+//! that amplitude a moves every point by a times its unit displacement.
+void linearise_rotations(const PolyMesh& mesh, morph::Constraints& c)
+{
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+    {
+        const Index r = c.rotation_of[i];
+        if (r < 0)
+            continue;
+        const morph::Motion& m = c.rotations[std::size_t(r)];
+        Vector3 x = mesh.points.row(c.points[i]).transpose();
+        if (c.empty_planes)
+            x = c.empty_planes->project(x);
+        const double theta = m.angle_degrees * M_PI / 180.0;
+        Vector3 d = theta * m.axis.normalized().cross(x - m.origin);
+        if (c.empty_planes)
+            d = c.empty_planes->in_plane(d);
+        c.displacements.row(Eigen::Index(i)) = d.transpose();
+        c.rotation_of[i] = -1;
+    }
+}
+
+} // namespace
+
+VariableConstraints::VariableConstraints(const PolyMesh& mesh, const morph::MorphSetup& base,
+                                         const DesignVariables& variables,
+                                         const morph::PointDisplacementInputs* point_displacement)
+    : mesh_(mesh), base_(base), variables_(variables), point_displacement_(point_displacement)
+{
+    require_still_boundary(base_);
+    freeze_handles(variables_, base_);
+    frozen_ = morph::assign_patches(mesh_, base_);
+    for (const DesignVariable& v : variables_.variables)
+    {
+        std::vector<char> moved(mesh_.patches.size(), 0);
+        if (v.kind == DesignVariable::Kind::patches)
+            moved = patches_of(mesh_, variables_.dict_path, v.patch_keys, v.key_is_regex, v.line);
+        else if (v.kind == DesignVariable::Kind::lattice_point)
+        {
+            const DesignLattice& l = variables_.lattices[v.lattice];
+            moved = patches_of(mesh_, variables_.dict_path, l.patch_keys, l.key_is_regex, l.line);
+        }
+        for (std::size_t p = 0; p < moved.size(); ++p)
+            if (moved[p])
+                frozen_[p] = {frozen_[p].patch,
+                              frozen_[p].patch_type,
+                              MotionType::fixed,
+                              "design variables",
+                              -1,
+                              frozen_[p].n_points};
+        moved_patches_.push_back(std::move(moved));
+    }
+}
+
+Points VariableConstraints::lattice_field(const DesignVariable& v) const
+{
+    const FfdLattice& lattice = variables_.lattices[v.lattice].lattice;
+    Points field = Points::Zero(mesh_.n_points(), 3);
+    Index index[64];
+    double weight[64];
+    for (Index i = 0; i < mesh_.n_points(); ++i)
+    {
+        const int n =
+            lattice.basis(mesh_.points.row(i).transpose(), FfdOutside::zero, index, weight);
+        for (int k = 0; k < n; ++k)
+            if (index[k] == v.control_point)
+                field(i, v.direction) = weight[k];
+    }
+    return field;
+}
+
+bool VariableConstraints::moves_anything(Index j) const
+{
+    const DesignVariable& v = variables_.variables[std::size_t(j)];
+    if (v.kind != DesignVariable::Kind::lattice_point)
+        return true;
+    const FfdLattice& lattice = variables_.lattices[v.lattice].lattice;
+    Index index[64];
+    double weight[64];
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p)
+    {
+        if (!moved_patches_[std::size_t(j)][p])
+            continue;
+        for (Index i : patch_points(mesh_, mesh_.patches[p]))
+        {
+            const int n =
+                lattice.basis(mesh_.points.row(i).transpose(), FfdOutside::zero, index, weight);
+            for (int k = 0; k < n; ++k)
+                if (index[k] == v.control_point && weight[k] != 0.0)
+                    return true;
+        }
+    }
+    return false;
+}
+
+morph::Constraints VariableConstraints::unit(Index j) const
+{
+    const DesignVariable& v = variables_.variables[std::size_t(j)];
+    morph::MorphSetup setup = base_;
+    std::vector<morph::PatchAssignment> assignment = frozen_;
+    morph::ConstraintInputs inputs;
+    inputs.patches = &assignment;
+    Points lattice_values;
+    if (v.kind == DesignVariable::Kind::handle)
+    {
+        for (morph::HandleEntry& h : setup.handles)
+            if (h.name == v.handle)
+                h.displacement = v.motion.vector;
+    }
+    else
+    {
+        morph::Motion motion = v.motion;
+        if (v.kind == DesignVariable::Kind::lattice_point)
+        {
+            motion.type = MotionType::point_displacement;
+            lattice_values = lattice_field(v);
+            inputs.point_displacement = &lattice_values;
+        }
+        else if (motion.type == MotionType::point_displacement)
+        {
+            inputs.point_displacement = &point_displacement_->internal;
+            inputs.patch_point_displacement = &point_displacement_->patches;
+        }
+        setup.boundary.push_back({v.name, false, motion, v.line});
+        const Index entry = Index(setup.boundary.size()) - 1;
+        for (std::size_t p = 0; p < assignment.size(); ++p)
+            if (moved_patches_[std::size_t(j)][p])
+                assignment[p] = {assignment[p].patch,
+                                 assignment[p].patch_type,
+                                 motion.type,
+                                 "design variable " + v.name,
+                                 entry,
+                                 assignment[p].n_points};
+    }
+    morph::Constraints c;
+    try
+    {
+        c = morph::build_constraints(mesh_, setup, inputs);
+    }
+    catch (const InvalidInput& e)
+    {
+        throw InvalidInput("design variable " + v.name + ": " + e.what());
+    }
+    linearise_rotations(mesh_, c);
+    return c;
+}
+
+} // namespace meshmorph::design

@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file The constraint set of each design variable at unit amplitude.
+//!
+//! Every variable sees the same constrained points, so that fields add up exactly: the
+//! morphDict's `boundary` entries say what stays fixed, slips or is free; every patch and
+//! handle that any variable moves is held fixed (zero) in the other variables' sets, and
+//! moves by its unit motion in its own. The `boundary` entries themselves must not move
+//! anything (a motion there belongs in a design variable): that keeps x0 the zero variant.
+#pragma once
+
+#include <vector>
+
+#include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/design/design_variables.h"
+#include "meshmorph/morph/constraint_set.h"
+#include "meshmorph/morph/morph_setup.h"
+#include "meshmorph/morph/point_displacement_input.h"
+
+namespace meshmorph::design
+{
+
+//! The unit constraint sets of a design study.
+class VariableConstraints
+{
+public:
+    //! \param point_displacement the case's pointDisplacement field, if any variable has type
+    //! pointDisplacement (else null).
+    //! \throw ParseError/InvalidInput naming the dictionary entry: a moving boundary entry or
+    //! handle that is no variable, an unknown patch or handle, a handle variable's handle
+    //! that is missing.
+    VariableConstraints(const PolyMesh& mesh, const morph::MorphSetup& base,
+                        const DesignVariables& variables,
+                        const morph::PointDisplacementInputs* point_displacement);
+
+    //! \brief The constraints of variable j at amplitude 1 (rotations linearised).
+    //! \throw InvalidInput naming the variable when it moves no point.
+    morph::Constraints unit(Index j) const;
+
+    //! Whether variable j moves any constrained point (a lattice control point whose support
+    //! holds none of its patches' points does not).
+    bool moves_anything(Index j) const;
+
+private:
+    std::vector<morph::PatchAssignment> touched_by(const DesignVariable& v) const;
+    Points lattice_field(const DesignVariable& v) const;
+
+    const PolyMesh& mesh_;
+    morph::MorphSetup base_; //!< handles' displacements zero
+    const DesignVariables& variables_;
+    const morph::PointDisplacementInputs* point_displacement_;
+    std::vector<morph::PatchAssignment> frozen_;   //!< every patch a variable moves: fixed
+    std::vector<std::vector<char>> moved_patches_; //!< per variable: its patches
+};
+
+} // namespace meshmorph::design

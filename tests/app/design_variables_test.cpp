@@ -1,0 +1,430 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// morphMesh -variables / -variant / -variants / -sensitivity on the tutorial pipe: variants
+// are linear in their amplitudes and exact, agree with a one-off morph where the method is
+// linear, gradients equal central finite differences, and bad input leaves the case alone.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "helpers.h"
+#include "meshmorph/io/read_poly_mesh.h"
+#include "meshmorph/io/write_poly_mesh.h"
+#include "morph_run.h"
+
+namespace meshmorph
+{
+namespace
+{
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& path)
+{
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+//! The pipe's core lifted by a handle, its wall squeezed and twisted, and the inner 2x2x2
+//! control points of a 4x4x4 lattice moving the wall sideways: 3 + 8 variables.
+const char* design_dict = R"dict(
+boundary
+{
+    default { type fixed; }
+    "(inlet|outlet)" { type slip; }
+}
+handles
+{
+    core { box (-0.1 -0.1 0.9) (0.1 0.1 1.1); displacement (0 0 0); }
+}
+designVariables
+{
+    lift    { handle core; vector (0 0.1 0); bounds (-3 3); }
+    squeeze { patches (wall); type scale; origin (0 0 1); factor (0.9 0.9 1); }
+    twist   { patches (wall); type rotate; origin (0 0 0); axis (0 0 1); angle 2; }
+    bump
+    {
+        type        ffd;
+        patches     (wall);
+        lattice     (4 4 4);
+        box         ((-0.6 -0.6 0.4) (0.6 0.6 1.6));
+        directions  (x);
+        confine     (1 1 1);
+    }
+}
+)dict";
+
+fs::path pipe_case(const std::string& name, const std::string& dict_body)
+{
+    const fs::path dir = test::scratch_dir("design_variables/" + name);
+    const fs::path pipe = fs::path(MESHMORPH_SOURCE_DIR) / "tutorials/pipe";
+    const io::FoamPolyMesh shipped = io::read_poly_mesh(pipe);
+    io::write_poly_mesh(shipped.mesh, io::default_poly_mesh_files(io::FoamFormat::binary), dir,
+                        "constant");
+    fs::create_directories(dir / "system");
+    fs::copy_file(pipe / "system/controlDict", dir / "system/controlDict");
+    test::write_text(dir / "system/morphDict",
+                     "FoamFile { version 2.0; format ascii; class dictionary; object "
+                     "morphDict; }\n" +
+                         dict_body);
+    return dir;
+}
+
+Points points_at(const fs::path& dir, const std::string& time)
+{
+    io::PolyMeshReadOptions o;
+    o.time = io::TimeSelection::at(time);
+    return io::read_poly_mesh(dir, o).mesh.points;
+}
+
+std::string amplitude_list(const std::vector<double>& a)
+{
+    std::ostringstream s;
+    s.precision(17);
+    s << "(";
+    for (double v : a)
+        s << v << " ";
+    s << ")";
+    return s.str();
+}
+
+//! The points of a variant (written into time 1, which is removed again).
+Points variant_points(const fs::path& dir, const std::vector<double>& a)
+{
+    const test::MorphRun r =
+        test::run_morph_mesh({"-case", dir.string(), "-variant", amplitude_list(a)});
+    EXPECT_EQ(r.code, 0) << r.log;
+    Points x = points_at(dir, "1");
+    fs::remove_all(dir / "1");
+    return x;
+}
+
+std::vector<double> amplitudes(double lift, double squeeze, double twist, double bump)
+{
+    std::vector<double> a{lift, squeeze, twist};
+    for (int k = 0; k < 8; ++k)
+        a.push_back(bump * std::sin(1.0 + k));
+    return a;
+}
+
+class DesignVariables : public ::testing::Test
+{
+protected:
+    static void SetUpTestSuite()
+    {
+        dir_ = new fs::path(pipe_case("shared", design_dict));
+        const test::MorphRun r = test::run_morph_mesh(
+            {"-case", dir_->string(), "-variables", "-json", (*dir_ / "setup.json").string()});
+        ASSERT_EQ(r.code, 0) << r.log;
+    }
+    static void TearDownTestSuite() { delete dir_; }
+    static fs::path* dir_;
+};
+fs::path* DesignVariables::dir_ = nullptr;
+
+TEST_F(DesignVariables, set_up_stores_one_exact_field_per_variable)
+{
+    const nlohmann::json j = nlohmann::json::parse(read_text(*dir_ / "setup.json"));
+    ASSERT_EQ(j["variables"].size(), 11u);
+    EXPECT_EQ(j["variables"][0]["name"], "lift");
+    EXPECT_EQ(j["variables"][3]["name"], "bump.1.1.1.x");
+    EXPECT_EQ(j["variables"][10]["name"], "bump.2.2.2.x");
+    for (const auto& v : j["variables"])
+        EXPECT_LT(v["relativeConstraintError"].get<double>(), 1e-10) << v["name"];
+    EXPECT_TRUE(fs::exists(*dir_ / "constant/designBasis"));
+}
+
+TEST_F(DesignVariables, a_variant_is_linear_in_its_amplitudes_and_moves_the_handle_exactly)
+{
+    const Points x0 = points_at(*dir_, "constant");
+    const std::vector<double> a = amplitudes(0.5, 0.3, 1.0, 0.05);
+    const std::vector<double> b = amplitudes(-0.2, 0.1, -0.5, 0.02);
+    std::vector<double> sum(a.size());
+    for (std::size_t k = 0; k < a.size(); ++k)
+        sum[k] = a[k] + b[k];
+    const Points xa = variant_points(*dir_, a), xb = variant_points(*dir_, b),
+                 xs = variant_points(*dir_, sum);
+    EXPECT_LT(((xa - x0) + (xb - x0) - (xs - x0)).cwiseAbs().maxCoeff(), 1e-12);
+    // The handle's points move by 0.5 * (0 0.1 0) exactly, whatever the other variables do.
+    int in_handle = 0;
+    for (Index i = 0; i < x0.rows(); ++i)
+        if ((x0.row(i).array().abs() <= Eigen::Array3d(0.1, 0.1, 2).transpose()).all() &&
+            std::abs(x0(i, 2) - 1.0) <= 0.1)
+        {
+            ++in_handle;
+            EXPECT_NEAR(xa(i, 1) - x0(i, 1), 0.05, 1e-12);
+            EXPECT_NEAR(xa(i, 0) - x0(i, 0), 0.0, 1e-12);
+        }
+    EXPECT_GT(in_handle, 0);
+}
+
+TEST_F(DesignVariables, a_variant_of_a_translation_equals_the_one_off_morph_of_the_same_motion)
+{
+    // The direct RBF (779 constraints) is linear in its data: one variable at amplitude 0.7
+    // and a morph of the handle moved by 0.7 (0 0.1 0) give the same points.
+    const fs::path one_off = pipe_case(
+        "one_off", "boundary { default { type fixed; } \"(inlet|outlet)\" { type slip; } }\n"
+                   "handles { core { box (-0.1 -0.1 0.9) (0.1 0.1 1.1); displacement (0 0.07 "
+                   "0); } }\n");
+    const test::MorphRun r = test::run_morph_mesh({"-case", one_off.string()});
+    ASSERT_EQ(r.code, 0) << r.log;
+    const Points x0 = points_at(*dir_, "constant");
+    const Points morphed = points_at(one_off, "1");
+    const Points variant = variant_points(*dir_, amplitudes(0.7, 0, 0, 0));
+    EXPECT_LT((variant - morphed).cwiseAbs().maxCoeff(), 1e-9 * 0.07);
+    EXPECT_GT((variant - x0).cwiseAbs().maxCoeff(), 0.05);
+}
+
+//! An ascii pointVectorField with `internal` and, per listed patch, fixedValue values.
+void write_point_field(const fs::path& path, const Points& internal,
+                       const std::vector<std::pair<std::string, Points>>& patches,
+                       const PolyMesh& mesh)
+{
+    std::ostringstream s;
+    s.precision(17);
+    s << "FoamFile { version 2.0; format ascii; class pointVectorField; object dJdx; }\n"
+      << "dimensions [0 0 0 0 0 0 0];\ninternalField nonuniform List<vector> " << internal.rows()
+      << "\n(\n";
+    for (Index i = 0; i < internal.rows(); ++i)
+        s << "(" << internal(i, 0) << " " << internal(i, 1) << " " << internal(i, 2) << ")\n";
+    s << ");\nboundaryField\n{\n";
+    for (const Patch& p : mesh.patches)
+    {
+        s << p.name << " { type calculated; value ";
+        bool listed = false;
+        for (const auto& [name, values] : patches)
+            if (name == p.name)
+            {
+                listed = true;
+                s << "nonuniform List<vector> " << values.rows() << "(";
+                for (Index i = 0; i < values.rows(); ++i)
+                    s << "(" << values(i, 0) << " " << values(i, 1) << " " << values(i, 2) << ")";
+                s << ")";
+            }
+        if (!listed)
+            s << "uniform (0 0 0)";
+        s << "; }\n";
+    }
+    s << "}\n";
+    test::write_text(path, s.str());
+}
+
+//! J(x) = sum_i w_i . x_i with w_i smooth, distinct per point and without the pipe's
+//! symmetries (which would make a squeeze's or a twist's dJ/da vanish).
+Points weights(const Points& x0)
+{
+    Points w(x0.rows(), 3);
+    for (Index i = 0; i < x0.rows(); ++i)
+    {
+        const double x = x0(i, 0), y = x0(i, 1), z = x0(i, 2);
+        w.row(i) << 1.0 + x + 0.3 * z, 2.0 + y + 0.5 * x + std::sin(3 * z), 0.5 + z * x;
+    }
+    return w;
+}
+
+double objective(const Points& w, const Points& x)
+{
+    return (w.array() * x.array()).sum();
+}
+
+std::vector<double> gradient_from(const fs::path& dir, const std::string& file)
+{
+    const fs::path json = dir / "sens.json";
+    const test::MorphRun r =
+        test::run_morph_mesh({"-case", dir.string(), "-sensitivity", file, "-json", json.string()});
+    EXPECT_EQ(r.code, 0) << r.log;
+    const nlohmann::json j = nlohmann::json::parse(read_text(json));
+    std::vector<double> g;
+    for (const auto& name : j["names"])
+        g.push_back(j["dJda"][name.get<std::string>()].get<double>());
+    return g;
+}
+
+TEST_F(DesignVariables, volume_sensitivity_equals_central_finite_differences)
+{
+    const io::FoamPolyMesh foam = io::read_poly_mesh(*dir_);
+    const Points w = weights(foam.mesh.points);
+    write_point_field(*dir_ / "0/dJdx", w, {}, foam.mesh);
+    const std::vector<double> g = gradient_from(*dir_, "0/dJdx");
+    ASSERT_EQ(g.size(), 11u);
+    const std::vector<double> a = amplitudes(0.2, 0.1, 0.5, 0.01);
+    for (std::size_t j : {0u, 1u, 2u, 4u, 9u})
+    {
+        const double h = 1e-3;
+        std::vector<double> up = a, down = a;
+        up[j] += h;
+        down[j] -= h;
+        const double fd =
+            (objective(w, variant_points(*dir_, up)) - objective(w, variant_points(*dir_, down))) /
+            (2 * h);
+        EXPECT_NEAR(g[j], fd, 1e-6 * std::max(1.0, std::abs(fd))) << "variable " << j;
+        EXPECT_GT(std::abs(fd), 1e-3) << "variable " << j << " should change J";
+    }
+}
+
+TEST_F(DesignVariables, surface_sensitivity_on_the_wall_equals_finite_differences_of_a_wall_sum)
+{
+    const io::FoamPolyMesh foam = io::read_poly_mesh(*dir_);
+    const PolyMesh& mesh = foam.mesh;
+    std::size_t wall = 0;
+    while (mesh.patches[wall].name != "wall")
+        ++wall;
+    const std::vector<Index> wall_points = patch_points(mesh, mesh.patches[wall]);
+    const Points w = weights(mesh.points);
+    Points on_wall(Index(wall_points.size()), 3);
+    for (std::size_t k = 0; k < wall_points.size(); ++k)
+        on_wall.row(Index(k)) = w.row(wall_points[k]);
+    write_point_field(*dir_ / "0/dJdxWall", Points::Zero(mesh.n_points(), 3), {{"wall", on_wall}},
+                      mesh);
+    const std::vector<double> g = gradient_from(*dir_, "0/dJdxWall");
+    const auto wall_sum = [&](const Points& x)
+    {
+        double s = 0;
+        for (std::size_t k = 0; k < wall_points.size(); ++k)
+            s += w.row(wall_points[k]).dot(x.row(wall_points[k]));
+        return s;
+    };
+    const std::vector<double> a = amplitudes(0.2, 0.1, 0.5, 0.01);
+    for (std::size_t j : {1u, 2u, 7u})
+    {
+        const double h = 1e-3;
+        std::vector<double> up = a, down = a;
+        up[j] += h;
+        down[j] -= h;
+        const double fd =
+            (wall_sum(variant_points(*dir_, up)) - wall_sum(variant_points(*dir_, down))) / (2 * h);
+        EXPECT_NEAR(g[j], fd, 1e-6 * std::max(1.0, std::abs(fd))) << "variable " << j;
+        EXPECT_GT(std::abs(fd), 1e-3) << "variable " << j;
+    }
+    // The handle lies inside the pipe: it moves no wall point, so J of the wall ignores it.
+    EXPECT_NEAR(g[0], 0.0, 1e-12);
+}
+
+TEST_F(DesignVariables, variants_of_a_table_go_to_their_own_time_directories_with_a_json_row_each)
+{
+    std::ostringstream table;
+    table << "# a small design of experiments\n";
+    for (int row = 0; row < 4; ++row)
+    {
+        const std::vector<double> a = amplitudes(0.25 * row, 0.05 * row, -0.5 * row, 0.01 * row);
+        for (double v : a)
+            table << v << ", ";
+        table << "\n";
+    }
+    test::write_text(*dir_ / "doe.csv", table.str());
+    const fs::path json = *dir_ / "doe.json";
+    const test::MorphRun r =
+        test::run_morph_mesh({"-case", dir_->string(), "-variants", (*dir_ / "doe.csv").string(),
+                              "-json", json.string()});
+    ASSERT_EQ(r.code, 0) << r.log;
+    const nlohmann::json j = nlohmann::json::parse(read_text(json));
+    ASSERT_EQ(j["rows"].size(), 4u);
+    for (int row = 0; row < 4; ++row)
+    {
+        const auto& v = j["rows"][std::size_t(row)];
+        EXPECT_TRUE(v["valid"].get<bool>());
+        EXPECT_TRUE(v["written"].get<bool>());
+        EXPECT_EQ(v["outputInstance"], std::to_string(row + 1));
+        EXPECT_NEAR(v["amplitudes"]["lift"].get<double>(), 0.25 * row, 1e-15);
+        EXPECT_EQ(v["after"]["negativeVolumeCells"].get<int>(), 0);
+        EXPECT_TRUE(fs::exists(v["path"].get<std::string>()));
+    }
+    for (int row = 1; row <= 4; ++row)
+        fs::remove_all(*dir_ / std::to_string(row));
+}
+
+TEST_F(DesignVariables, a_variant_that_inverts_cells_is_refused_and_names_the_variable_to_back_off)
+{
+    // The core lifted by 3 x 0.1 = 0.3 of the pipe's 0.5 radius in one linear step.
+    const fs::path json = *dir_ / "refused.json";
+    const test::MorphRun r =
+        test::run_morph_mesh({"-case", dir_->string(), "-variant",
+                              amplitude_list(amplitudes(3.0, 0, 0, 0.01)), "-json", json.string()});
+    if (r.code == 0)
+        GTEST_FAIL() << "expected a refusal\n" << r.log;
+    EXPECT_EQ(r.code, 3) << r.log;
+    const nlohmann::json j = nlohmann::json::parse(read_text(json));
+    EXPECT_FALSE(j["written"].get<bool>());
+    EXPECT_EQ(j["backOff"].get<std::string>().rfind("lift", 0), 0u) << j["backOff"];
+    EXPECT_NE(r.log.find("back off lift"), std::string::npos) << r.log;
+    EXPECT_FALSE(fs::exists(*dir_ / "1"));
+}
+
+TEST_F(DesignVariables, bad_amplitudes_and_foreign_files_are_refused_and_leave_the_case_alone)
+{
+    const auto refused = [&](const std::vector<std::string>& args, const std::string& words)
+    {
+        std::vector<std::string> all{"-case", dir_->string()};
+        all.insert(all.end(), args.begin(), args.end());
+        const test::MorphRun r = test::run_morph_mesh(all);
+        EXPECT_EQ(r.code, 2) << r.log;
+        EXPECT_NE(r.log.find(words), std::string::npos) << "expected '" << words << "' in\n"
+                                                        << r.log;
+        EXPECT_FALSE(fs::exists(*dir_ / "1"));
+    };
+    refused({"-variant", "(1 2)"}, "2 amplitudes given, the set-up has 11 design variables");
+    refused({"-variant", amplitude_list(amplitudes(5, 0, 0, 0))},
+            "the amplitude 5 of lift is outside its bounds (-3 3)");
+    refused({"-variant", "(1 x 2)"}, "'x' is not a finite number");
+    refused({"-variants", (*dir_ / "missing.csv").string()}, "missing.csv");
+    // A sensitivity of another mesh (the wrong number of points).
+    test::write_text(*dir_ / "0/otherMesh",
+                     "FoamFile { version 2.0; format ascii; class pointVectorField; object "
+                     "otherMesh; }\ndimensions [0 0 0 0 0 0 0];\ninternalField nonuniform "
+                     "List<vector> 2((0 0 0)(1 1 1));\nboundaryField { \".*\" { type calculated; "
+                     "value uniform (0 0 0); } }\n");
+    refused({"-sensitivity", "0/otherMesh"}, "otherMesh");
+    refused({"-variant", "(1)", "-variables"}, "mutually exclusive");
+}
+
+TEST(DesignVariableSetUp, a_stale_or_foreign_set_up_is_refused)
+{
+    const fs::path dir = pipe_case("stale", design_dict);
+    ASSERT_EQ(test::run_morph_mesh({"-case", dir.string(), "-variables"}).code, 0);
+    const std::string a = amplitude_list(amplitudes(0.1, 0, 0, 0));
+    // The dictionary edited after the set-up.
+    std::ofstream(dir / "system/morphDict", std::ios::app) << "// edited\n";
+    test::MorphRun r = test::run_morph_mesh({"-case", dir.string(), "-variant", a});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.log.find("was made for another version of"), std::string::npos) << r.log;
+    // Another mesh's points.
+    ASSERT_EQ(test::run_morph_mesh({"-case", dir.string(), "-variables"}).code, 0);
+    io::FoamPolyMesh foam = io::read_poly_mesh(dir);
+    foam.mesh.points(0, 0) += 1e-9;
+    io::write_poly_mesh(foam.mesh, io::default_poly_mesh_files(io::FoamFormat::binary), dir,
+                        "constant");
+    r = test::run_morph_mesh({"-case", dir.string(), "-variant", a});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.log.find("was made for other points"), std::string::npos) << r.log;
+    // Not a set-up at all, and a truncated one.
+    test::write_text(dir / "constant/designBasis", "solid foo\n");
+    r = test::run_morph_mesh({"-case", dir.string(), "-variant", a});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.log.find("not a meshMorph design set-up"), std::string::npos) << r.log;
+    EXPECT_FALSE(fs::exists(dir / "1"));
+}
+
+TEST(DesignVariableSetUp, a_moving_boundary_entry_and_a_surface_variable_are_refused_by_name)
+{
+    const fs::path moving = pipe_case(
+        "moving", "boundary { wall { type translate; vector (0 0.1 0); } }\n"
+                  "designVariables { s { patches (inlet); type translate; vector (1 0 0); } }\n");
+    test::MorphRun r = test::run_morph_mesh({"-case", moving.string(), "-variables"});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.log.find("boundary entry wall has type translate"), std::string::npos) << r.log;
+    const fs::path surface = pipe_case(
+        "surface", "designVariables { s { patches (wall); type surface; file \"x.stl\"; } }\n");
+    r = test::run_morph_mesh({"-case", surface.string(), "-variables"});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.log.find("type surface is not a design variable"), std::string::npos) << r.log;
+    EXPECT_FALSE(fs::exists(surface / "constant/designBasis"));
+}
+
+} // namespace
+} // namespace meshmorph
