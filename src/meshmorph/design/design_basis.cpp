@@ -4,6 +4,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <functional>
 
 #include <nlohmann/json.hpp>
 
@@ -39,8 +40,7 @@ nlohmann::json header_json(const DesignBasisHeader& h)
             {"names", h.names},
             {"bounds", bounds},
             {"negativeVolumeCellsBefore", h.negative_volume_cells_before},
-            {"incorrectlyOrientedFacePyramidsBefore", h.wrong_pyramids_before},
-            {"nConstrained", h.constrained.size()}};
+            {"incorrectlyOrientedFacePyramidsBefore", h.wrong_pyramids_before}};
 }
 
 DesignBasisHeader header_from_json(const nlohmann::json& j)
@@ -61,7 +61,6 @@ DesignBasisHeader header_from_json(const nlohmann::json& j)
                                                                       b.at(1).get<double>())));
     h.negative_volume_cells_before = j.at("negativeVolumeCellsBefore");
     h.wrong_pyramids_before = j.at("incorrectlyOrientedFacePyramidsBefore");
-    h.constrained.resize(j.at("nConstrained").get<std::size_t>());
     if (h.bounds.size() != h.names.size() || h.n_points < 0)
         throw InvalidInput("inconsistent sizes");
     return h;
@@ -78,10 +77,10 @@ template <class T> bool read_raw(std::ifstream& in, T* data, std::size_t n)
     return bool(in);
 }
 
-std::uintmax_t expected_size(std::streamoff blocks_start, const DesignBasisHeader& h)
+//! Bytes of a block with c constrained points of n mesh points.
+std::uintmax_t block_bytes(std::uintmax_t c, std::uintmax_t n)
 {
-    const std::uintmax_t c = h.constrained.size(), n = std::uintmax_t(h.n_points);
-    return std::uintmax_t(blocks_start) + 8 * c + h.names.size() * 8 * (4 + 3 * c + 3 * n);
+    return 8 * (4 + 1 + c + 3 * c + 3 * n);
 }
 
 } // namespace
@@ -100,8 +99,6 @@ DesignBasisWriter::DesignBasisWriter(const fs::path& target, const DesignBasisHe
         throw IoError("cannot write " + target.string() + " (temporary " + temp_.string() + ")");
     out_ << magic_line << ' ' << DesignBasisHeader::current_version << '\n'
          << header_json(header).dump() << '\n';
-    std::vector<std::int64_t> labels(header.constrained.begin(), header.constrained.end());
-    write_raw(out_, labels.data(), labels.size());
 }
 
 DesignBasisWriter::~DesignBasisWriter()
@@ -118,6 +115,10 @@ void DesignBasisWriter::append(const VariableBlock& block)
     const double fit[4] = {block.fit.max_constraint_error, block.fit.relative_constraint_error,
                            block.fit.centres, block.fit.seconds};
     write_raw(out_, fit, 4);
+    const std::vector<std::int64_t> labels(block.constrained.begin(), block.constrained.end());
+    const std::int64_t count = std::int64_t(labels.size());
+    write_raw(out_, &count, 1);
+    write_raw(out_, labels.data(), labels.size());
     write_raw(out_, block.prescribed.data(), std::size_t(block.prescribed.size()));
     write_raw(out_, block.field.data(), std::size_t(block.field.size()));
     ++written_;
@@ -169,32 +170,53 @@ DesignBasisReader::DesignBasisReader(const fs::path& path) : path_(path)
     {
         throw bad(std::string("bad header (") + e.what() + ")");
     }
-    std::vector<std::int64_t> labels(header_.constrained.size());
-    if (!read_raw(in_, labels.data(), labels.size()))
-        throw bad("truncated");
-    for (std::size_t i = 0; i < labels.size(); ++i)
-    {
-        if (labels[i] < 0 || labels[i] >= header_.n_points)
-            throw bad("constrained point label " + std::to_string(labels[i]) + " out of range");
-        header_.constrained[i] = Index(labels[i]);
-    }
     blocks_start_ = in_.tellg();
-    const std::uintmax_t size = fs::file_size(path);
-    if (size != expected_size(blocks_start_ - std::streamoff(8 * labels.size()), header_))
-        throw bad("its size (" + std::to_string(size) + " bytes) does not match its header");
+    check_blocks(bad);
+}
+
+void DesignBasisReader::check_blocks(const std::function<ParseError(const std::string&)>& bad)
+{
+    // Walk the blocks' sizes so that a truncated or padded file is refused before use.
+    const std::uintmax_t size = fs::file_size(path_);
+    std::uintmax_t at = std::uintmax_t(blocks_start_);
+    const std::uintmax_t n = std::uintmax_t(header_.n_points);
+    for (std::size_t j = 0; j < header_.names.size(); ++j)
+    {
+        std::int64_t c = -1;
+        in_.seekg(std::streamoff(at + 32));
+        if (at + 40 > size || !read_raw(in_, &c, 1) || c < 0 || std::uintmax_t(c) > size)
+            throw bad("truncated at the block of " + header_.names[j]);
+        at += block_bytes(std::uintmax_t(c), n);
+    }
+    if (at != size)
+        throw bad("its size (" + std::to_string(size) + " bytes) does not match its header (" +
+                  std::to_string(at) + ")");
+    rewind();
 }
 
 void DesignBasisReader::next(VariableBlock& block)
 {
-    const Index c = Index(header_.constrained.size());
     double fit[4];
-    block.prescribed.resize(c, 3);
+    std::int64_t c = 0;
+    if (!read_raw(in_, fit, 4) || !read_raw(in_, &c, 1))
+        throw ParseError(path_.string(), 0, "truncated design set-up");
+    std::vector<std::int64_t> labels(static_cast<std::size_t>(c));
+    block.prescribed.resize(Index(c), 3);
     block.field.resize(header_.n_points, 3);
-    if (!read_raw(in_, fit, 4) ||
+    if (!read_raw(in_, labels.data(), labels.size()) ||
         !read_raw(in_, block.prescribed.data(), std::size_t(block.prescribed.size())) ||
         !read_raw(in_, block.field.data(), std::size_t(block.field.size())))
         throw ParseError(path_.string(), 0, "truncated design set-up");
     block.fit = {fit[0], fit[1], fit[2], fit[3]};
+    block.constrained.resize(labels.size());
+    for (std::size_t i = 0; i < labels.size(); ++i)
+    {
+        if (labels[i] < 0 || labels[i] >= header_.n_points)
+            throw ParseError(path_.string(), 0,
+                             "constrained point label " + std::to_string(labels[i]) +
+                                 " out of range");
+        block.constrained[i] = Index(labels[i]);
+    }
 }
 
 void DesignBasisReader::rewind()

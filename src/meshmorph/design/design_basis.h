@@ -8,22 +8,25 @@
 //! - line 1: `meshMorph designBasis 1`
 //! - line 2: a one-line JSON header (DesignBasisHeader: fingerprints of the points, the
 //!   topology and the morphDict, the instance the points were read from, variable names and
-//!   bounds, method, point and constraint counts, the invalid cells of the mesh before)
-//! - binary, little-endian: the constrained point labels (int64, nConstrained), then per
-//!   variable a block: 4 doubles of fit statistics (max constraint error, relative
-//!   constraint error, centres, fit seconds), P_j (nConstrained x 3 doubles, row-major),
-//!   F_j (nPoints x 3 doubles, row-major); nothing after the last block.
+//!   bounds, method, point count, the invalid cells of the mesh before)
+//! - binary, little-endian, per variable a block: 4 doubles of fit statistics (max
+//!   constraint error, relative constraint error, centres, fit seconds), int64 c_j, the
+//!   constrained point labels (int64, c_j), P_j (c_j x 3 doubles, row-major), F_j (nPoints x
+//!   3 doubles, row-major); nothing after the last block. (Variables constrain different
+//!   points: a handle is constrained only in its own variable's set.)
 //! The blocks are read one at a time, so applying a variant or a gradient needs memory for
 //! one field, not for all.
 #pragma once
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/types.h"
 
 namespace meshmorph::design
@@ -42,7 +45,6 @@ struct DesignBasisHeader
     std::vector<std::optional<std::pair<double, double>>> bounds;
     Index negative_volume_cells_before = 0;
     Index wrong_pyramids_before = 0;
-    std::vector<Index> constrained; //!< the constrained points (same for every variable)
 };
 
 //! The statistics of one variable's fit, stored with its fields.
@@ -58,8 +60,9 @@ struct VariableFit
 struct VariableBlock
 {
     VariableFit fit;
-    Points prescribed; //!< nConstrained x 3, P_j
-    Points field;      //!< nPoints x 3, F_j
+    std::vector<Index> constrained; //!< the points variable j prescribes (sorted)
+    Points prescribed;              //!< constrained.size() x 3, P_j
+    Points field;                   //!< nPoints x 3, F_j
 };
 
 //! Writes a set-up block by block into a temporary file; commit() renames it over the
@@ -73,7 +76,7 @@ public:
     DesignBasisWriter(const DesignBasisWriter&) = delete;
     DesignBasisWriter& operator=(const DesignBasisWriter&) = delete;
 
-    //! \pre called once per variable, in order, with the header's sizes.
+    //! \pre called once per variable, in order, with the header's point count.
     void append(const VariableBlock& block);
     //! \throw IoError (the target is then unchanged) or InvalidInput if blocks are missing.
     void commit();
@@ -102,6 +105,8 @@ public:
     void rewind();
 
 private:
+    void check_blocks(const std::function<ParseError(const std::string&)>& bad);
+
     std::filesystem::path path_;
     std::ifstream in_;
     DesignBasisHeader header_;

@@ -43,8 +43,7 @@ void require_fitted_method(const morph::DeformationSettings& settings)
                            "or dmffd, and a designVariables entry of type ffd for a lattice");
 }
 
-DesignBasisHeader make_header(const DesignCase& dc, const QualityReport& before,
-                              const morph::Constraints& first)
+DesignBasisHeader make_header(const DesignCase& dc, const QualityReport& before)
 {
     DesignBasisHeader h;
     h.points_fingerprint = points_fingerprint(dc.foam.mesh.points);
@@ -60,18 +59,12 @@ DesignBasisHeader make_header(const DesignCase& dc, const QualityReport& before,
     }
     h.negative_volume_cells_before = before.negative_volume_cells;
     h.wrong_pyramids_before = before.incorrectly_oriented_face_pyramids;
-    h.constrained = first.points;
     return h;
 }
 
 //! One variable's field: fit its unit constraints, evaluate at every point (one step).
-VariableBlock unit_field(const DesignCase& dc, const morph::Constraints& c,
-                         const std::vector<Index>& constrained, const std::string& name)
+VariableBlock unit_field(const DesignCase& dc, const morph::Constraints& c)
 {
-    if (c.points != constrained)
-        throw InvalidInput("design variable " + name +
-                           " constrains other points than the first variable (a conflict "
-                           "rule that depends on the values?): set conflicts fixed");
     const PolyMesh& mesh = dc.foam.mesh;
     const Index n_fit = c.n_prescribed_points + c.n_slip_points;
     const auto deformation = morph::make_deformation(dc.settings, mesh.points, n_fit);
@@ -80,6 +73,7 @@ VariableBlock unit_field(const DesignCase& dc, const morph::Constraints& c,
     VariableBlock block;
     block.fit = {pm.max_constraint_error, pm.relative_constraint_error,
                  double(pm.report.num_centres), pm.fit_seconds + pm.evaluate_seconds};
+    block.constrained = c.points;
     block.prescribed = c.displacements;
     block.field = std::move(pm.displacement);
     return block;
@@ -87,7 +81,7 @@ VariableBlock unit_field(const DesignCase& dc, const morph::Constraints& c,
 
 VariableBlock still_field(const DesignBasisHeader& h)
 {
-    return {{}, Points::Zero(Index(h.constrained.size()), 3), Points::Zero(h.n_points, 3)};
+    return {{}, {}, Points::Zero(0, 3), Points::Zero(h.n_points, 3)};
 }
 
 void log_variable(const DesignVariable& v, const VariableBlock& b, bool moves)
@@ -125,36 +119,28 @@ DesignSetupResult setup_design(const morph::MorphOptions& options)
     const CompactList cf = cell_faces(mesh);
     result.before = morph::check_morph_mesh(mesh, cf, compute_geometry(mesh, cf), {}, {});
 
-    // The first moving variable fixes the constrained points of the header.
-    Index first = 0;
-    while (first < dc.variables.size() && !constraints.moves_anything(first))
-        ++first;
-    if (first == dc.variables.size())
-        throw InvalidInput(dc.dict_path.string() + ": no design variable moves any point");
-    const morph::Constraints first_set = constraints.unit(first);
-    const DesignBasisHeader header = make_header(dc, result.before, first_set);
-    log::info() << "Setting up " << dc.variables.size() << " design variables ("
-                << first_set.points.size() << " constrained points, method " << header.method
-                << ")";
+    const DesignBasisHeader header = make_header(dc, result.before);
+    log::info() << "Setting up " << dc.variables.size() << " design variables (method "
+                << header.method << ")";
     DesignBasisWriter writer(dc.basis_path, header);
     for (Index j = 0; j < dc.variables.size(); ++j)
     {
         const DesignVariable& v = dc.variables.variables[std::size_t(j)];
         const bool moves = constraints.moves_anything(j);
         const VariableBlock block =
-            moves ? unit_field(dc, j == first ? first_set : constraints.unit(j), header.constrained,
-                               v.name)
-                  : still_field(header);
+            moves ? unit_field(dc, constraints.unit(j)) : still_field(header);
         log_variable(v, block, moves);
         writer.append(block);
         result.names.push_back(v.name);
         result.fits.push_back(block.fit);
         result.moves.push_back(moves);
+        result.n_constrained = std::max(result.n_constrained, Index(block.constrained.size()));
     }
+    if (std::none_of(result.moves.begin(), result.moves.end(), [](char m) { return m != 0; }))
+        throw InvalidInput(dc.dict_path.string() + ": no design variable moves any point");
     writer.commit();
     result.basis_file = dc.basis_path;
     result.n_points = mesh.n_points();
-    result.n_constrained = Index(header.constrained.size());
     result.bytes = std::filesystem::file_size(dc.basis_path);
     result.seconds = clock.seconds();
     log::info() << "Wrote design set-up " << dc.basis_path.string() << " ("

@@ -32,8 +32,8 @@ struct DesignSetupResult
     std::string method;
     std::vector<std::string> names;
     std::vector<VariableFit> fits;
-    std::vector<char> moves; //!< per variable: whether it moves any constrained point
-    Index n_points = 0, n_constrained = 0;
+    std::vector<char> moves;               //!< per variable: whether it moves any constrained point
+    Index n_points = 0, n_constrained = 0; //!< n_constrained: the most of any variable
     QualityReport before;
     double seconds = 0.0;
     std::uintmax_t bytes = 0; //!< of the file written

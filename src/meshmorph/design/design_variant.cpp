@@ -81,11 +81,12 @@ void DesignStudy::check_amplitudes(const std::vector<double>& a) const
     }
 }
 
-Points DesignStudy::combine(const std::vector<double>& a, Points* prescribed)
+Points DesignStudy::combine(const std::vector<double>& a, ConstraintMisfit* misfit)
 {
     Points sum = Points::Zero(header().n_points, 3);
-    if (prescribed != nullptr)
-        *prescribed = Points::Zero(Index(header().constrained.size()), 3);
+    if (misfit != nullptr)
+        *misfit = {Points::Zero(header().n_points, 3),
+                   std::vector<char>(std::size_t(header().n_points), 0)};
     reader_.rewind();
     VariableBlock block;
     for (double aj : a)
@@ -94,8 +95,14 @@ Points DesignStudy::combine(const std::vector<double>& a, Points* prescribed)
         if (aj == 0.0)
             continue;
         sum += aj * block.field;
-        if (prescribed != nullptr)
-            *prescribed += aj * block.prescribed;
+        if (misfit == nullptr)
+            continue;
+        for (std::size_t k = 0; k < block.constrained.size(); ++k)
+        {
+            const Index i = block.constrained[k];
+            misfit->error.row(i) += aj * (block.field.row(i) - block.prescribed.row(Index(k)));
+            misfit->constrained[std::size_t(i)] = 1;
+        }
     }
     return sum;
 }
@@ -152,13 +159,15 @@ VariantResult DesignStudy::apply(const std::vector<double>& amplitudes, const st
     r.output_instance = instance;
     Stopwatch stage;
     const PolyMesh& mesh = case_.foam.mesh;
-    Points prescribed;
-    const Points d = combine(amplitudes, &prescribed);
+    ConstraintMisfit misfit;
+    const Points d = combine(amplitudes, &misfit);
     double error = 0.0;
-    for (std::size_t i = 0; i < header().constrained.size(); ++i)
-        error = std::max(error,
-                         (d.row(header().constrained[i]) - prescribed.row(Eigen::Index(i))).norm());
-    r.max_prescribed = morph::max_norm(prescribed);
+    for (Index i = 0; i < d.rows(); ++i)
+        if (misfit.constrained[std::size_t(i)])
+        {
+            error = std::max(error, misfit.error.row(i).norm());
+            r.max_prescribed = std::max(r.max_prescribed, (d.row(i) - misfit.error.row(i)).norm());
+        }
     r.max_constraint_error = error;
     r.relative_constraint_error = r.max_prescribed > 0 ? error / r.max_prescribed : 0.0;
     r.max_displacement = morph::max_norm(d);

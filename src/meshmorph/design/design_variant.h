@@ -35,6 +35,14 @@ struct VariantResult
     double combine_seconds = 0.0, check_seconds = 0.0, write_seconds = 0.0;
 };
 
+//! Where a variant misses its prescriptions: at every point some variable constrains,
+//! sum_j a_j (F_j - P_j) over the variables that constrain it.
+struct ConstraintMisfit
+{
+    Points error;                  //!< nPoints x 3 (zero where nothing is constrained)
+    std::vector<char> constrained; //!< per point: constrained by some variable
+};
+
 //! A case with its stored set-up, read once for any number of variants.
 class DesignStudy
 {
@@ -58,8 +66,8 @@ public:
     //! The instance after `instance` (the next time), for a new variant.
     std::string next_instance(const std::string& instance) const;
 
-    //! sum_j a_j F_j (nPoints x 3) and, into prescribed, sum_j a_j P_j.
-    Points combine(const std::vector<double>& a, Points* prescribed = nullptr);
+    //! sum_j a_j F_j (nPoints x 3) and, if asked, its misfit at the constrained points.
+    Points combine(const std::vector<double>& a, ConstraintMisfit* misfit = nullptr);
     //! sum_i g_i . F_j(i) for every variable j (g: nPoints x 3).
     std::vector<double> transpose_product(const Points& g);
 

@@ -190,6 +190,14 @@ morph::Constraints VariableConstraints::unit(Index j) const
     morph::ConstraintInputs inputs;
     inputs.patches = &assignment;
     Points lattice_values;
+    // The handles other variables move are left out (their points follow this variable's
+    // field, so that variables add up); this variable's handle moves by its vector.
+    std::erase_if(setup.handles,
+                  [&](const morph::HandleEntry& h)
+                  {
+                      return uses_handle(variables_, h.name) &&
+                             !(v.kind == DesignVariable::Kind::handle && v.handle == h.name);
+                  });
     if (v.kind == DesignVariable::Kind::handle)
     {
         for (morph::HandleEntry& h : setup.handles)

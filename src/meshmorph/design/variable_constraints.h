@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file The constraint set of each design variable at unit amplitude.
 //!
-//! Every variable sees the same constrained points, so that fields add up exactly: the
-//! morphDict's `boundary` entries say what stays fixed, slips or is free; every patch and
-//! handle that any variable moves is held fixed (zero) in the other variables' sets, and
-//! moves by its unit motion in its own. The `boundary` entries themselves must not move
-//! anything (a motion there belongs in a design variable): that keeps x0 the zero variant.
+//! Variables add up: the morphDict's `boundary` entries say what stays fixed, slips or is
+//! free; every patch that any variable moves is held fixed (zero) in the other variables'
+//! sets and moves by its unit motion in its own, so a patch moved by two variables moves by
+//! the sum of their motions. A handle that a variable moves is left out of the other
+//! variables' sets (its points follow their fields: a front-wheel handle adds to a lift of
+//! the whole bike); handles that no variable names keep pinning their points. The `boundary`
+//! entries themselves must not move anything (a motion there belongs in a design
+//! variable): that keeps x0 the zero variant.
 #pragma once
 
 #include <vector>

@@ -1,0 +1,158 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Design variables on the full snappyHexMesh motorBike (issue 21's acceptance figures), in one
+# run beside the peer:
+#   1. motorbike_vs_movemesh.sh -lifts 0.05: moveMesh and a one-off morphMesh of the natural
+#      lift (every motorBike_.* patch by 5% of the bike's height), time and peak memory;
+#   2. morphMesh -variables with five variables (bike lift, bike pitch about the rear axle,
+#      a front-wheel handle, a rider handle, a fairing scale): set-up time and memory;
+#   3. morphMesh -variant, three times each for two designs (the lift alone, amplitude 1,
+#      which the one-off morph also made; and all five), time and memory per variant
+#      including the check and writing the points; the lift variant against the one-off
+#      morph's points (largest difference / lift);
+#   4. optionally (-lattice) a lattice of 100 variables around the bike: set-up, variant and
+#      gradient times, peak memory, size of the set-up file.
+# Prints and writes DIR/design.md.
+#
+#   design_motorbike.sh [-cache DIR] [-morphMesh PATH] [-out DIR] [-lattice]
+set -euo pipefail
+script_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+root=$(cd "$script_dir/../.." && pwd)
+source "$script_dir/natural_morph.sh"
+
+cache=$root/build/cases/motorBike-full
+morph_mesh=$root/build/release/applications/morphMesh/morphMesh
+out=$root/build/bench/design
+lattice=false
+while [[ $# -gt 0 ]]; do
+    case $1 in
+        -cache) cache=$2; shift 2 ;;
+        -morphMesh) morph_mesh=$2; shift 2 ;;
+        -out) out=$2; shift 2 ;;
+        -lattice) lattice=true; shift ;;
+        *) echo "usage: design_motorbike.sh [-cache DIR] [-morphMesh PATH] [-out DIR] [-lattice]" >&2; exit 2 ;;
+    esac
+done
+morph_mesh=$(realpath "$morph_mesh")
+export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
+rm -rf "$out" && mkdir -p "$out"
+say() { echo "design_motorbike.sh: $*"; }
+
+# timed <log> <cmd...>: wall seconds and peak RSS (MB) of one run into $wall and $rss.
+timed() {
+    local log=$1
+    shift
+    /usr/bin/time -f "%e %M" -o "$log.time" "$@" >"$log" 2>&1 || { tail -20 "$log" >&2; return 1; }
+    read -r wall rss_kb <"$log.time"
+    rss=$((rss_kb / 1024))
+}
+
+say "1. the peer: moveMesh and a one-off morphMesh of the 5% lift"
+bash "$script_dir/motorbike_vs_movemesh.sh" -cache "$cache" -morphMesh "$morph_mesh" \
+    -lifts 0.05 -out "$out/peer" >"$out/peer.log" 2>&1 || { tail -20 "$out/peer.log"; exit 1; }
+peer_row() { awk -F, -v t="$1" '$7 == t { print $9, $11 }' "$out/peer/results.csv"; }
+read -r movemesh_wall movemesh_rss <<<"$(peer_row moveMesh)"
+read -r oneoff_wall oneoff_rss <<<"$(peer_row morphMesh)"
+say "   moveMesh $movemesh_wall s $movemesh_rss MB, morphMesh $oneoff_wall s $oneoff_rss MB"
+
+say "2. the set-up of five design variables"
+case=$out/design
+natural_motorbike_case "$cache" "$case"
+cat >"$case/system/morphDict" <<'DICT'
+FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }
+// Five design variables of the motorBike, each at amplitude 1:
+method rbf;
+boundary { default { type fixed; } }
+handles
+{
+    // The points around the front wheel's hub and the rider's torso (interior points
+    // included): local controls, added on top of the bike's lift and pitch.
+    frontWheel { box (-0.15 -0.1 0.15) (0.18 0.1 0.45); displacement (0 0 0); }
+    rider      { box (0.55 -0.3 0.75) (1.0 0.3 1.2); displacement (0 0 0); }
+}
+designVariables
+{
+    lift    { patches ("motorBike_.*"); type translate; vector (0 0 0.0675781); bounds (-1 1); }
+    pitch   { patches ("motorBike_.*"); type rotate; origin (1.433 0 0.3075); axis (0 1 0);
+              angle 1; bounds (-3 3); }
+    wheel   { handle frontWheel; vector (-0.02 0 0); }
+    rider   { handle rider; vector (0.03 0 -0.02); }
+    fairing { patches ("motorBike_frt-fairing.*" "motorBike_windshield.*"); type scale;
+              origin (0.5 0 0.6); factor 1.05; }
+}
+DICT
+timed "$out/log.variables" "$morph_mesh" -case "$case" -variables -json "$out/variables.json"
+setup_wall=$wall setup_rss=$rss
+say "   $setup_wall s, $setup_rss MB"
+
+say "3. variants"
+best() { printf '%s\n' "$@" | sort -g | head -1; }
+run_variants() { # <name> <amplitudes>: best of three, into variant_wall/variant_rss
+    local walls=() rsss=()
+    for k in 1 2 3; do
+        timed "$out/log.variant.$1.$k" "$morph_mesh" -case "$case" -variant "$2" -json "$out/variant.$1.json"
+        walls+=("$wall") rsss+=("$rss")
+    done
+    variant_wall=$(best "${walls[@]}") variant_rss=$(best "${rsss[@]}")
+}
+run_variants lift "(1 0 0 0 0)"
+lift_wall=$variant_wall lift_rss=$variant_rss
+cp "$case/1/polyMesh/points" "$out/lift.points" 2>/dev/null || cp "$case/1/polyMesh/points.gz" "$out/lift.points.gz"
+run_variants all "(1 2 1 1 1)"
+all_wall=$variant_wall all_rss=$variant_rss
+say "   lift alone $lift_wall s $lift_rss MB; all five $all_wall s $all_rss MB"
+
+/usr/bin/python3 "$script_dir/compare_points.py" "$(ls -d "$out"/peer/runs/*/morphMesh | head -1)" "$case" 0.0675781 >"$out/agreement.txt" || true
+say "   lift variant against the one-off morph: $(cat "$out/agreement.txt")"
+
+if $lattice; then
+    say "4. a lattice of 100 variables"
+    lcase=$out/lattice
+    natural_motorbike_case "$cache" "$lcase"
+    cat >"$lcase/system/morphDict" <<'DICT'
+FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }
+method rbf;
+boundary { default { type fixed; } }
+designVariables
+{
+    // 6 x 4 x 6 control points around the bike, the outer layer fixed: 4 x 2 x 4 = 32
+    // control points moving in x, y and z, plus 4 more in z = 100 variables.
+    body { type ffd; patches ("motorBike_.*"); lattice (6 4 6);
+           box ((-0.35 -0.4 0.05) (1.8 0.4 1.4)); confine (1 1 1); }
+    top  { type ffd; patches ("motorBike_.*"); lattice (4 4 4);
+           box ((-0.35 -0.4 0.05) (1.8 0.4 1.4)); confine (1 1 1); directions (z); }
+}
+DICT
+    timed "$out/log.lattice.variables" "$morph_mesh" -case "$lcase" -variables -json "$out/lattice.json"
+    lattice_setup_wall=$wall lattice_setup_rss=$rss
+    n=$(/usr/bin/python3 -c "import json,sys; print(len(json.load(open(sys.argv[1]))['variables']))" "$out/lattice.json")
+    amps="($(/usr/bin/python3 -c "import math; print(' '.join('%.4g' % (0.005*math.sin(k)) for k in range($n)))"))"
+    timed "$out/log.lattice.variant" "$morph_mesh" -case "$lcase" -variant "$amps"
+    lattice_variant_wall=$wall lattice_variant_rss=$rss
+    /usr/bin/python3 "$script_dir/write_point_field.py" "$lcase" 0/dJdx
+    timed "$out/log.lattice.sensitivity" "$morph_mesh" -case "$lcase" -sensitivity 0/dJdx
+    lattice_sens_wall=$wall lattice_sens_rss=$rss
+    lattice_bytes=$(stat -c %s "$lcase/constant/designBasis")
+fi
+
+{
+    echo "# Design variables on the full motorBike ($(date -u +%F), $(nproc) cores)"
+    echo
+    echo "| run | wall [s] | peak RSS [MB] | ratio to one-off morphMesh | ratio to moveMesh |"
+    echo "| --- | --- | --- | --- | --- |"
+    r() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", a / b }'; }
+    echo "| moveMesh, 5% lift | $movemesh_wall | $movemesh_rss | | |"
+    echo "| morphMesh one-off, 5% lift | $oneoff_wall | $oneoff_rss | 1 | $(r "$oneoff_wall" "$movemesh_wall") |"
+    echo "| -variables (5 variables) | $setup_wall | $setup_rss | $(r "$setup_wall" "$oneoff_wall") | $(r "$setup_wall" "$movemesh_wall") |"
+    echo "| -variant (1 0 0 0 0) (best of 3) | $lift_wall | $lift_rss | $(r "$lift_wall" "$oneoff_wall") | $(r "$lift_wall" "$movemesh_wall") |"
+    echo "| -variant (1 2 1 1 1) (best of 3) | $all_wall | $all_rss | $(r "$all_wall" "$oneoff_wall") | $(r "$all_wall" "$movemesh_wall") |"
+    if $lattice; then
+        echo "| lattice -variables ($n variables, $((lattice_bytes / 1048576)) MB file) | $lattice_setup_wall | $lattice_setup_rss | | |"
+        echo "| lattice -variant | $lattice_variant_wall | $lattice_variant_rss | | |"
+        echo "| lattice -sensitivity | $lattice_sens_wall | $lattice_sens_rss | | |"
+    fi
+    echo
+    echo "Lift variant against the one-off morph of the same lift: $(cat "$out/agreement.txt")"
+    echo
+    grep -E "^Timings|Mesh OK|Failed" "$out/log.variant.all.1" || true
+} | tee "$out/design.md"
