@@ -87,8 +87,7 @@ nlohmann::json variant_json(const design::DesignStudy& study, const design::Vari
         amplitudes[study.names()[j]] = r.amplitudes[j];
     nlohmann::json j = {
         {"setupReused", true},
-        {"setupFile",
-         design::design_basis_path(study.design_case().case_dir, "").lexically_normal().string()},
+        {"setupFile", study.basis_file().string()},
         {"amplitudes", amplitudes},
         {"valid", !r.refused},
         {"written", r.written},

@@ -20,7 +20,7 @@ DesignCase read_design_case(const morph::MorphOptions& options)
         throw InvalidInput("-parallel is not available for design variables yet: run "
                            "-variables, -variant and -sensitivity on the undecomposed case");
     DesignCase dc;
-    dc.case_dir = fs::absolute(options.case_dir);
+    dc.case_dir = fs::absolute(options.case_dir).lexically_normal();
     if (!fs::is_directory(dc.case_dir))
         throw IoError("case directory " + dc.case_dir.string() + " does not exist");
     fs::path dict =

@@ -18,7 +18,7 @@ Points read_point_sensitivity(const DesignStudy& study, const fs::path& file)
     const DesignCase& dc = study.design_case();
     const fs::path path = file.is_absolute() ? file : dc.case_dir / file;
     const PolyMesh& mesh = dc.foam.mesh;
-    const io::PointVectorField field = io::read_point_vector_field(path, mesh);
+    const io::PointVectorField field = io::read_point_vector_field(path, mesh, true);
     Points g = field.internal;
     for (std::size_t p = 0; p < field.patches.size(); ++p)
     {

@@ -133,6 +133,20 @@ std::array<int, 3> read_confine(const io::FoamDictionary& d, const std::array<in
     return {c[0], c[1], c[2]};
 }
 
+//! `lattice (nx ny nz);`: each 1 (constant along that axis) or at least 4 (cubic).
+std::array<int, 3> read_counts(const io::FoamEntry& e)
+{
+    const std::vector<std::int32_t> n = e.get<std::vector<std::int32_t>>();
+    if (n.size() != 3)
+        throw e.error("expected three control-point counts (nx ny nz)");
+    for (std::int32_t v : n)
+        if (v != 1 && (v < 4 || v > 1000))
+            throw e.error("a cubic B-spline lattice needs 4 to 1000 control points per axis (or "
+                          "1: constant along it, for 2D cases), got " +
+                          std::to_string(v));
+    return {n[0], n[1], n[2]};
+}
+
 std::string axis_name(int a)
 {
     return std::string(1, char('x' + a));
@@ -148,9 +162,12 @@ void read_lattice_variables(const io::FoamEntry& e, DesignVariables& out)
     const std::optional<FfdBox> box = morph::read_bounds(d, "box");
     if (!box)
         throw e.error("type ffd needs box ((x0 y0 z0) (x1 y1 z1)) around the patches it moves");
-    DesignLattice lattice{e.keyword(), FfdLattice(*box, morph::read_lattice(d)), {}, {}, e.line()};
+    const std::array<int, 3> n = read_counts(d.entry("lattice"));
+    std::array<int, 3> cubic = n;
+    for (int& c : cubic)
+        c = std::max(c, 4);
+    DesignLattice lattice{e.keyword(), FfdLattice(*box, cubic), n, {}, {}, e.line()};
     read_patch_keys(d.entry("patches"), lattice.patch_keys, lattice.key_is_regex);
-    const std::array<int, 3> n = lattice.lattice.counts();
     const std::array<int, 3> confine = read_confine(d, n);
     const std::vector<int> directions = read_directions(d);
     const auto bounds = read_amplitude_bounds(d);
@@ -165,7 +182,7 @@ void read_lattice_variables(const io::FoamEntry& e, DesignVariables& out)
                              std::to_string(k) + "." + axis_name(a);
                     v.kind = DesignVariable::Kind::lattice_point;
                     v.lattice = index;
-                    v.control_point = lattice.lattice.index(i, j, k);
+                    v.control_point = {i, j, k};
                     v.direction = a;
                     v.bounds = bounds;
                     v.line = e.line();
@@ -191,6 +208,16 @@ void read_variable(const io::FoamEntry& e, DesignVariables& out)
 }
 
 } // namespace
+
+bool DesignLattice::belongs(Index p, const std::array<int, 3>& ijk) const
+{
+    const std::array<int, 3>& n = lattice.counts();
+    const std::array<int, 3> at{int(p % n[0]), int((p / n[0]) % n[1]), int(p / (n[0] * n[1]))};
+    for (int a = 0; a < 3; ++a)
+        if (counts[std::size_t(a)] > 1 && at[std::size_t(a)] != ijk[std::size_t(a)])
+            return false;
+    return true;
+}
 
 Index DesignVariables::find(const std::string& name) const
 {

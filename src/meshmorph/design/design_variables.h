@@ -7,7 +7,8 @@
 //! (`handle <name>; vector (dx dy dz);`), or, for `type ffd`, expands into one variable
 //! per active control point and direction of a B-spline lattice that moves the boundary
 //! points of its patches (the volumetric B-spline parameterisation of OpenFOAM's adjoint
-//! tools and DAFoam; named <name>.<i>.<j>.<k>.<x|y|z>). Amplitude 1 is the motion as
+//! tools and DAFoam; named <name>.<i>.<j>.<k>.<x|y|z>; `lattice (9 5 1)` makes a lattice
+//! that does not vary along z, for 2D cases). Amplitude 1 is the motion as
 //! written; amplitude a is a times it. A rotation is linearised (a variant must be linear
 //! in its amplitudes): amplitude a moves x by a * angle * (axis x (x - origin)), which
 //! leaves the exact arc by about (a * angle)^2 / 2 of the radius.
@@ -34,7 +35,14 @@ namespace meshmorph::design
 struct DesignLattice
 {
     std::string name;
+    //! The cubic lattice; an axis written with 1 control point (a 2D case's normal) has 4
+    //! here, and its variables move all 4 together (partition of unity: the motion is the
+    //! same at every coordinate along that axis inside the box).
     FfdLattice lattice;
+    std::array<int, 3> counts{4, 4, 4}; //!< as written
+    //! Whether control point p (linear index) belongs to the variable of (i, j, k) (counts
+    //! as written).
+    bool belongs(Index p, const std::array<int, 3>& ijk) const;
     std::vector<std::string> patch_keys; //!< the patches whose points it moves
     std::vector<bool> key_is_regex;
     std::size_t line = 0;
@@ -56,8 +64,8 @@ struct DesignVariable
     morph::Motion motion;    //!< patches: the unit motion; handle: translate (vector)
     std::string handle;      //!< handle: its name in `handles`
     std::size_t lattice = 0; //!< lattice_point: index into DesignVariables::lattices
-    Index control_point = 0; //!< lattice_point: linear control point index
-    int direction = 0;       //!< lattice_point: 0, 1, 2 for x, y, z
+    std::array<int, 3> control_point{0, 0, 0};       //!< lattice_point: (i, j, k) as written
+    int direction = 0;                               //!< lattice_point: 0, 1, 2 for x, y, z
     std::optional<std::pair<double, double>> bounds; //!< optional (lower upper)
     std::size_t line = 0;
 };

@@ -45,7 +45,8 @@ std::string refusal_text(const InvalidCells& after, const DesignBasisHeader& h)
 
 DesignStudy::DesignStudy(const morph::MorphOptions& options)
     : options_(options),
-      reader_(design_basis_path(std::filesystem::absolute(options.case_dir), options.region))
+      reader_(design_basis_path(std::filesystem::absolute(options.case_dir).lexically_normal(),
+                                options.region))
 {
     const Stopwatch clock;
     case_ = read_design_case(at_setup_instance(options, reader_.header()));

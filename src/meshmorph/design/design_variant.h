@@ -53,6 +53,7 @@ public:
     explicit DesignStudy(const morph::MorphOptions& options);
 
     const DesignCase& design_case() const { return case_; }
+    const std::filesystem::path& basis_file() const { return reader_.path(); }
     const DesignBasisHeader& header() const { return reader_.header(); }
     const std::vector<std::string>& names() const { return reader_.header().names; }
     double read_seconds() const { return read_seconds_; }

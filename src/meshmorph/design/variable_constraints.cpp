@@ -143,7 +143,8 @@ VariableConstraints::VariableConstraints(const PolyMesh& mesh, const morph::Morp
 
 Points VariableConstraints::lattice_field(const DesignVariable& v) const
 {
-    const FfdLattice& lattice = variables_.lattices[v.lattice].lattice;
+    const DesignLattice& design = variables_.lattices[v.lattice];
+    const FfdLattice& lattice = design.lattice;
     Points field = Points::Zero(mesh_.n_points(), 3);
     Index index[64];
     double weight[64];
@@ -152,8 +153,8 @@ Points VariableConstraints::lattice_field(const DesignVariable& v) const
         const int n =
             lattice.basis(mesh_.points.row(i).transpose(), FfdOutside::zero, index, weight);
         for (int k = 0; k < n; ++k)
-            if (index[k] == v.control_point)
-                field(i, v.direction) = weight[k];
+            if (design.belongs(index[k], v.control_point))
+                field(i, v.direction) += weight[k];
     }
     return field;
 }
@@ -163,7 +164,7 @@ bool VariableConstraints::moves_anything(Index j) const
     const DesignVariable& v = variables_.variables[std::size_t(j)];
     if (v.kind != DesignVariable::Kind::lattice_point)
         return true;
-    const FfdLattice& lattice = variables_.lattices[v.lattice].lattice;
+    const DesignLattice& design = variables_.lattices[v.lattice];
     Index index[64];
     double weight[64];
     for (std::size_t p = 0; p < mesh_.patches.size(); ++p)
@@ -172,10 +173,10 @@ bool VariableConstraints::moves_anything(Index j) const
             continue;
         for (Index i : patch_points(mesh_, mesh_.patches[p]))
         {
-            const int n =
-                lattice.basis(mesh_.points.row(i).transpose(), FfdOutside::zero, index, weight);
+            const int n = design.lattice.basis(mesh_.points.row(i).transpose(), FfdOutside::zero,
+                                               index, weight);
             for (int k = 0; k < n; ++k)
-                if (index[k] == v.control_point && weight[k] != 0.0)
+                if (design.belongs(index[k], v.control_point) && weight[k] != 0.0)
                     return true;
         }
     }

@@ -158,7 +158,7 @@ const FoamEntry* match_patch_entry(const FoamDictionary& boundary, const Patch& 
 // The patchField `entry` of `patch`: a constraint type (which must be the patch's), or
 // fixedValue / calculated with a value per patch point.
 void read_patch_field(const FoamEntry& entry, const PolyMesh& mesh, const Patch& patch,
-                      PointPatchField& pf)
+                      PointPatchField& pf, bool calculated_without_value)
 {
     pf.key = entry.keyword();
     if (!entry.is_dict())
@@ -180,7 +180,11 @@ void read_patch_field(const FoamEntry& entry, const PolyMesh& mesh, const Patch&
                                      "' (meshmorph supports fixedValue, calculated with a "
                                      "value, and the constraint types)");
     if (!bc.found("value"))
+    {
+        if (calculated_without_value && pf.type == "calculated")
+            return; // OpenFOAM writes a calculated pointPatchField without values
         throw bc.error(where + ": type " + pf.type + " needs a 'value' entry");
+    }
     const std::size_t n_patch_points = patch_points(mesh, patch).size();
     pf.value =
         read_vector_value(bc.entry("value"), n_patch_points, "patch " + patch.name, pf.is_uniform);
@@ -188,7 +192,8 @@ void read_patch_field(const FoamEntry& entry, const PolyMesh& mesh, const Patch&
 
 } // namespace
 
-PointVectorField read_point_vector_field(const fs::path& path, const PolyMesh& mesh)
+PointVectorField read_point_vector_field(const fs::path& path, const PolyMesh& mesh,
+                                         bool calculated_without_value)
 {
     const FoamDictionary dict = read_dictionary(path);
     PointVectorField field;
@@ -207,7 +212,7 @@ PointVectorField read_point_vector_field(const fs::path& path, const PolyMesh& m
         PointPatchField& pf = field.patches[p];
         pf.patch = patch.name;
         if (const FoamEntry* entry = match_patch_entry(boundary, patch, pf))
-            read_patch_field(*entry, mesh, patch, pf);
+            read_patch_field(*entry, mesh, patch, pf, calculated_without_value);
     }
     return field;
 }

@@ -63,7 +63,11 @@ struct PointVectorField
 //! entry ("Cannot find patchField entry for <patch>"), an unsupported type (naming the patch
 //! and type), a constraint patch with another type, a `value` whose size is not the
 //! patch's number of points, a missing `value`.
-PointVectorField read_point_vector_field(const std::filesystem::path& path, const PolyMesh& mesh);
+//! \param calculated_without_value accept `calculated` patches without `value` (as OpenFOAM
+//! writes a computed point field, e.g. an adjoint solver's sensitivities): their points take
+//! the internalField (PointPatchField::value unset).
+PointVectorField read_point_vector_field(const std::filesystem::path& path, const PolyMesh& mesh,
+                                         bool calculated_without_value = false);
 
 //! \brief Read `<case>/<time>/<name>` (e.g. name "pointDisplacement", time "0").
 PointVectorField read_point_vector_field(const std::filesystem::path& case_dir,
