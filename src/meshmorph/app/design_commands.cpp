@@ -37,7 +37,7 @@ void check_design_options(const Options& options)
     if (n > 1)
         throw UsageError("-variables, -variant, -variants and -sensitivity are mutually "
                          "exclusive (one design command per run)");
-    for (const char* other : {"vtk", "vtkFile", "parallel"})
+    for (const char* other : {"vtk", "vtkFile"})
         if (options.found(other))
             throw UsageError(std::string("-") + other +
                              " is not available with the design commands yet");

@@ -5,24 +5,34 @@
 #include "meshmorph/core/log.h"
 #include "meshmorph/design/case_fingerprint.h"
 #include "meshmorph/design/design_basis.h"
+#include "meshmorph/io/decomposed_case.h"
 #include "meshmorph/io/foam_dictionary.h"
 #include "meshmorph/io/foam_file.h"
 #include "meshmorph/morph/deformation_dict.h"
+#include "meshmorph/morph/distributed_case.h"
+#include "meshmorph/parallel/collective.h"
 
 namespace meshmorph::design
 {
 
 namespace fs = std::filesystem;
 
+fs::path design_mesh_case(const morph::MorphOptions& options)
+{
+    const fs::path case_dir = fs::absolute(options.case_dir).lexically_normal();
+    if (!fs::is_directory(case_dir))
+        throw IoError("case directory " + case_dir.string() + " does not exist");
+    return options.parallel
+               ? io::processor_case(case_dir, parallel::Communicator::world(), "morphMesh")
+               : case_dir;
+}
+
 DesignCase read_design_case(const morph::MorphOptions& options)
 {
-    if (options.parallel)
-        throw InvalidInput("-parallel is not available for design variables yet: run "
-                           "-variables, -variant and -sensitivity on the undecomposed case");
     DesignCase dc;
     dc.case_dir = fs::absolute(options.case_dir).lexically_normal();
-    if (!fs::is_directory(dc.case_dir))
-        throw IoError("case directory " + dc.case_dir.string() + " does not exist");
+    dc.mesh_case = design_mesh_case(options);
+    dc.parallel = options.parallel;
     fs::path dict =
         options.dict.empty() ? fs::path("system") / options.region / "morphDict" : options.dict;
     dc.dict_path = dict.is_relative() ? dc.case_dir / dict : dict;
@@ -37,11 +47,20 @@ DesignCase read_design_case(const morph::MorphOptions& options)
     io::PolyMeshReadOptions read_options;
     read_options.time = options.time;
     read_options.region = options.region;
-    dc.foam = io::read_poly_mesh(dc.case_dir, read_options);
-    dc.basis_path = design_basis_path(dc.case_dir, options.region);
-    log::info() << "Read mesh from " << dc.foam.points_dir.string() << ": "
-                << dc.foam.mesh.n_points() << " points, " << dc.foam.mesh.n_cells << " cells; "
-                << dc.variables.size() << " design variables";
+    const parallel::Communicator& comm = parallel::Communicator::world();
+    parallel::collective(comm,
+                         [&]
+                         {
+                             dc.foam = io::read_poly_mesh(dc.mesh_case, read_options);
+                             if (dc.parallel)
+                                 dc.decomposition = morph::read_decomposition(dc.foam, comm);
+                         });
+    dc.basis_path = design_basis_path(dc.mesh_case, options.region);
+    log::info() << "Read mesh from " << dc.foam.points_dir.string()
+                << (dc.parallel ? " (and the other processors)" : "") << ": "
+                << morph::global_count(dc.decomposition, dc.foam.mesh.n_points(), true)
+                << " points, " << morph::global_count(dc.decomposition, dc.foam.mesh.n_cells, false)
+                << " cells; " << dc.variables.size() << " design variables";
     return dc;
 }
 

@@ -8,6 +8,7 @@
 
 #include "meshmorph/design/design_variables.h"
 #include "meshmorph/io/read_poly_mesh.h"
+#include "meshmorph/morph/decomposition.h"
 #include "meshmorph/morph/deformation_settings.h"
 #include "meshmorph/morph/morph_result.h"
 #include "meshmorph/morph/morph_setup.h"
@@ -20,18 +21,26 @@ struct DesignBasisHeader;
 //! A case read for a design study.
 struct DesignCase
 {
-    std::filesystem::path case_dir, dict_path, basis_path;
+    //! mesh_case: the case, or in a -parallel run this rank's processor<rank> directory
+    //! (its mesh, its set-up file, its time directories).
+    std::filesystem::path case_dir, mesh_case, dict_path, basis_path;
     std::string dict_fingerprint; //!< of the morphDict's bytes
     morph::MorphSetup setup;
     morph::DeformationSettings settings;
     DesignVariables variables;
     io::FoamPolyMesh foam;
+    bool parallel = false;
+    morph::Decomposition decomposition; //!< -parallel: this rank's part
+    const morph::Decomposition* parts() const { return parallel ? &decomposition : nullptr; }
 };
+
+//! `<case>` or, with -parallel, `<case>/processor<rank>` (the MPI session must be running).
+std::filesystem::path design_mesh_case(const morph::MorphOptions& options);
 
 //! \brief Read the morphDict and the mesh of options.case_dir (options.time; a design
 //! command without -time reads the instance its set-up was made on, see design_study.h).
-//! \throw ParseError, IoError; InvalidInput when the dictionary has no designVariables, or
-//! for -parallel (not available for design variables yet).
+//! With -parallel every rank reads its processor directory's mesh (a collective).
+//! \throw ParseError, IoError; InvalidInput when the dictionary has no designVariables.
 DesignCase read_design_case(const morph::MorphOptions& options);
 
 //! \brief Refuse a set-up that was made for other points, topology or dictionary.

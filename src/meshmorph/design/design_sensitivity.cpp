@@ -7,6 +7,7 @@
 #include "meshmorph/core/number_format.h"
 #include "meshmorph/io/foam_file.h"
 #include "meshmorph/io/point_field.h"
+#include "meshmorph/parallel/collective.h"
 
 namespace meshmorph::design
 {
@@ -16,9 +17,11 @@ namespace fs = std::filesystem;
 Points read_point_sensitivity(const DesignStudy& study, const fs::path& file)
 {
     const DesignCase& dc = study.design_case();
-    const fs::path path = file.is_absolute() ? file : dc.case_dir / file;
+    const fs::path path = file.is_absolute() ? file : dc.mesh_case / file;
     const PolyMesh& mesh = dc.foam.mesh;
-    const io::PointVectorField field = io::read_point_vector_field(path, mesh, true);
+    io::PointVectorField field;
+    parallel::collective(parallel::Communicator::world(),
+                         [&] { field = io::read_point_vector_field(path, mesh, true); });
     Points g = field.internal;
     for (std::size_t p = 0; p < field.patches.size(); ++p)
     {
@@ -46,6 +49,8 @@ SensitivityResult design_sensitivity(DesignStudy& study, const fs::path& file)
     r.names = study.names();
     r.gradient = study.transpose_product(g);
     r.nonzero_points = Index((g.rowwise().norm().array() > 0.0).count());
+    const parallel::Communicator& comm = parallel::Communicator::world();
+    r.nonzero_points = Index(comm.sum(std::int64_t(r.nonzero_points))); // shared points twice
     std::ostringstream text;
     text << "// dJ/da of every design variable: sum over the mesh points of dJ/dx . F_j\n"
          << "// dJ/dx from " << file.string() << " (" << r.nonzero_points
@@ -53,8 +58,13 @@ SensitivityResult design_sensitivity(DesignStudy& study, const fs::path& file)
     for (std::size_t j = 0; j < r.names.size(); ++j)
         text << r.names[j] << " " << format_scalar(r.gradient[j], 17) << ";\n";
     const fs::path dir = study.design_case().case_dir / "postProcessing" / "morphMesh";
-    fs::create_directories(dir);
-    r.output = io::write_file_atomic(dir / "dJda", text.str());
+    parallel::on_master(comm,
+                        [&]
+                        {
+                            fs::create_directories(dir);
+                            r.output = io::write_file_atomic(dir / "dJda", text.str());
+                        });
+    r.output = dir / "dJda";
     log::info() << "dJ/da (" << r.names.size() << " design variables):";
     for (std::size_t j = 0; j < r.names.size(); ++j)
         log::info() << "    " << r.names[j] << "  " << format_scalar(r.gradient[j], 8);

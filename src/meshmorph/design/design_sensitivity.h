@@ -30,8 +30,9 @@ struct SensitivityResult
     Index nonzero_points = 0;       //!< points where dJ/dx is not zero
 };
 
-//! \brief dJ/dx of `file` (relative to the case directory unless absolute) over the study's
-//! mesh. \throw IoError, ParseError naming the file (another mesh: a wrong size).
+//! \brief dJ/dx of `file` (relative to the case directory unless absolute; with -parallel
+//! to each processor directory, as decomposePar writes a field) over the study's mesh. \throw
+//! IoError, ParseError naming the file (another mesh: a wrong size).
 Points read_point_sensitivity(const DesignStudy& study, const std::filesystem::path& file);
 
 //! \brief dJ/da from `file`; writes `postProcessing/morphMesh/dJda` (a dictionary of

@@ -3,6 +3,7 @@
 #include "meshmorph/design/design_setup.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
@@ -17,6 +18,7 @@
 #include "meshmorph/morph/morph_steps.h"
 #include "meshmorph/morph/point_displacement_input.h"
 #include "meshmorph/morph/point_morph.h"
+#include "meshmorph/parallel/collective.h"
 #include "meshmorph/parallel/communicator.h"
 
 namespace meshmorph::design
@@ -68,8 +70,8 @@ VariableBlock unit_field(const DesignCase& dc, const morph::Constraints& c)
     const PolyMesh& mesh = dc.foam.mesh;
     const Index n_fit = c.n_prescribed_points + c.n_slip_points;
     const auto deformation = morph::make_deformation(dc.settings, mesh.points, n_fit);
-    morph::PointMorph pm = morph::morph_points(mesh, c, *deformation, true, false, nullptr);
-    morph::measure_constraint_error(c, mesh.points, pm, nullptr);
+    morph::PointMorph pm = morph::morph_points(mesh, c, *deformation, true, false, dc.parts());
+    morph::measure_constraint_error(c, mesh.points, pm, dc.parts());
     VariableBlock block;
     block.fit = {pm.max_constraint_error, pm.relative_constraint_error,
                  double(pm.report.num_centres), pm.fit_seconds + pm.evaluate_seconds};
@@ -84,8 +86,15 @@ VariableBlock still_field(const DesignBasisHeader& h)
     return {{}, {}, Points::Zero(0, 3), Points::Zero(h.n_points, 3)};
 }
 
-void log_variable(const DesignVariable& v, const VariableBlock& b, bool moves)
+void log_variable(const DesignVariable& v, const VariableBlock& b, bool moves,
+                  const morph::Decomposition* parts)
 {
+    const auto largest = [&](const Points& p)
+    {
+        const double local = p.rows() > 0 ? p.rowwise().norm().maxCoeff() : 0.0;
+        return parts != nullptr ? parts->comm->max(local) : local;
+    };
+    const double prescribed = largest(b.prescribed), field = largest(b.field);
     if (!moves)
     {
         log::info() << "Variable " << v.name
@@ -93,9 +102,8 @@ void log_variable(const DesignVariable& v, const VariableBlock& b, bool moves)
                        "zero, gradient zero)";
         return;
     }
-    log::info() << "Variable " << v.name << ": max prescribed "
-                << format_scalar(b.prescribed.rowwise().norm().maxCoeff(), 4) << ", max field "
-                << format_scalar(b.field.rowwise().norm().maxCoeff(), 4) << ", constraint error "
+    log::info() << "Variable " << v.name << ": max prescribed " << format_scalar(prescribed, 4)
+                << ", max field " << format_scalar(field, 4) << ", constraint error "
                 << format_scalar(b.fit.relative_constraint_error, 3) << " (relative), "
                 << Index(b.fit.centres) << " centres, " << format_seconds(b.fit.seconds) << " s";
 }
@@ -110,38 +118,44 @@ DesignSetupResult setup_design(const morph::MorphOptions& options)
     const PolyMesh& mesh = dc.foam.mesh;
     morph::PointDisplacementInputs field;
     if (uses_point_displacement(dc.variables))
-        field = morph::read_point_displacement(dc.case_dir, dc.foam, options.region,
+        field = morph::read_point_displacement(dc.mesh_case, dc.foam, options.region,
                                                parallel::Communicator::world());
-    const VariableConstraints constraints(mesh, dc.setup, dc.variables, &field);
+    const VariableConstraints constraints(mesh, dc.setup, dc.variables, &field, dc.parts());
 
     DesignSetupResult result;
     result.method = morph::describe(dc.settings, 0);
     const CompactList cf = cell_faces(mesh);
-    result.before = morph::check_morph_mesh(mesh, cf, compute_geometry(mesh, cf), {}, {});
+    result.before =
+        morph::check_morph_mesh(mesh, cf, compute_geometry(mesh, cf), {}, dc.decomposition);
 
     const DesignBasisHeader header = make_header(dc, result.before);
     log::info() << "Setting up " << dc.variables.size() << " design variables (method "
                 << header.method << ")";
-    DesignBasisWriter writer(dc.basis_path, header);
+    const parallel::Communicator& comm = parallel::Communicator::world();
+    std::optional<DesignBasisWriter> writer_slot;
+    parallel::collective(comm, [&] { writer_slot.emplace(dc.basis_path, header); });
+    DesignBasisWriter& writer = *writer_slot;
     for (Index j = 0; j < dc.variables.size(); ++j)
     {
         const DesignVariable& v = dc.variables.variables[std::size_t(j)];
         const bool moves = constraints.moves_anything(j);
         const VariableBlock block =
             moves ? unit_field(dc, constraints.unit(j)) : still_field(header);
-        log_variable(v, block, moves);
-        writer.append(block);
+        log_variable(v, block, moves, dc.parts());
+        parallel::collective(comm, [&] { writer.append(block); });
         result.names.push_back(v.name);
         result.fits.push_back(block.fit);
         result.moves.push_back(moves);
         result.n_constrained = std::max(result.n_constrained, Index(block.constrained.size()));
+        result.n_constrained = Index(comm.max(std::int64_t(result.n_constrained)));
     }
     if (std::none_of(result.moves.begin(), result.moves.end(), [](char m) { return m != 0; }))
         throw InvalidInput(dc.dict_path.string() + ": no design variable moves any point");
-    writer.commit();
+    parallel::collective(comm, [&] { writer.commit(); });
     result.basis_file = dc.basis_path;
-    result.n_points = mesh.n_points();
-    result.bytes = std::filesystem::file_size(dc.basis_path);
+    result.n_points = morph::global_count(dc.decomposition, mesh.n_points(), true);
+    result.bytes =
+        std::uintmax_t(comm.sum(std::int64_t(std::filesystem::file_size(dc.basis_path))));
     result.seconds = clock.seconds();
     log::info() << "Wrote design set-up " << dc.basis_path.string() << " ("
                 << format_scalar(double(result.bytes) / 1048576.0, 4) << " MB) in "

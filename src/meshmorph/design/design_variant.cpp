@@ -3,6 +3,7 @@
 #include "meshmorph/design/design_variant.h"
 
 #include <cmath>
+#include <map>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
@@ -10,8 +11,10 @@
 #include "meshmorph/core/stopwatch.h"
 #include "meshmorph/io/case_instance.h"
 #include "meshmorph/mesh/mesh_geometry.h"
+#include "meshmorph/morph/distributed_case.h"
 #include "meshmorph/morph/morph_output.h"
 #include "meshmorph/morph/point_morph.h"
+#include "meshmorph/parallel/collective.h"
 #include "meshmorph/quality/cell_validity.h"
 #include "meshmorph/quality/check_mesh.h"
 
@@ -43,17 +46,18 @@ std::string refusal_text(const InvalidCells& after, const DesignBasisHeader& h)
 
 } // namespace
 
-DesignStudy::DesignStudy(const morph::MorphOptions& options)
-    : options_(options),
-      reader_(design_basis_path(std::filesystem::absolute(options.case_dir).lexically_normal(),
-                                options.region))
+DesignStudy::DesignStudy(const morph::MorphOptions& options) : options_(options)
 {
     const Stopwatch clock;
-    case_ = read_design_case(at_setup_instance(options, reader_.header()));
-    require_current(case_, reader_.header(), reader_.path().string());
+    const parallel::Communicator& comm = parallel::Communicator::world();
+    const std::filesystem::path mesh_case = design_mesh_case(options);
+    parallel::collective(comm,
+                         [&] { reader_.emplace(design_basis_path(mesh_case, options.region)); });
+    case_ = read_design_case(at_setup_instance(options, header()));
+    parallel::collective(comm, [&] { require_current(case_, header(), basis_file().string()); });
     cell_faces_ = cell_faces(case_.foam.mesh);
     read_seconds_ = clock.seconds();
-    log::info() << "Reusing the design set-up " << reader_.path().string() << " (" << names().size()
+    log::info() << "Reusing the design set-up " << basis_file().string() << " (" << names().size()
                 << " variables, method " << header().method << "): no fit";
 }
 
@@ -88,11 +92,11 @@ Points DesignStudy::combine(const std::vector<double>& a, ConstraintMisfit* misf
     if (misfit != nullptr)
         *misfit = {Points::Zero(header().n_points, 3),
                    std::vector<char>(std::size_t(header().n_points), 0)};
-    reader_.rewind();
+    reader_->rewind();
     VariableBlock block;
     for (double aj : a)
     {
-        reader_.next(block);
+        reader_->next(block);
         if (aj == 0.0)
             continue;
         sum += aj * block.field;
@@ -110,20 +114,56 @@ Points DesignStudy::combine(const std::vector<double>& a, ConstraintMisfit* misf
 
 std::vector<double> DesignStudy::transpose_product(const Points& g)
 {
+    // A point shared by ranks counts once: on the lowest rank holding it.
+    const Eigen::VectorXd weight = ownership_weights();
     std::vector<double> out;
-    reader_.rewind();
+    reader_->rewind();
     VariableBlock block;
     for (std::size_t j = 0; j < names().size(); ++j)
     {
-        reader_.next(block);
-        out.push_back((g.array() * block.field.array()).sum());
+        reader_->next(block);
+        const double local =
+            (weight.array() * (g.array() * block.field.array()).rowwise().sum()).sum();
+        out.push_back(case_.parallel ? parallel::Communicator::world().sum(local) : local);
     }
     return out;
 }
 
+Eigen::VectorXd DesignStudy::ownership_weights() const
+{
+    Eigen::VectorXd weight = Eigen::VectorXd::Ones(case_.foam.mesh.n_points());
+    if (!case_.parallel)
+        return weight;
+    const morph::Decomposition& d = case_.decomposition;
+    const parallel::Communicator& comm = *d.comm;
+    std::vector<Index> shared_global;
+    for (Index p : d.shared_points)
+        shared_global.push_back(d.global_point[std::size_t(p)]);
+    const std::vector<std::vector<Index>> all = comm.gather_values(shared_global);
+    std::vector<std::vector<char>> owned_by_rank;
+    if (comm.master())
+    {
+        std::map<Index, int> owner; // global point -> lowest rank holding it
+        for (std::size_t r = 0; r < all.size(); ++r)
+            for (Index g : all[r])
+                owner.try_emplace(g, int(r));
+        for (std::size_t r = 0; r < all.size(); ++r)
+        {
+            std::vector<char> owned;
+            for (Index g : all[r])
+                owned.push_back(owner.at(g) == int(r));
+            owned_by_rank.push_back(std::move(owned));
+        }
+    }
+    const std::vector<char> owned = comm.scatter_values(owned_by_rank);
+    for (std::size_t k = 0; k < d.shared_points.size(); ++k)
+        weight[d.shared_points[k]] = owned[k] ? 1.0 : 0.0;
+    return weight;
+}
+
 std::string DesignStudy::next_instance(const std::string& instance) const
 {
-    return io::next_time_name(io::list_times(case_.case_dir), instance,
+    return io::next_time_name(io::list_times(case_.mesh_case), instance,
                               io::read_time_settings(case_.case_dir));
 }
 
@@ -141,7 +181,9 @@ std::string DesignStudy::back_off(const Points& moved, const std::vector<double>
         only[j] = a[j];
         trial.points = moved - combine(only);
         const InvalidCells c = count_invalid_cells(trial, compute_geometry(trial, cell_faces_));
-        const Index count = c.negative_volume_cells + c.wrong_pyramids;
+        Index count = c.negative_volume_cells + c.wrong_pyramids;
+        if (case_.parallel)
+            count = Index(parallel::Communicator::world().sum(std::int64_t(count)));
         if (count < best_count)
         {
             best_count = count;
@@ -169,16 +211,25 @@ VariantResult DesignStudy::apply(const std::vector<double>& amplitudes, const st
             error = std::max(error, misfit.error.row(i).norm());
             r.max_prescribed = std::max(r.max_prescribed, (d.row(i) - misfit.error.row(i)).norm());
         }
+    if (case_.parallel)
+    {
+        const parallel::Communicator& comm = parallel::Communicator::world();
+        error = comm.max(error);
+        r.max_prescribed = comm.max(r.max_prescribed);
+    }
     r.max_constraint_error = error;
     r.relative_constraint_error = r.max_prescribed > 0 ? error / r.max_prescribed : 0.0;
     r.max_displacement = morph::max_norm(d);
+    if (case_.parallel)
+        r.max_displacement = parallel::Communicator::world().max(r.max_displacement);
     PolyMesh moved = mesh;
     moved.points += d;
     r.combine_seconds = stage.seconds();
 
     stage.restart();
     const MeshGeometry geometry = compute_geometry(moved, cell_faces_);
-    r.after = check_mesh(moved, cell_faces_, geometry, CheckMeshSettings{});
+    r.after = morph::check_morph_mesh(moved, cell_faces_, geometry, CheckMeshSettings{},
+                                      case_.decomposition);
     r.check_seconds = stage.seconds();
     const InvalidCells invalid{r.after.negative_volume_cells,
                                r.after.incorrectly_oriented_face_pyramids};
@@ -195,10 +246,15 @@ VariantResult DesignStudy::apply(const std::vector<double>& amplitudes, const st
         log::warning() << "-force: writing although " << r.refusal;
     }
     stage.restart();
-    if (!options_.overwrite)
-        morph::warn_if_replacing(case_.case_dir, instance, options_.region);
-    r.points_file =
-        morph::write_morphed_points(options_, moved.points, case_.foam, case_.case_dir, instance);
+    parallel::collective(parallel::Communicator::world(),
+                         [&]
+                         {
+                             if (!options_.overwrite)
+                                 morph::warn_if_replacing(case_.mesh_case, instance,
+                                                          options_.region);
+                             r.points_file = morph::write_morphed_points(
+                                 options_, moved.points, case_.foam, case_.mesh_case, instance);
+                         });
     r.written = true;
     r.write_seconds = stage.seconds();
     return r;

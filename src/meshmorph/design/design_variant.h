@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,9 +54,9 @@ public:
     explicit DesignStudy(const morph::MorphOptions& options);
 
     const DesignCase& design_case() const { return case_; }
-    const std::filesystem::path& basis_file() const { return reader_.path(); }
-    const DesignBasisHeader& header() const { return reader_.header(); }
-    const std::vector<std::string>& names() const { return reader_.header().names; }
+    const std::filesystem::path& basis_file() const { return reader_->path(); }
+    const DesignBasisHeader& header() const { return reader_->header(); }
+    const std::vector<std::string>& names() const { return reader_->header().names; }
     double read_seconds() const { return read_seconds_; }
 
     //! \brief Check amplitudes against the variables' count and bounds.
@@ -69,14 +70,16 @@ public:
 
     //! sum_j a_j F_j (nPoints x 3) and, if asked, its misfit at the constrained points.
     Points combine(const std::vector<double>& a, ConstraintMisfit* misfit = nullptr);
-    //! sum_i g_i . F_j(i) for every variable j (g: nPoints x 3).
+    //! sum_i g_i . F_j(i) for every variable j (g: nPoints x 3); with -parallel summed over
+    //! the ranks, each point once (a collective).
     std::vector<double> transpose_product(const Points& g);
 
 private:
+    Eigen::VectorXd ownership_weights() const;
     std::string back_off(const Points& moved, const std::vector<double>& a, Index invalid);
 
     morph::MorphOptions options_;
-    DesignBasisReader reader_;
+    std::optional<DesignBasisReader> reader_;
     DesignCase case_;
     CompactList cell_faces_;
     double read_seconds_ = 0.0;

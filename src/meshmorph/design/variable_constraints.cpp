@@ -74,13 +74,13 @@ void freeze_handles(const DesignVariables& vars, morph::MorphSetup& base)
 //! The patch keys of a variable or lattice as boundary entries, resolved by OpenFOAM's rules.
 std::vector<char> patches_of(const PolyMesh& mesh, const std::string& dict_path,
                              const std::vector<std::string>& keys,
-                             const std::vector<bool>& is_regex, std::size_t line)
+                             const std::vector<bool>& is_regex, std::size_t line, bool decomposed)
 {
     morph::MorphSetup only;
     only.dict_path = dict_path;
     for (std::size_t k = 0; k < keys.size(); ++k)
         only.boundary.push_back({keys[k], bool(is_regex[k]), morph::Motion{}, line});
-    const std::vector<morph::PatchAssignment> a = morph::assign_patches(mesh, only);
+    const std::vector<morph::PatchAssignment> a = morph::assign_patches(mesh, only, decomposed);
     std::vector<char> moved(a.size(), 0);
     for (std::size_t p = 0; p < a.size(); ++p)
         moved[p] = a[p].entry >= 0;
@@ -113,21 +113,26 @@ void linearise_rotations(const PolyMesh& mesh, morph::Constraints& c)
 
 VariableConstraints::VariableConstraints(const PolyMesh& mesh, const morph::MorphSetup& base,
                                          const DesignVariables& variables,
-                                         const morph::PointDisplacementInputs* point_displacement)
-    : mesh_(mesh), base_(base), variables_(variables), point_displacement_(point_displacement)
+                                         const morph::PointDisplacementInputs* point_displacement,
+                                         const morph::Decomposition* decomposition)
+    : mesh_(mesh), base_(base), variables_(variables), point_displacement_(point_displacement),
+      decomposition_(decomposition)
 {
+    const bool decomposed = decomposition_ != nullptr;
     require_still_boundary(base_);
     freeze_handles(variables_, base_);
-    frozen_ = morph::assign_patches(mesh_, base_);
+    frozen_ = morph::assign_patches(mesh_, base_, decomposed);
     for (const DesignVariable& v : variables_.variables)
     {
         std::vector<char> moved(mesh_.patches.size(), 0);
         if (v.kind == DesignVariable::Kind::patches)
-            moved = patches_of(mesh_, variables_.dict_path, v.patch_keys, v.key_is_regex, v.line);
+            moved = patches_of(mesh_, variables_.dict_path, v.patch_keys, v.key_is_regex, v.line,
+                               decomposed);
         else if (v.kind == DesignVariable::Kind::lattice_point)
         {
             const DesignLattice& l = variables_.lattices[v.lattice];
-            moved = patches_of(mesh_, variables_.dict_path, l.patch_keys, l.key_is_regex, l.line);
+            moved = patches_of(mesh_, variables_.dict_path, l.patch_keys, l.key_is_regex, l.line,
+                               decomposed);
         }
         for (std::size_t p = 0; p < moved.size(); ++p)
             if (moved[p])
@@ -161,6 +166,12 @@ Points VariableConstraints::lattice_field(const DesignVariable& v) const
 
 bool VariableConstraints::moves_anything(Index j) const
 {
+    const bool local = moves_any_local_point(j);
+    return decomposition_ != nullptr ? decomposition_->comm->any(local) : local;
+}
+
+bool VariableConstraints::moves_any_local_point(Index j) const
+{
     const DesignVariable& v = variables_.variables[std::size_t(j)];
     if (v.kind != DesignVariable::Kind::lattice_point)
         return true;
@@ -190,6 +201,7 @@ morph::Constraints VariableConstraints::unit(Index j) const
     std::vector<morph::PatchAssignment> assignment = frozen_;
     morph::ConstraintInputs inputs;
     inputs.patches = &assignment;
+    inputs.decomposition = decomposition_;
     Points lattice_values;
     // The handles other variables move are left out (their points follow this variable's
     // field, so that variables add up); this variable's handle moves by its vector.

@@ -16,6 +16,7 @@
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/design/design_variables.h"
 #include "meshmorph/morph/constraint_set.h"
+#include "meshmorph/morph/decomposition.h"
 #include "meshmorph/morph/morph_setup.h"
 #include "meshmorph/morph/point_displacement_input.h"
 
@@ -31,9 +32,12 @@ public:
     //! \throw ParseError/InvalidInput naming the dictionary entry: a moving boundary entry or
     //! handle that is no variable, an unknown patch or handle, a handle variable's handle
     //! that is missing.
+    //! \param decomposition -parallel: this rank's part (null: the whole mesh); then unit()
+    //! and moves_anything() are collectives.
     VariableConstraints(const PolyMesh& mesh, const morph::MorphSetup& base,
                         const DesignVariables& variables,
-                        const morph::PointDisplacementInputs* point_displacement);
+                        const morph::PointDisplacementInputs* point_displacement,
+                        const morph::Decomposition* decomposition = nullptr);
 
     //! \brief The constraints of variable j at amplitude 1 (rotations linearised).
     //! \throw InvalidInput naming the variable when it moves no point.
@@ -44,13 +48,14 @@ public:
     bool moves_anything(Index j) const;
 
 private:
-    std::vector<morph::PatchAssignment> touched_by(const DesignVariable& v) const;
+    bool moves_any_local_point(Index j) const;
     Points lattice_field(const DesignVariable& v) const;
 
     const PolyMesh& mesh_;
     morph::MorphSetup base_; //!< handles' displacements zero
     const DesignVariables& variables_;
     const morph::PointDisplacementInputs* point_displacement_;
+    const morph::Decomposition* decomposition_;
     std::vector<morph::PatchAssignment> frozen_;   //!< every patch a variable moves: fixed
     std::vector<std::vector<char>> moved_patches_; //!< per variable: its patches
 };
