@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include "deform_test_helpers.h"
+#include "meshmorph/core/exceptions.h"
 #include "meshmorph/deform/corrected_deformation.h"
 #include "meshmorph/deform/greedy_rbf_deformation.h"
+#include "meshmorph/deform/rbf_deformation.h"
 
 namespace meshmorph
 {
@@ -38,6 +40,23 @@ TEST(CorrectedDeformation, a_coarse_greedy_fit_becomes_exact_with_a_bounded_corr
     const Points coarse_only = displacements(g, probe);
     const double correction = (total - coarse_only).rowwise().norm().maxCoeff();
     EXPECT_LE(correction, corrected.report().max_residual * (1.0 + 1e-12));
+}
+
+TEST(CorrectedDeformation, a_direct_rbf_on_nearly_coincident_constraints_falls_back_to_greedy)
+{
+    // Constraints in wall-resolved layers: pairs 1e-9 apart (as where a wall-resolved inlet
+    // meets a wall), which make the triharmonic system singular in double precision.
+    const Points base = test::sphere_points(400, Vector3(0.5, 0.5, 0.5), 0.5);
+    Points x(2 * base.rows(), 3);
+    x << base, base.rowwise() + Eigen::RowVector3d(1e-9, 0, 0);
+    const Points d = test::smooth_field(x);
+    RbfDeformation alone;
+    EXPECT_THROW(alone.fit(x, d), SolverError) << "the premise: the direct system is singular";
+    CorrectedDeformation corrected(std::make_unique<RbfDeformation>());
+    corrected.fit(x, d);
+    EXPECT_EQ(corrected.report().method, "greedy-rbf+idw");
+    const double max_d = test::max_norm(d);
+    EXPECT_LE((displacements(corrected, x) - d).rowwise().norm().maxCoeff(), 1e-12 * max_d);
 }
 
 } // namespace meshmorph

@@ -3,7 +3,10 @@
 #include "meshmorph/deform/corrected_deformation.h"
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
 #include "meshmorph/deform/field_stream.h"
+#include "meshmorph/deform/greedy_rbf_deformation.h"
+#include "meshmorph/deform/rbf_deformation.h"
 
 namespace meshmorph
 {
@@ -21,7 +24,28 @@ CorrectedDeformation::~CorrectedDeformation() = default;
 void CorrectedDeformation::fit(const Eigen::Ref<const Points>& handles,
                                const Eigen::Ref<const Points>& displacements)
 {
-    global_->fit(handles, displacements);
+    try
+    {
+        global_->fit(handles, displacements);
+    }
+    catch (const SolverError& e)
+    {
+        // A direct RBF on constraints that nearly coincide (the layers of a wall-resolved
+        // mesh where an inlet meets a wall: spacings of 1e-6 of the domain) is numerically
+        // singular. The greedy RBF chooses centres that stay apart, and the correction
+        // keeps the field exact at every constraint either way.
+        const auto* direct = dynamic_cast<const RbfDeformation*>(global_.get());
+        if (direct == nullptr)
+            throw;
+        log::warning() << e.what()
+                       << "; using the greedy RBF instead, whose centres stay apart (the IDW "
+                          "correction keeps the field exact; rbf { greedy { } } chooses it "
+                          "from the start)";
+        GreedySettings greedy;
+        greedy.rbf = direct->settings();
+        global_ = std::make_unique<GreedyRbfDeformation>(greedy);
+        global_->fit(handles, displacements);
+    }
     Points residual(handles.rows(), 3);
     global_->evaluate(handles, residual);
     residual = displacements - residual;

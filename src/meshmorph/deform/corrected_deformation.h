@@ -24,6 +24,8 @@ public:
     ~CorrectedDeformation() override;
 
     //! Fits the global part, evaluates its residual at the handles, fits the correction.
+    //! A direct RbfDeformation whose system is numerically singular (SolverError) is
+    //! replaced by a GreedyRbfDeformation with the same kernel, with a warning.
     void fit(const Eigen::Ref<const Points>& handles,
              const Eigen::Ref<const Points>& displacements) override;
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
