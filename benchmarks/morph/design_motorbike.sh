@@ -102,8 +102,26 @@ run_variants all "(1 2 1 1 1)"
 all_wall=$variant_wall all_rss=$variant_rss
 say "   lift alone $lift_wall s $lift_rss MB; all five $all_wall s $all_rss MB"
 
-/usr/bin/python3 "$script_dir/compare_points.py" "$(ls -d "$out"/peer/runs/*/morphMesh | head -1)" "$case" 0.0675781 >"$out/agreement.txt" || true
+oneoff=$(ls -d "$out"/peer/runs/*/morphMesh | head -1)
+mkdir -p "$out/lift_variant/1/polyMesh"
+if [ -f "$out/lift.points" ]; then cp "$out/lift.points" "$out/lift_variant/1/polyMesh/points"; else gunzip -c "$out/lift.points.gz" > "$out/lift_variant/1/polyMesh/points"; fi
+[ -f "$oneoff/1/polyMesh/points" ] || gunzip -k "$oneoff/1/polyMesh/points.gz"
+/usr/bin/python3 "$script_dir/compare_points.py" "$oneoff" "$out/lift_variant" 0.0675781 >"$out/agreement.txt" || true
 say "   lift variant against the one-off morph: $(cat "$out/agreement.txt")"
+
+say "3b. a design of experiments: 20 rows in one run"
+/usr/bin/python3 - "$out/doe.csv" <<'PY'
+import math, sys
+with open(sys.argv[1], "w") as f:
+    f.write("lift pitch wheel rider fairing\n")
+    for r in range(20):
+        f.write(" ".join("%.4g" % v for v in (math.sin(r), 2 * math.cos(1.3 * r), math.sin(0.7 * r),
+                                             math.cos(0.4 * r), math.sin(1.9 * r))) + "\n")
+PY
+timed "$out/log.variants" "$morph_mesh" -case "$case" -variants "$out/doe.csv" -json "$out/doe.json"
+doe_wall=$wall doe_rss=$rss
+doe_valid=$(/usr/bin/python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['rows']; print(sum(1 for x in r if x['valid'] and x['written']), 'of', len(r))" "$out/doe.json")
+say "   $doe_valid written and valid in $doe_wall s ($doe_rss MB)"
 
 if $lattice; then
     say "4. a lattice of 100 variables"
@@ -146,6 +164,7 @@ fi
     echo "| -variables (5 variables) | $setup_wall | $setup_rss | $(r "$setup_wall" "$oneoff_wall") | $(r "$setup_wall" "$movemesh_wall") |"
     echo "| -variant (1 0 0 0 0) (best of 3) | $lift_wall | $lift_rss | $(r "$lift_wall" "$oneoff_wall") | $(r "$lift_wall" "$movemesh_wall") |"
     echo "| -variant (1 2 1 1 1) (best of 3) | $all_wall | $all_rss | $(r "$all_wall" "$oneoff_wall") | $(r "$all_wall" "$movemesh_wall") |"
+    echo "| -variants, 20 rows ($doe_valid valid and written) | $doe_wall | $doe_rss | $(r "$doe_wall" "$oneoff_wall") | $(r "$doe_wall" "$movemesh_wall") |"
     if $lattice; then
         echo "| lattice -variables ($n variables, $((lattice_bytes / 1048576)) MB file) | $lattice_setup_wall | $lattice_setup_rss | | |"
         echo "| lattice -variant | $lattice_variant_wall | $lattice_variant_rss | | |"
