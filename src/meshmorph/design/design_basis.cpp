@@ -219,6 +219,15 @@ void DesignBasisReader::next(VariableBlock& block)
     }
 }
 
+void DesignBasisReader::skip()
+{
+    std::int64_t c = 0;
+    in_.seekg(32, std::ios::cur);
+    if (!read_raw(in_, &c, 1) || c < 0)
+        throw ParseError(path_.string(), 0, "truncated design set-up");
+    in_.seekg(std::streamoff(8 * (c + 3 * c + 3 * header_.n_points)), std::ios::cur);
+}
+
 void DesignBasisReader::rewind()
 {
     in_.clear();

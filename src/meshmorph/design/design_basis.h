@@ -101,6 +101,8 @@ public:
     const std::filesystem::path& path() const { return path_; }
     //! The next variable's block into `block` (buffers reused). \throw ParseError if truncated.
     void next(VariableBlock& block);
+    //! Past the next variable's block without reading its values.
+    void skip();
     //! Back to the first block.
     void rewind();
 

@@ -56,6 +56,7 @@ DesignStudy::DesignStudy(const morph::MorphOptions& options) : options_(options)
     case_ = read_design_case(at_setup_instance(options, header()));
     parallel::collective(comm, [&] { require_current(case_, header(), basis_file().string()); });
     cell_faces_ = cell_faces(case_.foam.mesh);
+    x0_ = case_.foam.mesh.points;
     read_seconds_ = clock.seconds();
     log::info() << "Reusing the design set-up " << basis_file().string() << " (" << names().size()
                 << " variables, method " << header().method << "): no fit";
@@ -96,9 +97,12 @@ Points DesignStudy::combine(const std::vector<double>& a, ConstraintMisfit* misf
     VariableBlock block;
     for (double aj : a)
     {
-        reader_->next(block);
         if (aj == 0.0)
+        {
+            reader_->skip();
             continue;
+        }
+        reader_->next(block);
         sum += aj * block.field;
         if (misfit == nullptr)
             continue;
@@ -172,7 +176,7 @@ std::string DesignStudy::back_off(const Points& moved, const std::vector<double>
     // The variable whose removal leaves the fewest invalid cells.
     std::string best;
     Index best_count = invalid;
-    PolyMesh trial = case_.foam.mesh;
+    PolyMesh& trial = case_.foam.mesh;
     for (std::size_t j = 0; j < a.size(); ++j)
     {
         if (a[j] == 0.0)
@@ -194,16 +198,9 @@ std::string DesignStudy::back_off(const Points& moved, const std::vector<double>
     return best;
 }
 
-VariantResult DesignStudy::apply(const std::vector<double>& amplitudes, const std::string& instance)
+void DesignStudy::measure_misfit(const Points& d, const ConstraintMisfit& misfit,
+                                 VariantResult& r) const
 {
-    check_amplitudes(amplitudes);
-    VariantResult r;
-    r.amplitudes = amplitudes;
-    r.output_instance = instance;
-    Stopwatch stage;
-    const PolyMesh& mesh = case_.foam.mesh;
-    ConstraintMisfit misfit;
-    const Points d = combine(amplitudes, &misfit);
     double error = 0.0;
     for (Index i = 0; i < d.rows(); ++i)
         if (misfit.constrained[std::size_t(i)])
@@ -211,19 +208,53 @@ VariantResult DesignStudy::apply(const std::vector<double>& amplitudes, const st
             error = std::max(error, misfit.error.row(i).norm());
             r.max_prescribed = std::max(r.max_prescribed, (d.row(i) - misfit.error.row(i)).norm());
         }
+    r.max_displacement = morph::max_norm(d);
     if (case_.parallel)
     {
         const parallel::Communicator& comm = parallel::Communicator::world();
         error = comm.max(error);
         r.max_prescribed = comm.max(r.max_prescribed);
+        r.max_displacement = comm.max(r.max_displacement);
     }
     r.max_constraint_error = error;
     r.relative_constraint_error = r.max_prescribed > 0 ? error / r.max_prescribed : 0.0;
-    r.max_displacement = morph::max_norm(d);
-    if (case_.parallel)
-        r.max_displacement = parallel::Communicator::world().max(r.max_displacement);
-    PolyMesh moved = mesh;
-    moved.points += d;
+}
+
+bool DesignStudy::refuse(const std::vector<double>& amplitudes, VariantResult& r)
+{
+    const InvalidCells invalid{r.after.negative_volume_cells,
+                               r.after.incorrectly_oriented_face_pyramids};
+    if (!invalid.worse_than(
+            {header().negative_volume_cells_before, header().wrong_pyramids_before}))
+        return false;
+    r.refusal = refusal_text(invalid, header());
+    const Points moved = case_.foam.mesh.points;
+    r.back_off =
+        back_off(moved, amplitudes, invalid.negative_volume_cells + invalid.wrong_pyramids);
+    case_.foam.mesh.points = moved;
+    if (!options_.force)
+    {
+        r.refused = true;
+        return true;
+    }
+    log::warning() << "-force: writing although " << r.refusal;
+    return false;
+}
+
+VariantResult DesignStudy::apply(const std::vector<double>& amplitudes, const std::string& instance)
+{
+    check_amplitudes(amplitudes);
+    VariantResult r;
+    r.amplitudes = amplitudes;
+    r.output_instance = instance;
+    Stopwatch stage;
+    ConstraintMisfit misfit;
+    const Points d = combine(amplitudes, &misfit);
+    measure_misfit(d, misfit, r);
+    // The study's mesh carries the variant's points until the next variant (no copy of the
+    // topology per design).
+    PolyMesh& moved = case_.foam.mesh;
+    moved.points = x0_ + d;
     r.combine_seconds = stage.seconds();
 
     stage.restart();
@@ -231,20 +262,8 @@ VariantResult DesignStudy::apply(const std::vector<double>& amplitudes, const st
     r.after = morph::check_morph_mesh(moved, cell_faces_, geometry, CheckMeshSettings{},
                                       case_.decomposition);
     r.check_seconds = stage.seconds();
-    const InvalidCells invalid{r.after.negative_volume_cells,
-                               r.after.incorrectly_oriented_face_pyramids};
-    if (invalid.worse_than({header().negative_volume_cells_before, header().wrong_pyramids_before}))
-    {
-        r.refusal = refusal_text(invalid, header());
-        r.back_off = back_off(moved.points, amplitudes,
-                              invalid.negative_volume_cells + invalid.wrong_pyramids);
-        if (!options_.force)
-        {
-            r.refused = true;
-            return r;
-        }
-        log::warning() << "-force: writing although " << r.refusal;
-    }
+    if (refuse(amplitudes, r))
+        return r;
     stage.restart();
     parallel::collective(parallel::Communicator::world(),
                          [&]

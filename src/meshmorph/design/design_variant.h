@@ -76,12 +76,16 @@ public:
 
 private:
     Eigen::VectorXd ownership_weights() const;
+    void measure_misfit(const Points& d, const ConstraintMisfit& misfit, VariantResult& r) const;
+    //! Whether the variant in the study's mesh is refused (new invalid cells, no force).
+    bool refuse(const std::vector<double>& amplitudes, VariantResult& r);
     std::string back_off(const Points& moved, const std::vector<double>& a, Index invalid);
 
     morph::MorphOptions options_;
     std::optional<DesignBasisReader> reader_;
     DesignCase case_;
     CompactList cell_faces_;
+    Points x0_; //!< the set-up's points (the study's mesh holds the last variant's)
     double read_seconds_ = 0.0;
 };
 
