@@ -9,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 
 #include "helpers.h"
@@ -118,7 +120,8 @@ class DesignVariables : public ::testing::Test
 protected:
     static void SetUpTestSuite()
     {
-        dir_ = new fs::path(pipe_case("shared", design_dict));
+        // One case per process: CTest runs each test in its own process, in parallel.
+        dir_ = new fs::path(pipe_case("shared_" + std::to_string(::getpid()), design_dict));
         const test::MorphRun r = test::run_morph_mesh(
             {"-case", dir_->string(), "-variables", "-json", (*dir_ / "setup.json").string()});
         ASSERT_EQ(r.code, 0) << r.log;
@@ -385,6 +388,12 @@ TEST_F(DesignVariables, bad_amplitudes_and_foreign_files_are_refused_and_leave_t
                      "List<vector> 2((0 0 0)(1 1 1));\nboundaryField { \".*\" { type calculated; "
                      "value uniform (0 0 0); } }\n");
     refused({"-sensitivity", "0/otherMesh"}, "otherMesh");
+    // OpenFOAM's default normal sensitivity (a density, not dJ/dx).
+    test::write_text(*dir_ / "0/pointSensNormal",
+                     "FoamFile { version 2.0; format ascii; class pointScalarField; object "
+                     "pointSensNormal; }\ndimensions [0 0 0 0 0 0 0];\ninternalField uniform 0;\n"
+                     "boundaryField { \".*\" { type calculated; } }\n");
+    refused({"-sensitivity", "0/pointSensNormal"}, "includeSurfaceArea true");
     refused({"-variant", "(1)", "-variables"}, "mutually exclusive");
 }
 
@@ -413,6 +422,53 @@ TEST(DesignVariableSetUp, a_stale_or_foreign_set_up_is_refused)
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.log.find("not a meshMorph design set-up"), std::string::npos) << r.log;
     EXPECT_FALSE(fs::exists(dir / "1"));
+}
+
+TEST(DesignVariableSetUp, a_handle_rotated_and_scaled_moves_by_the_linearised_motion)
+{
+    const fs::path dir =
+        pipe_case("handle_motions",
+                  "boundary { default { type fixed; } }\n"
+                  "handles { core { box (-0.1 -0.1 0.9) (0.1 0.1 1.1); displacement (0 0 0); } }\n"
+                  "designVariables {\n"
+                  "  spin { handle core; type rotate; origin (0 0 1); axis (1 0 0); angle 10; }\n"
+                  "  grow { handle core; type scale; origin (0 0 1); factor 1.2; }\n}\n");
+    ASSERT_EQ(test::run_morph_mesh({"-case", dir.string(), "-variables"}).code, 0);
+    const test::MorphRun r = test::run_morph_mesh({"-case", dir.string(), "-variant", "(0.5 1)"});
+    ASSERT_EQ(r.code, 0) << r.log;
+    const Points x0 = points_at(dir, "constant"), x = points_at(dir, "1");
+    const double theta = 0.5 * 10.0 * M_PI / 180.0;
+    int in_handle = 0;
+    for (Index i = 0; i < x0.rows(); ++i)
+    {
+        const Vector3 p = x0.row(i).transpose(), c(0, 0, 1);
+        if ((p - c).cwiseAbs().maxCoeff() > 0.1)
+            continue;
+        ++in_handle;
+        const Vector3 expected = theta * Vector3::UnitX().cross(p - c) + 0.2 * (p - c);
+        EXPECT_LT((x.row(i).transpose() - p - expected).norm(), 1e-12) << "point " << i;
+    }
+    EXPECT_GT(in_handle, 8);
+}
+
+TEST(DesignVariableSetUp, dmffd_targets_are_design_variables_too)
+{
+    // DM-FFD with handle targets (the paper's direct manipulation) as variables: a least-
+    // squares fit of the lattice, so the targets are met as closely as the lattice allows.
+    const fs::path dir = pipe_case(
+        "dmffd", "method dmffd;\ndmffd { lattice (8 8 8); }\n"
+                 "boundary { default { type fixed; } }\n"
+                 "handles { core { box (-0.1 -0.1 0.9) (0.1 0.1 1.1); displacement (0 0 0); } }\n"
+                 "designVariables { lift { handle core; vector (0 0.05 0); } }\n");
+    const fs::path json = dir / "variant.json";
+    ASSERT_EQ(test::run_morph_mesh({"-case", dir.string(), "-variables"}).code, 0);
+    const test::MorphRun r =
+        test::run_morph_mesh({"-case", dir.string(), "-variant", "(1)", "-json", json.string()});
+    ASSERT_EQ(r.code, 0) << r.log;
+    const nlohmann::json j = nlohmann::json::parse(read_text(json));
+    EXPECT_NEAR(j["maxPrescribedDisplacement"].get<double>(), 0.05, 1e-12);
+    EXPECT_LT(j["relativeConstraintError"].get<double>(), 0.5) << "the lattice follows the target";
+    EXPECT_GT(j["maxDisplacement"].get<double>(), 0.01);
 }
 
 TEST(DesignVariableSetUp, a_moving_boundary_entry_and_a_surface_variable_are_refused_by_name)

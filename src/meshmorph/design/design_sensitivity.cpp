@@ -3,6 +3,7 @@
 
 #include <sstream>
 
+#include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/core/number_format.h"
 #include "meshmorph/io/foam_file.h"
@@ -20,8 +21,27 @@ Points read_point_sensitivity(const DesignStudy& study, const fs::path& file)
     const fs::path path = file.is_absolute() ? file : dc.mesh_case / file;
     const PolyMesh& mesh = dc.foam.mesh;
     io::PointVectorField field;
-    parallel::collective(parallel::Communicator::world(),
-                         [&] { field = io::read_point_vector_field(path, mesh, true); });
+    parallel::collective(
+        parallel::Communicator::world(),
+        [&]
+        {
+            try
+            {
+                field = io::read_point_vector_field(path, mesh, true);
+            }
+            catch (const ParseError& e)
+            {
+                if (std::string(e.what()).find("pointScalarField") == std::string::npos)
+                    throw;
+                throw ParseError(path.string(), 0,
+                                 "a pointScalarField (a normal sensitivity such as "
+                                 "pointSensNormal, by default divided by the points' "
+                                 "areas) is not dJ/dx: give the pointVectorField "
+                                 "pointSensVec..., written by OpenFOAM's adjoint with "
+                                 "sensitivities { writeAllSurfaceFiles true; "
+                                 "includeSurfaceArea true; }");
+            }
+        });
     Points g = field.internal;
     for (std::size_t p = 0; p < field.patches.size(); ++p)
     {

@@ -80,18 +80,31 @@ DesignVariable read_patch_variable(const io::FoamEntry& e)
     return v;
 }
 
-//! A variable that translates one handle: `handle <name>; vector (dx dy dz);`.
+//! A variable that moves one handle's points: `handle <name>; vector (dx dy dz);` (a
+//! translation), or `handle <name>; type translate|rotate|scale; <parameters>;`.
 DesignVariable read_handle_variable(const io::FoamEntry& e)
 {
     const io::FoamDictionary& d = e.dict();
-    d.check_keywords({"handle", "vector", "bounds"}, "a handle design variable");
     DesignVariable v;
     v.kind = DesignVariable::Kind::handle;
+    if (d.found("type"))
+    {
+        v.motion = morph::read_motion(e, {"handle", "bounds"});
+        if (v.motion.type != MotionType::translate && v.motion.type != MotionType::rotate &&
+            v.motion.type != MotionType::scale)
+            throw d.entry("type").error("a handle variable translates, rotates or scales its "
+                                        "points, not type " +
+                                        morph::to_string(v.motion.type));
+    }
+    else
+    {
+        d.check_keywords({"handle", "vector", "bounds"}, "a handle design variable");
+        v.motion.type = MotionType::translate;
+        v.motion.vector = d.get<Vector3>("vector");
+        if (!v.motion.vector.allFinite())
+            throw d.entry("vector").error("non-finite value");
+    }
     v.handle = d.get<std::string>("handle");
-    v.motion.type = MotionType::translate;
-    v.motion.vector = d.get<Vector3>("vector");
-    if (!v.motion.vector.allFinite())
-        throw d.entry("vector").error("non-finite value");
     v.bounds = read_amplitude_bounds(d);
     return v;
 }

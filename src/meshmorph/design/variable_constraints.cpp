@@ -87,6 +87,24 @@ std::vector<char> patches_of(const PolyMesh& mesh, const std::string& dict_path,
     return moved;
 }
 
+//! The unit displacement of a rotation: theta * axis x (x - origin), theta in radians.
+Vector3 linear_rotation(const morph::Motion& m, const Vector3& x)
+{
+    return m.angle_degrees * M_PI / 180.0 * m.axis.normalized().cross(x - m.origin);
+}
+
+//! A handle variable's unit motion on its handle: a vector, or per point (rotations
+//! linearised; a scaling is linear already).
+void set_unit_motion(const morph::Motion& motion, morph::HandleEntry& h)
+{
+    if (motion.type == MotionType::translate)
+        h.displacement = motion.vector;
+    else if (motion.type == MotionType::rotate)
+        h.displacement_at = [motion](const Vector3& x) { return linear_rotation(motion, x); };
+    else
+        h.displacement_at = [motion](const Vector3& x) { return motion.displacement(x); };
+}
+
 //! Rotations of the unit set replaced by their linearisation theta * axis x (x - origin), so
 //! that amplitude a moves every point by a times its unit displacement.
 void linearise_rotations(const PolyMesh& mesh, morph::Constraints& c)
@@ -100,8 +118,7 @@ void linearise_rotations(const PolyMesh& mesh, morph::Constraints& c)
         Vector3 x = mesh.points.row(c.points[i]).transpose();
         if (c.empty_planes)
             x = c.empty_planes->project(x);
-        const double theta = m.angle_degrees * M_PI / 180.0;
-        Vector3 d = theta * m.axis.normalized().cross(x - m.origin);
+        Vector3 d = linear_rotation(m, x);
         if (c.empty_planes)
             d = c.empty_planes->in_plane(d);
         c.displacements.row(Eigen::Index(i)) = d.transpose();
@@ -215,7 +232,7 @@ morph::Constraints VariableConstraints::unit(Index j) const
     {
         for (morph::HandleEntry& h : setup.handles)
             if (h.name == v.handle)
-                h.displacement = v.motion.vector;
+                set_unit_motion(v.motion, h);
     }
     else
     {

@@ -134,6 +134,23 @@ std::vector<Index> select_handle_points(const PolyMesh& mesh, const HandleEntry&
     return selected;
 }
 
+namespace
+{
+
+//! The handle's displacement at x (evaluated on the reference empty plane in 2D cases,
+//! as the boundary's closed-form motions are).
+Vector3 handle_displacement(const HandleEntry& handle, const Vector3& x,
+                            const std::optional<EmptyPlanes>& planes)
+{
+    if (!handle.displacement_at)
+        return handle.displacement;
+    if (!planes)
+        return handle.displacement_at(x);
+    return planes->in_plane(handle.displacement_at(planes->project(x)));
+}
+
+} // namespace
+
 std::vector<Claim> collect_handle_claims(const PolyMesh& mesh, const MorphSetup& setup,
                                          const std::optional<EmptyPlanes>& planes, double tolerance,
                                          const Decomposition* decomposition)
@@ -145,7 +162,8 @@ std::vector<Claim> collect_handle_claims(const PolyMesh& mesh, const MorphSetup&
         const Index source = static_cast<Index>(h);
         for (Index p :
              select_handle_points(mesh, handle, planes, tolerance, setup.dict_path, decomposition))
-            claims.push_back({p, source, source, Claim::Kind::value, handle.displacement});
+            claims.push_back({p, source, source, Claim::Kind::value,
+                              handle_displacement(handle, mesh.points.row(p).transpose(), planes)});
     }
     std::stable_sort(claims.begin(), claims.end(),
                      [](const Claim& a, const Claim& b) { return a.point < b.point; });

@@ -5,6 +5,7 @@
 //! and for users in tutorials/README.md and `morphMesh -help`.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,9 @@ struct HandleEntry
     Vector3 box_max = Vector3::Zero(); //!< box
     Points points;                     //!< points: k x 3 positions
     Vector3 displacement = Vector3::Zero();
+    //! When set, the displacement at each selected point instead of `displacement` (design
+    //! variables that rotate or scale a handle's points; not written in a morphDict).
+    std::function<Vector3(const Vector3&)> displacement_at;
     std::size_t line = 0;
 };
 
