@@ -5,18 +5,22 @@
 # of every processor's points with the serial points (compare_decomposed.py: 1e-12 of the
 # extent, shared points bit-identical). Needs OpenFOAM (decomposePar) and OpenMPI.
 #
-#   parallel_vs_serial.sh -bin DIR -out DIR [-np N] [-method simple|scotch] [-field]
+#   parallel_vs_serial.sh -bin DIR -out DIR [-np N] [-method simple|scotch] [-field | -design]
 #
 # -field: the wall and inlet take their motion from 0/pointDisplacement
 # (write_point_displacement.py), and the case is written in binary, so that decomposePar
 # writes `value nonuniform 0;` for a processor that holds none of the inlet's points (with
 # -method simple along the pipe, every processor but the first).
+# -design: the design commands instead of a morph, on tutorials/designVariables (11
+# variables): -variables, -variant and -sensitivity (a dJ/dx over every point, which
+# decomposePar splits) serially and under mpirun; the variant's points compared as above,
+# and dJ/da to 1e-12 relative.
 # -bin: the directory holding morphMesh. Exit 0 when the results agree, 77 when OpenFOAM or
 # mpirun is missing (a skip), 1 otherwise.
 set -u
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 source_dir=$(cd "$here/../.." && pwd)
-bin="" out="" np=2 method=simple field=0
+bin="" out="" np=2 method=simple field=0 design=0
 while [ $# -gt 0 ]; do
     case "$1" in
         -bin) bin=$2; shift 2 ;;
@@ -24,7 +28,8 @@ while [ $# -gt 0 ]; do
         -np) np=$2; shift 2 ;;
         -method) method=$2; shift 2 ;;
         -field) field=1; shift ;;
-        -help|-h) sed -n '3,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -design) design=1; shift ;;
+        -help|-h) sed -n '3,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "parallel_vs_serial.sh: unknown option '$1' (try -help)" >&2; exit 2 ;;
     esac
 done
@@ -38,7 +43,9 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS
 rm -rf "$out" && mkdir -p "$out" || exit 1
 out=$(cd "$out" && pwd)
 motion_dict() {
-    if [ "$field" = 1 ]; then
+    if [ "$design" = 1 ]; then
+        cat "$source_dir/tutorials/designVariables/system/morphDict"
+    elif [ "$field" = 1 ]; then
         cat <<'DICT'
 FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }
 method rbf;
@@ -66,14 +73,35 @@ make_case() {
     mkdir -p "$1/system" "$1/0" && cp -r "$source_dir/tutorials/pipe/constant" "$1/" &&
         cp "$source_dir/tutorials/pipe/system/controlDict" "$1/system/" &&
         motion_dict > "$1/system/morphDict" || return 1
+    if [ "$design" = 1 ]; then
+        /usr/bin/python3 "$source_dir/benchmarks/morph/write_point_field.py" "$1" 0/dJdx || return 1
+    fi
     if [ "$field" = 1 ]; then
         /usr/bin/python3 "$here/write_point_displacement.py" "$1" &&
             sed -i 's/^writeFormat .*/writeFormat     binary;/' "$1/system/controlDict"
     fi
 }
+# run <log> <command...>: the command, its output in $out/log.<log>; stop if it fails.
+run() {
+    local log=$1
+    shift
+    "$@" > "$out/log.$log" 2>&1 || { echo "$* failed (see $out/log.$log)"; tail -5 "$out/log.$log"; exit 1; }
+}
+# morph <serial|parallel> <command prefix...>: the morph, or the three design commands.
+amplitudes="(0.8 0.3 1 0.05 -0.05 0.05 -0.05 0.02 0.02 0.02 0.02)"
+morph() {
+    local name=$1
+    shift
+    if [ "$design" = 1 ]; then
+        run "$name.variables" "$@" -variables
+        run "$name.variant" "$@" -variant "$amplitudes"
+        run "$name.sensitivity" "$@" -sensitivity 0/dJdx -json "$out/$name.json"
+    else
+        run "$name" "$@"
+    fi
+}
 make_case "$out/serial" && make_case "$out/parallel" || exit 1
-"$bin/morphMesh" -case "$out/serial" > "$out/log.serial" 2>&1 ||
-    { echo "serial morphMesh failed (see $out/log.serial)"; exit 1; }
+morph serial "$bin/morphMesh" -case "$out/serial"
 cat > "$out/parallel/system/decomposeParDict" <<DICT
 FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }
 numberOfSubdomains $np;
@@ -83,11 +111,19 @@ hierarchicalCoeffs { n ($np 1 1); delta 0.001; order xyz; }
 DICT
 (cd "$out/parallel" && decomposePar > log.decomposePar 2>&1) ||
     { echo "decomposePar failed (see $out/parallel/log.decomposePar)"; exit 1; }
-mpirun -np "$np" --oversubscribe "$bin/morphMesh" -case "$out/parallel" -parallel \
-    > "$out/log.parallel" 2>&1 || { echo "morphMesh -parallel failed (see $out/log.parallel)"; exit 1; }
+morph parallel mpirun -np "$np" --oversubscribe "$bin/morphMesh" -case "$out/parallel" -parallel
 if [ "$field" = 1 ]; then
     # The case this test is for: a processor holding none of the inlet's points.
     grep -aq "nonuniform 0;" "$out"/parallel/processor*/0/pointDisplacement ||
         { echo "no processor got an empty inlet list from decomposePar: the test misses its case"; exit 1; }
 fi
-/usr/bin/python3 "$here/compare_decomposed.py" "$out/parallel" 1 "$np" "$out/serial/1/polyMesh/points"
+/usr/bin/python3 "$here/compare_decomposed.py" "$out/parallel" 1 "$np" "$out/serial/1/polyMesh/points" ||
+    exit 1
+[ "$design" = 1 ] || exit 0
+/usr/bin/python3 - "$out/serial.json" "$out/parallel.json" <<'PY'
+import json, sys
+s, p = (json.load(open(f))["dJda"] for f in sys.argv[1:3])
+worst = max(abs(s[k] - p[k]) / max(1.0, abs(s[k])) for k in s)
+print(f"dJ/da of {len(s)} variables, -parallel against serial: largest relative difference {worst:.3g}")
+sys.exit(0 if worst < 1e-12 and s.keys() == p.keys() else 1)
+PY
