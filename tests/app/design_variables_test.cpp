@@ -170,6 +170,22 @@ TEST_F(DesignVariables, a_variant_is_linear_in_its_amplitudes_and_moves_the_hand
             EXPECT_NEAR(xa(i, 2) - x_without(i, 2), 0.0, 1e-12);
         }
     EXPECT_GT(in_handle, 0);
+    // The squeeze's own size: a wall point moves by -0.1 (x, y, 0) times its amplitude (the
+    // wall's end rings excepted: they are also on the slipping inlet and outlet).
+    std::vector<double> squeeze(a.size(), 0.0);
+    squeeze[1] = 0.5;
+    const Points xq = variant_points(*dir_, squeeze);
+    int on_wall = 0;
+    for (Index i = 0; i < x0.rows(); ++i)
+    {
+        const double r = std::hypot(x0(i, 0), x0(i, 1));
+        if (std::abs(r - 0.5) > 1e-9 || x0(i, 2) < 0.05 || x0(i, 2) > 1.95)
+            continue;
+        ++on_wall;
+        EXPECT_NEAR(xq(i, 0) - x0(i, 0), -0.05 * x0(i, 0), 1e-12);
+        EXPECT_NEAR(xq(i, 1) - x0(i, 1), -0.05 * x0(i, 1), 1e-12);
+    }
+    EXPECT_GT(on_wall, 100);
 }
 
 TEST_F(DesignVariables, a_variant_of_a_translation_equals_the_one_off_morph_of_the_same_motion)
@@ -261,6 +277,12 @@ TEST_F(DesignVariables, volume_sensitivity_equals_central_finite_differences)
     write_point_field(*dir_ / "0/dJdx", w, {}, foam.mesh);
     const std::vector<double> g = gradient_from(*dir_, "0/dJdx");
     ASSERT_EQ(g.size(), 11u);
+    // As OpenFOAM writes a computed point field: `calculated` patches without values.
+    std::string text = read_text(*dir_ / "0/dJdx");
+    for (std::size_t at; (at = text.find(" value uniform (0 0 0);")) != std::string::npos;)
+        text.erase(at, std::string(" value uniform (0 0 0);").size());
+    test::write_text(*dir_ / "0/dJdxNoValues", text);
+    EXPECT_EQ(gradient_from(*dir_, "0/dJdxNoValues"), g);
     const std::vector<double> a = amplitudes(0.2, 0.1, 0.5, 0.01);
     for (std::size_t j : {0u, 1u, 2u, 4u, 9u})
     {
@@ -402,9 +424,15 @@ TEST(DesignVariableSetUp, a_stale_or_foreign_set_up_is_refused)
     const fs::path dir = pipe_case("stale", design_dict);
     ASSERT_EQ(test::run_morph_mesh({"-case", dir.string(), "-variables"}).code, 0);
     const std::string a = amplitude_list(amplitudes(0.1, 0, 0, 0));
-    // The dictionary edited after the set-up.
-    std::ofstream(dir / "system/morphDict", std::ios::app) << "// edited\n";
+    // A comment added to the dictionary changes nothing; an edited value makes it stale.
+    std::ofstream(dir / "system/morphDict", std::ios::app) << "// a comment\n";
     test::MorphRun r = test::run_morph_mesh({"-case", dir.string(), "-variant", a});
+    EXPECT_EQ(r.code, 0) << r.log;
+    fs::remove_all(dir / "1");
+    std::string text = read_text(dir / "system/morphDict");
+    text.replace(text.find("vector (0 0.1 0)"), 16, "vector (0 0.2 0)");
+    test::write_text(dir / "system/morphDict", text);
+    r = test::run_morph_mesh({"-case", dir.string(), "-variant", a});
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.log.find("was made for another version of"), std::string::npos) << r.log;
     // Another mesh's points.
@@ -416,7 +444,12 @@ TEST(DesignVariableSetUp, a_stale_or_foreign_set_up_is_refused)
     r = test::run_morph_mesh({"-case", dir.string(), "-variant", a});
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.log.find("was made for other points"), std::string::npos) << r.log;
-    // Not a set-up at all, and a truncated one.
+    // A truncated set-up, and not a set-up at all.
+    ASSERT_EQ(test::run_morph_mesh({"-case", dir.string(), "-variables"}).code, 0);
+    fs::resize_file(dir / "constant/designBasis", fs::file_size(dir / "constant/designBasis") - 8);
+    r = test::run_morph_mesh({"-case", dir.string(), "-variant", a});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.log.find("truncated at the block of bump.2.2.2.x"), std::string::npos) << r.log;
     test::write_text(dir / "constant/designBasis", "solid foo\n");
     r = test::run_morph_mesh({"-case", dir.string(), "-variant", a});
     EXPECT_EQ(r.code, 2);

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "meshmorph/io/foam_dictionary.h"
+
 namespace meshmorph::design
 {
 
@@ -42,7 +44,32 @@ private:
     std::uint64_t h_ = 0xcbf29ce484222325ULL;
 };
 
+void add_dictionary(Fnv1a& f, const io::FoamDictionary& dict)
+{
+    for (const io::FoamEntry& e : dict.entries())
+    {
+        f.add(e.keyword().data(), e.keyword().size() + 1);
+        if (e.is_dict())
+        {
+            f.add("{", 1);
+            add_dictionary(f, e.dict());
+            f.add("}", 1);
+            continue;
+        }
+        for (const io::FoamValueToken& t : e.tokens())
+            f.add(t.text.data(), t.text.size() + 1);
+        f.add(";", 1);
+    }
+}
+
 } // namespace
+
+std::string dictionary_fingerprint(const io::FoamDictionary& dict)
+{
+    Fnv1a f;
+    add_dictionary(f, dict);
+    return f.hex();
+}
 
 std::string fingerprint(std::string_view bytes)
 {

@@ -176,17 +176,32 @@ DesignBasisReader::DesignBasisReader(const fs::path& path) : path_(path)
 
 void DesignBasisReader::check_blocks(const std::function<ParseError(const std::string&)>& bad)
 {
-    // Walk the blocks' sizes so that a truncated or padded file is refused before use.
-    const std::uintmax_t size = fs::file_size(path_);
-    std::uintmax_t at = std::uintmax_t(blocks_start_);
+    // Walk the blocks so that a truncated, padded or hostile file is refused before use:
+    // every count bounded by the file's size first (no overflow), every label in range.
+    std::error_code ec;
+    const std::uintmax_t size = fs::file_size(path_, ec);
+    if (ec)
+        throw bad("cannot read its size (" + ec.message() + ")");
     const std::uintmax_t n = std::uintmax_t(header_.n_points);
+    if (n > size / 24)
+        throw bad("its header's " + std::to_string(n) + " points do not fit in its size");
+    std::uintmax_t at = std::uintmax_t(blocks_start_);
+    std::vector<std::int64_t> labels;
     for (std::size_t j = 0; j < header_.names.size(); ++j)
     {
         std::int64_t c = -1;
         in_.seekg(std::streamoff(at + 32));
-        if (at + 40 > size || !read_raw(in_, &c, 1) || c < 0 || std::uintmax_t(c) > size)
+        if (at + 40 > size || !read_raw(in_, &c, 1) || c < 0 || std::uintmax_t(c) > size / 32)
             throw bad("truncated at the block of " + header_.names[j]);
+        labels.resize(std::size_t(c));
+        if (!read_raw(in_, labels.data(), labels.size()))
+            throw bad("truncated at the block of " + header_.names[j]);
+        for (std::int64_t l : labels)
+            if (l < 0 || l >= header_.n_points)
+                throw bad("constrained point label " + std::to_string(l) + " out of range");
         at += block_bytes(std::uintmax_t(c), n);
+        if (at > size)
+            throw bad("truncated at the block of " + header_.names[j]);
     }
     if (at != size)
         throw bad("its size (" + std::to_string(size) + " bytes) does not match its header (" +
@@ -225,7 +240,8 @@ void DesignBasisReader::skip()
     in_.seekg(32, std::ios::cur);
     if (!read_raw(in_, &c, 1) || c < 0)
         throw ParseError(path_.string(), 0, "truncated design set-up");
-    in_.seekg(std::streamoff(8 * (c + 3 * c + 3 * header_.n_points)), std::ios::cur);
+    in_.seekg(std::streamoff(block_bytes(std::uintmax_t(c), std::uintmax_t(header_.n_points)) - 40),
+              std::ios::cur);
 }
 
 void DesignBasisReader::rewind()

@@ -27,6 +27,33 @@ fs::path design_mesh_case(const morph::MorphOptions& options)
                : case_dir;
 }
 
+namespace
+{
+
+bool uses_point_displacement(const DesignVariables& vars)
+{
+    for (const DesignVariable& v : vars.variables)
+        if (v.kind == DesignVariable::Kind::patches &&
+            v.motion.type == morph::MotionType::point_displacement)
+            return true;
+    return false;
+}
+
+//! A pointDisplacement variable's unit motion is the field's: its bytes join the
+//! dictionary's fingerprint.
+void add_field_fingerprint(DesignCase& dc)
+{
+    if (!uses_point_displacement(dc.variables))
+        return;
+    const std::string time = dc.foam.time == "constant" ? "0" : dc.foam.time;
+    const fs::path field = dc.mesh_case / time / dc.foam.region / "pointDisplacement";
+    if (io::foam_file_exists(field))
+        dc.dict_fingerprint =
+            fingerprint(dc.dict_fingerprint + fingerprint(io::read_foam_file(field).data));
+}
+
+} // namespace
+
 DesignCase read_design_case(const morph::MorphOptions& options)
 {
     DesignCase dc;
@@ -37,7 +64,7 @@ DesignCase read_design_case(const morph::MorphOptions& options)
         options.dict.empty() ? fs::path("system") / options.region / "morphDict" : options.dict;
     dc.dict_path = dict.is_relative() ? dc.case_dir / dict : dict;
     const io::FoamDictionary parsed = io::read_dictionary(dc.dict_path);
-    dc.dict_fingerprint = fingerprint(io::read_foam_file(dc.dict_path).data);
+    dc.dict_fingerprint = dictionary_fingerprint(parsed);
     dc.setup = morph::read_morph_setup(parsed);
     dc.settings = morph::read_deformation_settings(parsed, options.method);
     dc.variables = read_design_variables(parsed);
@@ -56,6 +83,7 @@ DesignCase read_design_case(const morph::MorphOptions& options)
                                  dc.decomposition = morph::read_decomposition(dc.foam, comm);
                          });
     dc.basis_path = design_basis_path(dc.mesh_case, options.region);
+    add_field_fingerprint(dc);
     log::info() << "Read mesh from " << dc.foam.points_dir.string()
                 << (dc.parallel ? " (and the other processors)" : "") << ": "
                 << morph::global_count(dc.decomposition, dc.foam.mesh.n_points(), true)
@@ -70,15 +98,19 @@ void require_current(const DesignCase& dc, const DesignBasisHeader& header,
     const auto stale = [&](const std::string& what)
     {
         return InvalidInput("the design set-up " + basis_file + " was made for " + what +
-                            ": run morphMesh -variables again (nothing written)");
+                            ": run morphMesh -variables again (nothing written; after "
+                            "-overwrite the set-up's points are in points.orig)");
     };
+    if (header.n_points != dc.foam.mesh.n_points())
+        throw stale("a mesh of " + std::to_string(header.n_points) + " points");
     if (header.topology_fingerprint != topology_fingerprint(dc.foam.mesh))
         throw stale("another mesh topology");
     if (header.points_fingerprint != points_fingerprint(dc.foam.mesh.points))
         throw stale("other points (" + header.instance + ") than those read from " +
                     dc.foam.points_dir.string());
     if (header.dict_fingerprint != dc.dict_fingerprint)
-        throw stale("another version of " + dc.dict_path.string());
+        throw stale("another version of " + dc.dict_path.string() +
+                    " (or of a file it includes, or of the pointDisplacement it reads)");
     std::vector<std::string> names;
     for (const DesignVariable& v : dc.variables.variables)
         names.push_back(v.name);

@@ -38,7 +38,7 @@ struct DesignCase
 std::filesystem::path design_mesh_case(const morph::MorphOptions& options);
 
 //! \brief Read the morphDict and the mesh of options.case_dir (options.time; a design
-//! command without -time reads the instance its set-up was made on, see design_study.h).
+//! command without -time reads the instance its set-up was made on, see design_variant.h).
 //! With -parallel every rank reads its processor directory's mesh (a collective).
 //! \throw ParseError, IoError; InvalidInput when the dictionary has no designVariables.
 DesignCase read_design_case(const morph::MorphOptions& options);

@@ -77,11 +77,16 @@ SensitivityResult design_sensitivity(DesignStudy& study, const fs::path& file)
          << " points with a nonzero value)\n";
     for (std::size_t j = 0; j < r.names.size(); ++j)
         text << r.names[j] << " " << format_scalar(r.gradient[j], 17) << ";\n";
-    const fs::path dir = study.design_case().case_dir / "postProcessing" / "morphMesh";
+    const fs::path dir = study.design_case().case_dir / "postProcessing" / "morphMesh" /
+                         study.design_case().foam.region;
     parallel::on_master(comm,
                         [&]
                         {
-                            fs::create_directories(dir);
+                            std::error_code ec;
+                            fs::create_directories(dir, ec);
+                            if (ec)
+                                throw IoError("cannot create " + dir.string() + ": " +
+                                              ec.message());
                             r.output = io::write_file_atomic(dir / "dJda", text.str());
                         });
     r.output = dir / "dJda";

@@ -24,7 +24,7 @@ namespace meshmorph::design
 struct SensitivityResult
 {
     std::filesystem::path input;    //!< the dJ/dx file read
-    std::filesystem::path output;   //!< postProcessing/morphMesh/dJda written
+    std::filesystem::path output;   //!< postProcessing/morphMesh[/<region>]/dJda written
     std::vector<std::string> names; //!< the variables
     std::vector<double> gradient;   //!< dJ/da_j
     Index nonzero_points = 0;       //!< points where dJ/dx is not zero
@@ -35,7 +35,7 @@ struct SensitivityResult
 //! IoError, ParseError naming the file (another mesh: a wrong size).
 Points read_point_sensitivity(const DesignStudy& study, const std::filesystem::path& file);
 
-//! \brief dJ/da from `file`; writes `postProcessing/morphMesh/dJda` (a dictionary of
+//! \brief dJ/da from `file`; writes `postProcessing/morphMesh[/<region>]/dJda` (a dictionary of
 //! `<variable> <value>;`) atomically. \throw as read_point_sensitivity; IoError.
 SensitivityResult design_sensitivity(DesignStudy& study, const std::filesystem::path& file);
 

@@ -147,15 +147,16 @@ DesignSetupResult setup_design(const morph::MorphOptions& options)
         result.fits.push_back(block.fit);
         result.moves.push_back(moves);
         result.n_constrained = std::max(result.n_constrained, Index(block.constrained.size()));
-        result.n_constrained = Index(comm.max(std::int64_t(result.n_constrained)));
     }
     if (std::none_of(result.moves.begin(), result.moves.end(), [](char m) { return m != 0; }))
         throw InvalidInput(dc.dict_path.string() + ": no design variable moves any point");
     parallel::collective(comm, [&] { writer.commit(); });
+    result.n_constrained = Index(comm.max(std::int64_t(result.n_constrained)));
     result.basis_file = dc.basis_path;
     result.n_points = morph::global_count(dc.decomposition, mesh.n_points(), true);
-    result.bytes =
-        std::uintmax_t(comm.sum(std::int64_t(std::filesystem::file_size(dc.basis_path))));
+    std::error_code ec; // a size that cannot be read is reported as 0, never thrown
+    const std::uintmax_t bytes = std::filesystem::file_size(dc.basis_path, ec);
+    result.bytes = std::uintmax_t(comm.sum(std::int64_t(ec ? 0 : bytes)));
     result.seconds = clock.seconds();
     log::info() << "Wrote design set-up " << dc.basis_path.string() << " ("
                 << format_scalar(double(result.bytes) / 1048576.0, 4) << " MB) in "

@@ -157,6 +157,10 @@ std::array<int, 3> read_counts(const io::FoamEntry& e)
             throw e.error("a cubic B-spline lattice needs 4 to 1000 control points per axis (or "
                           "1: constant along it, for 2D cases), got " +
                           std::to_string(v));
+    // Each control point may be up to 3 variables, each a field over every point.
+    if (double(n[0]) * n[1] * n[2] > 10000.0)
+        throw e.error("more than 10000 control points: every one is a design variable with a "
+                      "field over the whole mesh (use fewer, or a coarser lattice)");
     return {n[0], n[1], n[2]};
 }
 

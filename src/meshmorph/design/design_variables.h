@@ -86,7 +86,7 @@ struct DesignVariables
 //! \brief Read `designVariables` of a parsed morphDict (empty if absent).
 //! \throw ParseError naming the file, line and entry for an unknown keyword or type, a
 //! `surface` variable (not linear in its amplitude), a missing selection, bad bounds, a
-//! lattice without bounds, a duplicate name.
+//! lattice without a box or with more than 10000 control points, a duplicate name.
 DesignVariables read_design_variables(const io::FoamDictionary& dict);
 
 } // namespace meshmorph::design

@@ -32,6 +32,14 @@ morph::MorphOptions at_setup_instance(morph::MorphOptions options, const DesignB
     return options;
 }
 
+std::string joined(const std::vector<std::string>& words)
+{
+    std::string list;
+    for (const std::string& w : words)
+        list += (list.empty() ? "" : " ") + w;
+    return list;
+}
+
 std::string refusal_text(const InvalidCells& after, const DesignBasisHeader& h)
 {
     std::string text = "the variant has ";
@@ -67,14 +75,7 @@ void DesignStudy::check_amplitudes(const std::vector<double>& a) const
     if (a.size() != names().size())
         throw InvalidInput(std::to_string(a.size()) + " amplitudes given, the set-up has " +
                            std::to_string(names().size()) + " design variables (" +
-                           [&]
-                           {
-                               std::string list;
-                               for (const std::string& n : names())
-                                   list += (list.empty() ? "" : " ") + n;
-                               return list;
-                           }() +
-                           ")");
+                           joined(names()) + ")");
     for (std::size_t j = 0; j < a.size(); ++j)
     {
         if (!std::isfinite(a[j]))
@@ -228,17 +229,17 @@ bool DesignStudy::refuse(const std::vector<double>& amplitudes, VariantResult& r
             {header().negative_volume_cells_before, header().wrong_pyramids_before}))
         return false;
     r.refusal = refusal_text(invalid, header());
+    if (options_.force)
+    {
+        log::warning() << "-force: writing although " << r.refusal;
+        return false;
+    }
     const Points moved = case_.foam.mesh.points;
     r.back_off =
         back_off(moved, amplitudes, invalid.negative_volume_cells + invalid.wrong_pyramids);
     case_.foam.mesh.points = moved;
-    if (!options_.force)
-    {
-        r.refused = true;
-        return true;
-    }
-    log::warning() << "-force: writing although " << r.refusal;
-    return false;
+    r.refused = true;
+    return true;
 }
 
 VariantResult DesignStudy::apply(const std::vector<double>& amplitudes, const std::string& instance)

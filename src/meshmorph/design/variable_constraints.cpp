@@ -4,6 +4,7 @@
 #include "meshmorph/design/variable_constraints.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/morph/constraints.h"
@@ -90,7 +91,7 @@ std::vector<char> patches_of(const PolyMesh& mesh, const std::string& dict_path,
 //! The unit displacement of a rotation: theta * axis x (x - origin), theta in radians.
 Vector3 linear_rotation(const morph::Motion& m, const Vector3& x)
 {
-    return m.angle_degrees * M_PI / 180.0 * m.axis.normalized().cross(x - m.origin);
+    return m.angle_degrees * std::numbers::pi / 180.0 * m.axis.normalized().cross(x - m.origin);
 }
 
 //! A handle variable's unit motion on its handle: a vector, or per point (rotations

@@ -40,7 +40,8 @@ public:
                         const morph::Decomposition* decomposition = nullptr);
 
     //! \brief The constraints of variable j at amplitude 1 (rotations linearised).
-    //! \throw InvalidInput naming the variable when it moves no point.
+    //! \throw InvalidInput naming the variable when its set resolves to no motion (check
+    //! moves_anything() first for lattice variables).
     morph::Constraints unit(Index j) const;
 
     //! Whether variable j moves any constrained point (a lattice control point whose support
