@@ -504,6 +504,45 @@ TEST(DesignVariableSetUp, dmffd_targets_are_design_variables_too)
     EXPECT_GT(j["maxDisplacement"].get<double>(), 0.01);
 }
 
+TEST(DesignVariableSetUp, a_2d_lattice_moves_both_empty_planes_alike)
+{
+    // A 2D channel (one cell thick, zMin and zMax empty) whose bottom wall is moved by a
+    // lattice that does not vary along z (`lattice (5 4 1)`): the case stays 2D.
+    const fs::path dir = test::scratch_dir("design_variables/two_d");
+    const PolyMesh mesh = test::make_block_mesh(
+        10, 4, 1, [](double u, double v, double w) { return Vector3(u, 0.4 * v, 0.1 * w); },
+        {"patch", "patch", "wall", "wall", "empty", "empty"});
+    io::write_poly_mesh(mesh, io::default_poly_mesh_files(io::FoamFormat::binary), dir, "constant");
+    fs::create_directories(dir / "system");
+    fs::copy_file(fs::path(MESHMORPH_SOURCE_DIR) / "tutorials/pipe/system/controlDict",
+                  dir / "system/controlDict");
+    test::write_text(
+        dir / "system/morphDict",
+        "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n"
+        "boundary { default { type fixed; } }\n"
+        "designVariables { floor { type ffd; patches (yMin); lattice (5 4 1);\n"
+        "  box ((-0.1 -0.1 -0.5) (1.1 0.5 0.6)); directions (y); confine (1 1 0); } }\n");
+    const test::MorphRun set_up = test::run_morph_mesh({"-case", dir.string(), "-variables"});
+    ASSERT_EQ(set_up.code, 0) << set_up.log;
+    EXPECT_NE(set_up.log.find("Variable floor.2.1.0.y"), std::string::npos) << set_up.log;
+    const test::MorphRun r =
+        test::run_morph_mesh({"-case", dir.string(), "-variant", "(0.02 0.03 0.02 0 0 0)"});
+    ASSERT_EQ(r.code, 0) << r.log;
+    const Points x0 = points_at(dir, "constant"), x = points_at(dir, "1");
+    double largest = 0.0;
+    for (Index i = 0; i < x0.rows(); ++i)
+        for (Index j = 0; j < x0.rows(); ++j)
+            if (x0(i, 2) == 0.0 && x0(j, 2) > 0.0 && x0(i, 0) == x0(j, 0) && x0(i, 1) == x0(j, 1))
+            {
+                EXPECT_EQ(x(i, 0) - x0(i, 0), x(j, 0) - x0(j, 0)) << "points " << i << ", " << j;
+                EXPECT_EQ(x(i, 1) - x0(i, 1), x(j, 1) - x0(j, 1)) << "points " << i << ", " << j;
+                EXPECT_EQ(x(i, 2), x0(i, 2));
+                EXPECT_EQ(x(j, 2), x0(j, 2));
+                largest = std::max(largest, std::abs(x(i, 1) - x0(i, 1)));
+            }
+    EXPECT_GT(largest, 1e-3) << "the floor moves";
+}
+
 TEST(DesignVariableSetUp, a_moving_boundary_entry_and_a_surface_variable_are_refused_by_name)
 {
     const fs::path moving = pipe_case(
