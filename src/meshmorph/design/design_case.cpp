@@ -30,20 +30,11 @@ fs::path design_mesh_case(const morph::MorphOptions& options)
 namespace
 {
 
-bool uses_point_displacement(const DesignVariables& vars)
-{
-    for (const DesignVariable& v : vars.variables)
-        if (v.kind == DesignVariable::Kind::patches &&
-            v.motion.type == morph::MotionType::point_displacement)
-            return true;
-    return false;
-}
-
 //! A pointDisplacement variable's unit motion is the field's: its bytes join the
 //! dictionary's fingerprint.
 void add_field_fingerprint(DesignCase& dc)
 {
-    if (!uses_point_displacement(dc.variables))
+    if (!dc.variables.reads_point_displacement())
         return;
     const std::string time = dc.foam.time == "constant" ? "0" : dc.foam.time;
     const fs::path field = dc.mesh_case / time / dc.foam.region / "pointDisplacement";

@@ -27,16 +27,6 @@ namespace meshmorph::design
 namespace
 {
 
-bool uses_point_displacement(const DesignVariables& vars)
-{
-    return std::any_of(vars.variables.begin(), vars.variables.end(),
-                       [](const DesignVariable& v)
-                       {
-                           return v.kind == DesignVariable::Kind::patches &&
-                                  v.motion.type == morph::MotionType::point_displacement;
-                       });
-}
-
 void require_fitted_method(const morph::DeformationSettings& settings)
 {
     if (!morph::needs_fit(settings))
@@ -117,7 +107,7 @@ DesignSetupResult setup_design(const morph::MorphOptions& options)
     require_fitted_method(dc.settings);
     const PolyMesh& mesh = dc.foam.mesh;
     morph::PointDisplacementInputs field;
-    if (uses_point_displacement(dc.variables))
+    if (dc.variables.reads_point_displacement())
         field = morph::read_point_displacement(dc.mesh_case, dc.foam, options.region,
                                                parallel::Communicator::world());
     const VariableConstraints constraints(mesh, dc.setup, dc.variables, &field, dc.parts());

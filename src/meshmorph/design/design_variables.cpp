@@ -244,6 +244,16 @@ Index DesignVariables::find(const std::string& name) const
     return -1;
 }
 
+bool DesignVariables::reads_point_displacement() const
+{
+    return std::any_of(variables.begin(), variables.end(),
+                       [](const DesignVariable& v)
+                       {
+                           return v.kind == DesignVariable::Kind::patches &&
+                                  v.motion.type == MotionType::point_displacement;
+                       });
+}
+
 DesignVariables read_design_variables(const io::FoamDictionary& dict)
 {
     DesignVariables out;

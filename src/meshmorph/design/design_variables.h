@@ -81,6 +81,8 @@ struct DesignVariables
     Index size() const { return Index(variables.size()); }
     //! The index of `name`, or -1.
     Index find(const std::string& name) const;
+    //! Whether a variable takes its motion from the case's pointDisplacement field.
+    bool reads_point_displacement() const;
 };
 
 //! \brief Read `designVariables` of a parsed morphDict (empty if absent).

@@ -106,6 +106,13 @@ void set_unit_motion(const morph::Motion& motion, morph::HandleEntry& h)
         h.displacement_at = [motion](const Vector3& x) { return motion.displacement(x); };
 }
 
+//! Patch assignment `a` with another motion, its reason and its boundary entry.
+morph::PatchAssignment reassigned(const morph::PatchAssignment& a, MotionType motion,
+                                  const std::string& matched_by, Index entry)
+{
+    return {a.patch, a.patch_type, motion, matched_by, entry, a.n_points};
+}
+
 //! Rotations of the unit set replaced by their linearisation theta * axis x (x - origin), so
 //! that amplitude a moves every point by a times its unit displacement.
 void linearise_rotations(const PolyMesh& mesh, morph::Constraints& c)
@@ -154,31 +161,44 @@ VariableConstraints::VariableConstraints(const PolyMesh& mesh, const morph::Morp
         }
         for (std::size_t p = 0; p < moved.size(); ++p)
             if (moved[p])
-                frozen_[p] = {frozen_[p].patch,
-                              frozen_[p].patch_type,
-                              MotionType::fixed,
-                              "design variables",
-                              -1,
-                              frozen_[p].n_points};
+                frozen_[p] = reassigned(frozen_[p], MotionType::fixed, "design variables", -1);
         moved_patches_.push_back(std::move(moved));
     }
 }
 
-Points VariableConstraints::lattice_field(const DesignVariable& v) const
+double VariableConstraints::control_weight(const DesignVariable& v, Index point) const
 {
     const DesignLattice& design = variables_.lattices[v.lattice];
-    const FfdLattice& lattice = design.lattice;
-    Points field = Points::Zero(mesh_.n_points(), 3);
     Index index[64];
     double weight[64];
-    for (Index i = 0; i < mesh_.n_points(); ++i)
-    {
-        const int n =
-            lattice.basis(mesh_.points.row(i).transpose(), FfdOutside::zero, index, weight);
-        for (int k = 0; k < n; ++k)
-            if (design.belongs(index[k], v.control_point))
-                field(i, v.direction) += weight[k];
-    }
+    const int n =
+        design.lattice.basis(mesh_.points.row(point).transpose(), FfdOutside::zero, index, weight);
+    double sum = 0.0;
+    for (int k = 0; k < n; ++k)
+        if (design.belongs(index[k], v.control_point))
+            sum += weight[k];
+    return sum;
+}
+
+std::vector<Index> VariableConstraints::points_moved_by(Index j) const
+{
+    std::vector<Index> points;
+    for (std::size_t p = 0; p < mesh_.patches.size(); ++p)
+        if (moved_patches_[std::size_t(j)][p])
+        {
+            const std::vector<Index> on_patch = patch_points(mesh_, mesh_.patches[p]);
+            points.insert(points.end(), on_patch.begin(), on_patch.end());
+        }
+    return points;
+}
+
+Points VariableConstraints::lattice_field(Index j) const
+{
+    // Only the points of the lattice's patches take the field's values (claims.h).
+    const DesignVariable& v = variables_.variables[std::size_t(j)];
+    Points field = Points::Zero(mesh_.n_points(), 3);
+    for (Index i : points_moved_by(j))
+        field(i, v.direction) = control_weight(v, i);
     return field;
 }
 
@@ -193,22 +213,9 @@ bool VariableConstraints::moves_any_local_point(Index j) const
     const DesignVariable& v = variables_.variables[std::size_t(j)];
     if (v.kind != DesignVariable::Kind::lattice_point)
         return true;
-    const DesignLattice& design = variables_.lattices[v.lattice];
-    Index index[64];
-    double weight[64];
-    for (std::size_t p = 0; p < mesh_.patches.size(); ++p)
-    {
-        if (!moved_patches_[std::size_t(j)][p])
-            continue;
-        for (Index i : patch_points(mesh_, mesh_.patches[p]))
-        {
-            const int n = design.lattice.basis(mesh_.points.row(i).transpose(), FfdOutside::zero,
-                                               index, weight);
-            for (int k = 0; k < n; ++k)
-                if (design.belongs(index[k], v.control_point) && weight[k] != 0.0)
-                    return true;
-        }
-    }
+    for (Index i : points_moved_by(j))
+        if (control_weight(v, i) != 0.0)
+            return true;
     return false;
 }
 
@@ -241,7 +248,7 @@ morph::Constraints VariableConstraints::unit(Index j) const
         if (v.kind == DesignVariable::Kind::lattice_point)
         {
             motion.type = MotionType::point_displacement;
-            lattice_values = lattice_field(v);
+            lattice_values = lattice_field(j);
             inputs.point_displacement = &lattice_values;
         }
         else if (motion.type == MotionType::point_displacement)
@@ -253,12 +260,8 @@ morph::Constraints VariableConstraints::unit(Index j) const
         const Index entry = Index(setup.boundary.size()) - 1;
         for (std::size_t p = 0; p < assignment.size(); ++p)
             if (moved_patches_[std::size_t(j)][p])
-                assignment[p] = {assignment[p].patch,
-                                 assignment[p].patch_type,
-                                 motion.type,
-                                 "design variable " + v.name,
-                                 entry,
-                                 assignment[p].n_points};
+                assignment[p] =
+                    reassigned(assignment[p], motion.type, "design variable " + v.name, entry);
     }
     morph::Constraints c;
     try

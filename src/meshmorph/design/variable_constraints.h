@@ -50,7 +50,13 @@ public:
 
 private:
     bool moves_any_local_point(Index j) const;
-    Points lattice_field(const DesignVariable& v) const;
+    //! The points of the patches variable j moves (a point on two of them twice).
+    std::vector<Index> points_moved_by(Index j) const;
+    //! A lattice variable's B-spline weight at a mesh point (0 outside its support).
+    double control_weight(const DesignVariable& v, Index point) const;
+    //! A lattice variable's unit prescription: its weight times its direction at the points
+    //! of its patches, zero elsewhere.
+    Points lattice_field(Index j) const;
 
     const PolyMesh& mesh_;
     morph::MorphSetup base_; //!< handles' displacements zero
