@@ -4,7 +4,7 @@
 #
 # Usage: scripts/install-deps.sh [--no-openfoam] [--no-plots] [--check]
 #   --no-openfoam  skip OpenFOAM and gmsh (the oracle tests that need them then skip)
-#   --no-plots     skip the optional python3-matplotlib/python3-numpy (plot scripts)
+#   --no-plots     skip the optional python3-matplotlib (plot scripts)
 #   --check        only report what is missing; never install (exit 1 if anything is)
 #
 # Idempotent: packages already present are detected with dpkg-query, so a second run
@@ -34,13 +34,16 @@ done
 required=(build-essential cmake g++ git libeigen3-dev libvtk9-dev libopenblas-dev liblapack-dev
           nlohmann-json3-dev zlib1g-dev libgtest-dev libgmock-dev libbenchmark-dev clang-format
           libopenmpi-dev openmpi-bin clang libclang-rt-14-dev llvm)
+# The Python module (pybind11, Debian's python3 and numpy), its tests (pytest) and the
+# tutorials/python example (SciPy's optimisers).
+required+=(python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-scipy)
 # Oracle tests compare with OpenFOAM v1912 (Debian) and use its tutorials and gmsh.
 if [[ $with_openfoam == 1 ]]; then
     required+=(openfoam openfoam-examples gmsh)
 fi
 optional=()
 if [[ $with_plots == 1 ]]; then
-    optional+=(python3-matplotlib python3-numpy)
+    optional+=(python3-matplotlib)
 fi
 
 # missing_of <package...>: prints those of the packages that are not installed, one a line

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Set-up and the pipe tutorial in one command: installs the dependencies
 # (scripts/install-deps.sh), configures the `release` preset into build/release, builds
-# meshMorph's applications with 2 jobs and runs tutorials/pipe/Allrun (logs in
+# meshMorph's applications and its Python module with 2 jobs, makes the system python3
+# import the module (scripts/install-python.sh) and runs tutorials/pipe/Allrun (logs in
 # tutorials/pipe/log.*; tutorials/pipe/Allclean removes them).
 # Usage: scripts/run-pipe.sh [--no-openfoam]
 set -euo pipefail
@@ -12,7 +13,7 @@ deps_args=()
 for arg in "$@"; do
     case "$arg" in
         --no-openfoam) deps_args+=(--no-openfoam) ;;
-        -h|--help) sed -n '3,7p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '3,8p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "run-pipe.sh: unknown option '$arg' (try --help)" >&2; exit 2 ;;
     esac
 done
@@ -22,13 +23,16 @@ step() { echo; echo "==> $*"; }
 step "Installing dependencies"
 bash scripts/install-deps.sh "${deps_args[@]}"
 
-targets=(checkMeshQuality morphMesh)
+targets=(checkMeshQuality morphMesh meshmorph_python)
 
 step "Configuring (preset release)"
 cmake --preset release
 
 step "Building ${targets[*]} (preset release, 2 jobs)"
 cmake --build --preset release --target "${targets[@]}"
+
+step "Installing the Python module for $(command -v /usr/bin/python3)"
+bash scripts/install-python.sh build/release
 
 step "Running tutorials/pipe/Allrun"
 bash tutorials/pipe/Allclean

@@ -57,56 +57,10 @@ void write_json(const fs::path& path, const nlohmann::json& j, std::ostream& out
 int run_setup(const morph::MorphOptions& morph, const fs::path& json_path, std::ostream& out)
 {
     const design::DesignSetupResult r = design::setup_design(morph);
-    nlohmann::json variables = nlohmann::json::array();
-    for (std::size_t j = 0; j < r.names.size(); ++j)
-        variables.push_back({{"name", r.names[j]},
-                             {"movesPoints", bool(r.moves[j])},
-                             {"maxConstraintError", r.fits[j].max_constraint_error},
-                             {"relativeConstraintError", r.fits[j].relative_constraint_error},
-                             {"centres", r.fits[j].centres},
-                             {"seconds", r.fits[j].seconds}});
-    write_json(json_path,
-               {{"exitStatus", exit_ok},
-                {"setupFile", r.basis_file.string()},
-                {"method", r.method},
-                {"points", r.n_points},
-                {"constrainedPoints", r.n_constrained},
-                {"variables", variables},
-                {"bytes", r.bytes},
-                {"seconds", r.seconds},
-                {"before", quality_json(r.before)}},
-               out);
+    write_json(json_path, setup_json(r), out);
     out << "\nDesign set-up written: " << r.names.size() << " variables in "
         << format_seconds(r.seconds) << " s.\n";
     return exit_ok;
-}
-
-nlohmann::json variant_json(const design::DesignStudy& study, const design::VariantResult& r)
-{
-    nlohmann::json amplitudes;
-    for (std::size_t j = 0; j < r.amplitudes.size(); ++j)
-        amplitudes[study.names()[j]] = r.amplitudes[j];
-    nlohmann::json j = {
-        {"setupReused", true},
-        {"setupFile", study.basis_file().string()},
-        {"amplitudes", amplitudes},
-        {"valid", !r.refused},
-        {"written", r.written},
-        {"outputInstance", r.output_instance},
-        {"path", r.points_file.string()},
-        {"maxPrescribedDisplacement", r.max_prescribed},
-        {"maxConstraintError", r.max_constraint_error},
-        {"relativeConstraintError", r.relative_constraint_error},
-        {"maxDisplacement", r.max_displacement},
-        {"timings",
-         {{"combine", r.combine_seconds}, {"check", r.check_seconds}, {"write", r.write_seconds}}},
-        {"after", quality_json(r.after)}};
-    if (r.refused)
-    {
-        j["refusal"] = r.refusal;
-        j["backOff"] = r.back_off;
-    }
-    return j;
 }
 
 //! The log of one variant; true when it was refused.
@@ -207,6 +161,55 @@ int run_sensitivity(const morph::MorphOptions& morph, const fs::path& file,
 }
 
 } // namespace
+
+nlohmann::json setup_json(const design::DesignSetupResult& r)
+{
+    nlohmann::json variables = nlohmann::json::array();
+    for (std::size_t j = 0; j < r.names.size(); ++j)
+        variables.push_back({{"name", r.names[j]},
+                             {"movesPoints", bool(r.moves[j])},
+                             {"maxConstraintError", r.fits[j].max_constraint_error},
+                             {"relativeConstraintError", r.fits[j].relative_constraint_error},
+                             {"centres", r.fits[j].centres},
+                             {"seconds", r.fits[j].seconds}});
+    return {{"exitStatus", exit_ok},
+            {"setupFile", r.basis_file.string()},
+            {"method", r.method},
+            {"points", r.n_points},
+            {"constrainedPoints", r.n_constrained},
+            {"variables", variables},
+            {"bytes", r.bytes},
+            {"seconds", r.seconds},
+            {"before", quality_json(r.before)}};
+}
+
+nlohmann::json variant_json(const design::DesignStudy& study, const design::VariantResult& r)
+{
+    nlohmann::json amplitudes;
+    for (std::size_t j = 0; j < r.amplitudes.size(); ++j)
+        amplitudes[study.names()[j]] = r.amplitudes[j];
+    nlohmann::json j = {
+        {"setupReused", true},
+        {"setupFile", study.basis_file().string()},
+        {"amplitudes", amplitudes},
+        {"valid", !r.refused},
+        {"written", r.written},
+        {"outputInstance", r.output_instance},
+        {"path", r.points_file.string()},
+        {"maxPrescribedDisplacement", r.max_prescribed},
+        {"maxConstraintError", r.max_constraint_error},
+        {"relativeConstraintError", r.relative_constraint_error},
+        {"maxDisplacement", r.max_displacement},
+        {"timings",
+         {{"combine", r.combine_seconds}, {"check", r.check_seconds}, {"write", r.write_seconds}}},
+        {"after", quality_json(r.after)}};
+    if (r.refused)
+    {
+        j["refusal"] = r.refusal;
+        j["backOff"] = r.back_off;
+    }
+    return j;
+}
 
 bool is_design_command(const Options& options)
 {

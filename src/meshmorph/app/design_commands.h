@@ -7,11 +7,25 @@
 #include <filesystem>
 #include <iosfwd>
 
+#include <nlohmann/json.hpp>
+
 #include "meshmorph/app/options.h"
+#include "meshmorph/design/design_setup.h"
+#include "meshmorph/design/design_variant.h"
 #include "meshmorph/morph/morph_result.h"
 
 namespace meshmorph::app
 {
+
+//! The JSON of -variables: exitStatus, setupFile, method, points, constrainedPoints,
+//! variables [{name, movesPoints, maxConstraintError, relativeConstraintError, centres,
+//! seconds}], bytes, seconds, before.
+nlohmann::json setup_json(const design::DesignSetupResult& r);
+//! The JSON of one variant: setupReused, setupFile, amplitudes {name: a}, valid, written,
+//! outputInstance, path, maxPrescribedDisplacement, maxConstraintError,
+//! relativeConstraintError, maxDisplacement, timings {combine, check, write}, after; when
+//! refused also refusal and backOff.
+nlohmann::json variant_json(const design::DesignStudy& study, const design::VariantResult& r);
 
 //! Whether the command line asks for a design-study command.
 bool is_design_command(const Options& options);

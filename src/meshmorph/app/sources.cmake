@@ -9,6 +9,7 @@ set(MESHMORPH_APP_SOURCES
     meshmorph/app/parallel_run.cpp
     meshmorph/app/design_commands.cpp
     meshmorph/app/morph_mesh.cpp
+    meshmorph/app/morph_session.cpp
 )
 meshmorph_add_component(app
     SOURCES ${MESHMORPH_APP_SOURCES}

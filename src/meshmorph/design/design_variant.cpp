@@ -221,7 +221,8 @@ void DesignStudy::measure_misfit(const Points& d, const ConstraintMisfit& misfit
     r.relative_constraint_error = r.max_prescribed > 0 ? error / r.max_prescribed : 0.0;
 }
 
-bool DesignStudy::refuse(const std::vector<double>& amplitudes, VariantResult& r)
+bool DesignStudy::refuse(const std::vector<double>& amplitudes, VariantResult& r,
+                         bool search_back_off)
 {
     const InvalidCells invalid{r.after.negative_volume_cells,
                                r.after.incorrectly_oriented_face_pyramids};
@@ -234,20 +235,21 @@ bool DesignStudy::refuse(const std::vector<double>& amplitudes, VariantResult& r
         log::warning() << "-force: writing although " << r.refusal;
         return false;
     }
+    r.refused = true;
+    if (!search_back_off)
+        return true;
     const Points moved = case_.foam.mesh.points;
     r.back_off =
         back_off(moved, amplitudes, invalid.negative_volume_cells + invalid.wrong_pyramids);
     case_.foam.mesh.points = moved;
-    r.refused = true;
     return true;
 }
 
-VariantResult DesignStudy::apply(const std::vector<double>& amplitudes, const std::string& instance)
+VariantResult DesignStudy::evaluate(const std::vector<double>& amplitudes, bool search_back_off)
 {
     check_amplitudes(amplitudes);
     VariantResult r;
     r.amplitudes = amplitudes;
-    r.output_instance = instance;
     Stopwatch stage;
     ConstraintMisfit misfit;
     const Points d = combine(amplitudes, &misfit);
@@ -263,20 +265,46 @@ VariantResult DesignStudy::apply(const std::vector<double>& amplitudes, const st
     r.after = morph::check_morph_mesh(moved, cell_faces_, geometry, CheckMeshSettings{},
                                       case_.decomposition);
     r.check_seconds = stage.seconds();
-    if (refuse(amplitudes, r))
-        return r;
-    stage.restart();
-    parallel::collective(parallel::Communicator::world(),
-                         [&]
-                         {
-                             if (!options_.overwrite)
-                                 morph::warn_if_replacing(case_.mesh_case, instance,
-                                                          options_.region);
-                             r.points_file = morph::write_morphed_points(
-                                 options_, moved.points, case_.foam, case_.mesh_case, instance);
-                         });
+    refuse(amplitudes, r, search_back_off);
+    return r;
+}
+
+bool DesignStudy::is_valid(const std::vector<double>& amplitudes)
+{
+    check_amplitudes(amplitudes);
+    PolyMesh& moved = case_.foam.mesh;
+    moved.points = x0_ + combine(amplitudes);
+    InvalidCells now = count_invalid_cells(moved, compute_geometry(moved, cell_faces_));
+    const parallel::Communicator& comm = parallel::Communicator::world();
+    now.negative_volume_cells =
+        static_cast<Index>(comm.sum(std::int64_t(now.negative_volume_cells)));
+    now.wrong_pyramids = static_cast<Index>(comm.sum(std::int64_t(now.wrong_pyramids)));
+    return !now.worse_than({header().negative_volume_cells_before, header().wrong_pyramids_before});
+}
+
+void DesignStudy::write(VariantResult& r, const std::string& instance)
+{
+    const Stopwatch stage;
+    r.output_instance = instance;
+    parallel::collective(
+        parallel::Communicator::world(),
+        [&]
+        {
+            if (!options_.overwrite)
+                morph::warn_if_replacing(case_.mesh_case, instance, options_.region);
+            r.points_file = morph::write_morphed_points(options_, case_.foam.mesh.points,
+                                                        case_.foam, case_.mesh_case, instance);
+        });
     r.written = true;
     r.write_seconds = stage.seconds();
+}
+
+VariantResult DesignStudy::apply(const std::vector<double>& amplitudes, const std::string& instance)
+{
+    VariantResult r = evaluate(amplitudes);
+    r.output_instance = instance;
+    if (!r.refused)
+        write(r, instance);
     return r;
 }
 

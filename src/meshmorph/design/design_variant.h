@@ -63,8 +63,21 @@ public:
     //! \throw InvalidInput naming the variable.
     void check_amplitudes(const std::vector<double>& a) const;
     //! \brief Build, check and (unless refused, or with force) write one variant to
-    //! `instance` (the mesh's own with -overwrite).
+    //! `instance` (the mesh's own with -overwrite): evaluate, then write.
     VariantResult apply(const std::vector<double>& amplitudes, const std::string& instance);
+    //! \brief Build and check one variant in memory (points(): its points); r.refused when it
+    //! has new invalid cells (unless force), and then, if search_back_off, r.back_off names
+    //! the variable whose removal repairs most (one check per variable). Writes nothing.
+    VariantResult evaluate(const std::vector<double>& amplitudes, bool search_back_off = true);
+    //! \brief Whether variant a has no more negative-volume cells or wrongly oriented face
+    //! pyramids than x0: the two checks alone, for line searches (points() then holds it).
+    bool is_valid(const std::vector<double>& amplitudes);
+    //! \brief Write the points of the last evaluated variant to `instance`, atomically.
+    void write(VariantResult& r, const std::string& instance);
+    //! The points of the last evaluated variant (the set-up's before the first).
+    const Points& points() const { return case_.foam.mesh.points; }
+    //! The set-up's points x0.
+    const Points& initial_points() const { return x0_; }
     //! The instance after `instance` (the next time), for a new variant.
     std::string next_instance(const std::string& instance) const;
 
@@ -78,7 +91,7 @@ private:
     Eigen::VectorXd ownership_weights() const;
     void measure_misfit(const Points& d, const ConstraintMisfit& misfit, VariantResult& r) const;
     //! Whether the variant in the study's mesh is refused (new invalid cells, no force).
-    bool refuse(const std::vector<double>& amplitudes, VariantResult& r);
+    bool refuse(const std::vector<double>& amplitudes, VariantResult& r, bool search_back_off);
     std::string back_off(const Points& moved, const std::vector<double>& a, Index invalid);
 
     morph::MorphOptions options_;

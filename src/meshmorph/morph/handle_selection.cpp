@@ -120,6 +120,9 @@ std::vector<Index> select_handle_points(const PolyMesh& mesh, const HandleEntry&
     case HandleEntry::Selection::points:
         selected = nearest_to_positions(mesh, handle, planes, tolerance, decomposition);
         break;
+    case HandleEntry::Selection::labels:
+        selected = handle.labels;
+        break;
     }
     const bool none = distributed(decomposition)
                           ? decomposition->comm->sum(std::int64_t(selected.size())) == 0
@@ -129,8 +132,11 @@ std::vector<Index> select_handle_points(const PolyMesh& mesh, const HandleEntry&
                          "handles entry '" + handle.name + "' selects no mesh point");
     for (Index p : selected)
         if (p < 0 || p >= mesh.n_points())
-            throw InvalidInput("pointZone '" + handle.zone + "' has point label " +
-                               std::to_string(p) + " out of range");
+            throw InvalidInput((handle.selection == HandleEntry::Selection::labels
+                                    ? "point set '" + handle.name + "'"
+                                    : "pointZone '" + handle.zone + "'") +
+                               " has point label " + std::to_string(p) + " out of range (" +
+                               std::to_string(mesh.n_points()) + " points)");
     return selected;
 }
 
@@ -149,6 +155,14 @@ Vector3 handle_displacement(const HandleEntry& handle, const Vector3& x,
     return planes->in_plane(handle.displacement_at(planes->project(x)));
 }
 
+//! A labels selection's k-th displacement (without its normal part in a 2D case).
+Vector3 listed_displacement(const HandleEntry& handle, std::size_t k,
+                            const std::optional<EmptyPlanes>& planes)
+{
+    const Vector3 d = handle.label_displacements.row(static_cast<Eigen::Index>(k)).transpose();
+    return planes ? planes->in_plane(d) : d;
+}
+
 } // namespace
 
 std::vector<Claim> collect_handle_claims(const PolyMesh& mesh, const MorphSetup& setup,
@@ -160,10 +174,17 @@ std::vector<Claim> collect_handle_claims(const PolyMesh& mesh, const MorphSetup&
     {
         const HandleEntry& handle = setup.handles[h];
         const Index source = static_cast<Index>(h);
-        for (Index p :
-             select_handle_points(mesh, handle, planes, tolerance, setup.dict_path, decomposition))
-            claims.push_back({p, source, source, Claim::Kind::value,
-                              handle_displacement(handle, mesh.points.row(p).transpose(), planes)});
+        const std::vector<Index> selected =
+            select_handle_points(mesh, handle, planes, tolerance, setup.dict_path, decomposition);
+        for (std::size_t k = 0; k < selected.size(); ++k)
+        {
+            const Index p = selected[k];
+            const Vector3 d =
+                handle.selection == HandleEntry::Selection::labels
+                    ? listed_displacement(handle, k, planes)
+                    : handle_displacement(handle, mesh.points.row(p).transpose(), planes);
+            claims.push_back({p, source, source, Claim::Kind::value, d});
+        }
     }
     std::stable_sort(claims.begin(), claims.end(),
                      [](const Claim& a, const Claim& b) { return a.point < b.point; });

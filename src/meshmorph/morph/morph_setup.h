@@ -38,6 +38,7 @@ struct HandleEntry
         point_zone, //!< the points of a pointZone
         box,        //!< every mesh point inside an axis-aligned box (inclusive)
         points,     //!< the mesh point nearest to each listed position
+        labels,     //!< the listed mesh points (not in a morphDict: front ends' point sets)
     };
     std::string name;
     Selection selection = Selection::box;
@@ -45,6 +46,8 @@ struct HandleEntry
     Vector3 box_min = Vector3::Zero(); //!< box
     Vector3 box_max = Vector3::Zero(); //!< box
     Points points;                     //!< points: k x 3 positions
+    std::vector<Index> labels;         //!< labels: distinct mesh point labels
+    Points label_displacements;        //!< labels: k x 3, the displacement of each
     Vector3 displacement = Vector3::Zero();
     //! When set, the displacement at each selected point instead of `displacement` (design
     //! variables that rotate or scale a handle's points; not written in a morphDict).

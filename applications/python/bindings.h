@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file The parts of the meshmorph Python module, each registered into the module.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <pybind11/pybind11.h>
+
+#include "meshmorph/morph/morph_result.h"
+
+namespace meshmorph::python
+{
+
+namespace py = pybind11;
+
+//! meshmorph.Case: a case in memory (app::MorphSession).
+void bind_case(py::module_& m);
+//! meshmorph.DesignStudy and meshmorph.setup_design (the design/ module).
+void bind_design(py::module_& m);
+//! The library's log lines to Python's logging (logger "meshmorph").
+void route_log_to_python(py::module_& m);
+
+//! The options of a case as the applications' -case, -region, -time/-latestTime, -dict,
+//! -method, -force give them.
+morph::MorphOptions case_options(const py::object& case_dir, const std::string& region,
+                                 const py::object& time, bool latest_time, const py::object& dict,
+                                 const std::optional<std::string>& method, bool force);
+
+//! A JSON document as Python objects (dict, list, float, ...).
+py::object to_python(const nlohmann::json& j);
+
+//! The keyword arguments every opening of a case takes, for the docstrings.
+inline constexpr const char* case_arguments_doc =
+    "case: the case directory (default '.'); region: a region of a multi-region case; "
+    "time: the time to read the mesh of (a name or number; default: the earliest, as "
+    "morphMesh), latest_time: read the newest time instead; dict: the morphDict to use "
+    "(relative to the case); method: override the dictionary's method (rbf, dmffd, ffd, "
+    "idw); force: write results although they have new invalid cells (morphMesh -force).";
+
+} // namespace meshmorph::python

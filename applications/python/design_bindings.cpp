@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// meshmorph.DesignStudy and meshmorph.setup_design: the design/ module (morphMesh
+// -variables, -variant, -sensitivity) with numpy arrays in and out.
+#include <memory>
+#include <optional>
+
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "bindings.h"
+#include "meshmorph/app/design_commands.h"
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/design/design_setup.h"
+#include "meshmorph/design/design_variant.h"
+#include "numpy_arrays.h"
+
+namespace meshmorph::python
+{
+
+namespace
+{
+
+//! The Python object: the study and the last variant it evaluated (write() writes it).
+struct PyStudy
+{
+    std::unique_ptr<design::DesignStudy> study;
+    std::optional<design::VariantResult> last;
+};
+
+std::vector<double> amplitudes_from(const PyStudy& s, const py::handle& a)
+{
+    std::vector<double> amplitudes = reals_from(a, "amplitudes");
+    s.study->check_amplitudes(amplitudes); // count, finiteness, bounds: the CLI's messages
+    return amplitudes;
+}
+
+py::object evaluate(PyStudy& s, const py::handle& a, bool back_off)
+{
+    const std::vector<double> amplitudes = amplitudes_from(s, a);
+    {
+        const py::gil_scoped_release release;
+        s.last = s.study->evaluate(amplitudes, back_off);
+    }
+    return to_python(app::variant_json(*s.study, *s.last));
+}
+
+py::array_t<double> displaced_points(PyStudy& s, const py::handle& a)
+{
+    const std::vector<double> amplitudes = amplitudes_from(s, a);
+    Points x;
+    {
+        const py::gil_scoped_release release;
+        x = s.study->initial_points() + s.study->combine(amplitudes);
+    }
+    return points_array(std::move(x));
+}
+
+py::array_t<double> transpose_product(PyStudy& s, const py::handle& g)
+{
+    const PolyMesh& mesh = s.study->design_case().foam.mesh;
+    const py::array flat = py::array::ensure(g);
+    const bool is_flat = flat && flat.ndim() == 1 && flat.size() == 3 * mesh.n_points();
+    const Points dJdx = points_from(is_flat ? py::object(flat.attr("reshape")(-1, 3))
+                                            : py::object(py::reinterpret_borrow<py::object>(g)),
+                                    mesh.n_points(), "dJ/dx");
+    if (!dJdx.allFinite())
+        throw InvalidInput("dJ/dx: a value is not finite (NaN or inf)");
+    std::vector<double> dJda;
+    {
+        const py::gil_scoped_release release;
+        dJda = s.study->transpose_product(dJdx);
+    }
+    py::array_t<double> out(py::ssize_t(dJda.size()));
+    std::copy(dJda.begin(), dJda.end(), out.mutable_data());
+    return out;
+}
+
+py::object write(PyStudy& s, bool overwrite, const py::object& time)
+{
+    if (!s.last)
+        throw InvalidInput("no variant evaluated yet: call evaluate(a) before write()");
+    if (s.last->refused)
+        throw InvalidInput("the last variant was refused (" + s.last->refusal +
+                           "): nothing written (open the study with force to write anyway)");
+    const design::DesignCase& dc = s.study->design_case();
+    const std::string instance = overwrite        ? dc.foam.points_instance
+                                 : time.is_none() ? s.study->next_instance(dc.foam.time)
+                                                  : std::string(py::str(time));
+    {
+        const py::gil_scoped_release release;
+        s.study->write(*s.last, instance);
+    }
+    return py::cast(s.last->points_file);
+}
+
+} // namespace
+
+void bind_design(py::module_& m)
+{
+    m.def(
+        "setup_design",
+        [](const py::object& case_dir, const std::string& region, const py::object& time,
+           bool latest_time, const py::object& dict, const std::optional<std::string>& method)
+        {
+            const morph::MorphOptions o =
+                case_options(case_dir, region, time, latest_time, dict, method, false);
+            std::optional<design::DesignSetupResult> r;
+            {
+                const py::gil_scoped_release release;
+                r = design::setup_design(o);
+            }
+            return to_python(app::setup_json(*r));
+        },
+        py::arg("case") = ".", py::kw_only(), py::arg("region") = "", py::arg("time") = py::none(),
+        py::arg("latest_time") = false, py::arg("dict") = py::none(),
+        py::arg("method") = py::none(),
+        "morphMesh -variables: fit every design variable of the morphDict once and write the "
+        "set-up (constant/designBasis); returns -variables' JSON report as a dict.");
+
+    py::class_<PyStudy>(m, "DesignStudy",
+                        "A case's design variables from its set-up (setup_design): designs "
+                        "x0 + sum_j a_j F_j and gradients dJ/da without a fit.")
+        .def(py::init(
+                 [](const py::object& case_dir, const std::string& region, const py::object& time,
+                    bool latest_time, const py::object& dict, bool force)
+                 {
+                     const morph::MorphOptions o =
+                         case_options(case_dir, region, time, latest_time, dict, {}, force);
+                     const py::gil_scoped_release release;
+                     return PyStudy{std::make_unique<design::DesignStudy>(o), {}};
+                 }),
+             py::arg("case") = ".", py::kw_only(), py::arg("region") = "",
+             py::arg("time") = py::none(), py::arg("latest_time") = false,
+             py::arg("dict") = py::none(), py::arg("force") = false,
+             "Open the set-up of a case (without time: the instance it was made on). Raises "
+             "InputError for a stale set-up (run setup_design again).")
+        .def_property_readonly(
+            "names", [](const PyStudy& s) { return s.study->names(); },
+            "The variables' names, in amplitude order.")
+        .def_property_readonly(
+            "bounds", [](const PyStudy& s) { return s.study->header().bounds; },
+            "Per variable (lo, hi) or None.")
+        .def_property_readonly("setup_file", [](const PyStudy& s) { return s.study->basis_file(); })
+        .def_property_readonly(
+            "initial_points",
+            [](const py::object& self)
+            { return points_view(self.cast<PyStudy&>().study->initial_points(), self); },
+            "(n, 3) read-only view (no copy) of the set-up's points x0.")
+        .def("points", &displaced_points, py::arg("a"),
+             "x0 + sum_j a_j F_j as a new (n, 3) array (no check, nothing kept): the variant's "
+             "points, bit for bit those evaluate(a) checks and morphMesh -variant writes.")
+        .def("evaluate", &evaluate, py::arg("a"), py::kw_only(), py::arg("back_off") = false,
+             "Build and check the variant a (checkMesh's metrics; refused when it has new "
+             "invalid cells); returns morphMesh -variant's JSON report as a dict. back_off=True "
+             "names the variable whose removal repairs a refused variant (one check per "
+             "variable). write() writes it.")
+        .def(
+            "is_valid",
+            [](PyStudy& s, const py::handle& a)
+            {
+                const std::vector<double> amplitudes = amplitudes_from(s, a);
+                s.last.reset(); // the study's mesh now holds this variant's points
+                const py::gil_scoped_release release;
+                return s.study->is_valid(amplitudes);
+            },
+            py::arg("a"),
+            "Whether the variant a has no more negative-volume cells or wrongly oriented face "
+            "pyramids than x0: the cheap test for a line search (no other check, no report).")
+        .def("transpose_product", &transpose_product, py::arg("dJdx"),
+             "dJ/da_j = sum_i dJ/dx_i . F_j(i) for a gradient dJ/dx with respect to the points "
+             "((n, 3) or flat 3n); morphMesh -sensitivity's product.")
+        .def("write", &write, py::kw_only(), py::arg("overwrite") = false,
+             py::arg("time") = py::none(),
+             "Write the last evaluated variant atomically (to the next time after the set-up's, "
+             "`time`, or with overwrite=True the mesh's instance); returns the path.");
+}
+
+} // namespace meshmorph::python

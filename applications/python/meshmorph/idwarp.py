@@ -1,0 +1,71 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""IDWarp's USMesh calls on meshmorph, so that a DAFoam/pyGeo script can try meshmorph.
+
+The surface is the points of the wall patches (or `surface_patches`); every other boundary
+patch keeps its morphDict entry (fixed without a morphDict). warpMesh() is an exact morph
+(the case's method, rbf by default) from the mesh as read.
+
+One difference from IDWarp: meshmorph's shape parametrisation is its design variables
+(morphDict designVariables, set up with setup_design), so warpDeriv(dXv) returns dJ/da,
+what IDWarp's warpDeriv followed by pyGeo's totalSensitivity returns, not dJ/dXs.
+"""
+import numpy as np
+
+from ._core import Case, DesignStudy, InputError
+
+
+class USMesh:
+    """IDWarp-style access to a case: getSurfaceCoordinates, setSurfaceCoordinates,
+    warpMesh, getSolverGrid/getWarpGrid, warpDeriv."""
+
+    def __init__(self, options=None, case=".", surface_patches=None, **case_kwargs):
+        options = dict(options or {})
+        case = options.pop("gridFile", case)
+        self.case = Case(case, **case_kwargs)
+        self._case_kwargs = case_kwargs
+        self._case_dir = case
+        patches = self.case.patches
+        if surface_patches is None:
+            surface_patches = [n for n, p in patches.items() if p["type"] == "wall"]
+        if not surface_patches:
+            raise InputError("no wall patches: give surface_patches")
+        labels = [self.case.patch_points(name) for name in surface_patches]
+        self.surface_patches = list(surface_patches)
+        self._surface = np.unique(np.concatenate(labels))
+        self._target = None
+        self._study = None
+        self.report = None
+
+    def getSurfaceCoordinates(self):
+        """(n, 3) coordinates of the surface points (a copy), in ascending label order."""
+        return self.case.points[self._surface].copy()
+
+    def setSurfaceCoordinates(self, coordinates):
+        """The surface points' new positions, in getSurfaceCoordinates' order."""
+        xs = np.array(coordinates, dtype=float).reshape(-1, 3)
+        if xs.shape[0] != self._surface.size:
+            raise InputError(f"setSurfaceCoordinates: {xs.shape[0]} points given, "
+                             f"the surface has {self._surface.size}")
+        self._target = xs
+
+    def warpMesh(self):
+        """Move the volume points so that the surface reaches its set coordinates."""
+        if self._target is None:
+            raise InputError("warpMesh: call setSurfaceCoordinates first")
+        d = self._target - self.case.initial_points[self._surface]
+        self.report = self.case.morph(points={"surface": (self._surface, d)})
+        return self.report
+
+    def getSolverGrid(self):
+        """The volume points, flat (3n,) as IDWarp returns them (a copy)."""
+        return self.case.points.reshape(-1).copy()
+
+    getWarpGrid = getSolverGrid
+
+    def warpDeriv(self, dXv):
+        """dJ/da of the design variables for dJ/dXv ((n, 3) or flat): the chain rule through
+        the set-up's fields (setup_design must have been run on the case)."""
+        if self._study is None:
+            kwargs = {k: v for k, v in self._case_kwargs.items() if k != "method"}
+            self._study = DesignStudy(self._case_dir, **kwargs)
+        return self._study.transpose_product(np.asarray(dXv, dtype=float))

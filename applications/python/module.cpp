@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The meshmorph Python module's entry point and its shared pieces (options, JSON, log).
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "bindings.h"
+#include "meshmorph/core/log.h"
+#include "python_errors.h"
+
+namespace meshmorph::python
+{
+
+morph::MorphOptions case_options(const py::object& case_dir, const std::string& region,
+                                 const py::object& time, bool latest_time, const py::object& dict,
+                                 const std::optional<std::string>& method, bool force)
+{
+    morph::MorphOptions o;
+    o.case_dir =
+        py::cast<std::filesystem::path>(py::module_::import("os").attr("fspath")(case_dir));
+    o.region = region;
+    if (!time.is_none() && latest_time)
+        throw py::value_error("give time or latest_time, not both");
+    if (!time.is_none())
+        o.time = io::TimeSelection::at(py::str(time));
+    else if (latest_time)
+        o.time = io::TimeSelection::latest_time();
+    if (!dict.is_none())
+        o.dict = py::cast<std::filesystem::path>(py::module_::import("os").attr("fspath")(dict));
+    o.method = method;
+    o.force = force;
+    return o;
+}
+
+py::object to_python(const nlohmann::json& j)
+{
+    return py::module_::import("json").attr("loads")(j.dump());
+}
+
+void route_log_to_python(py::module_& m)
+{
+    log::set_level(log::Level::info);
+    log::set_sink(
+        [](log::Level level, const std::string& message)
+        {
+            const py::gil_scoped_acquire gil;
+            const char* method = level == log::Level::error     ? "error"
+                                 : level == log::Level::warning ? "warning"
+                                 : level == log::Level::info    ? "info"
+                                                                : "debug";
+            try
+            {
+                py::module_::import("logging").attr("getLogger")("meshmorph").attr(method)(message);
+            }
+            catch (py::error_already_set& e)
+            {
+                e.discard_as_unraisable("meshmorph log");
+            }
+        });
+    // Back to the default sink before the interpreter goes away.
+    py::module_::import("atexit").attr("register")(py::cpp_function([] { log::set_sink({}); }));
+    (void)m;
+}
+
+} // namespace meshmorph::python
+
+PYBIND11_MODULE(_core, m)
+{
+    m.doc() = "meshmorph's C++ core: cases, morphs, checks and design variables in memory "
+              "(use the package meshmorph, which re-exports these).";
+    meshmorph::python::register_errors(m);
+    meshmorph::python::route_log_to_python(m);
+    meshmorph::python::bind_case(m);
+    meshmorph::python::bind_design(m);
+}

@@ -1,0 +1,265 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The stages of a morph of a case: read (dictionary, mesh), constraints, fit and evaluate
+// in steps, check after, refuse or write (morph_case.cpp runs them in order).
+#include "meshmorph/morph/morph_stages.h"
+
+#include <algorithm>
+#include <memory>
+#include <sstream>
+
+#include "meshmorph/core/config.h"
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
+#include "meshmorph/core/number_format.h"
+#include "meshmorph/core/stopwatch.h"
+#include "meshmorph/io/decomposed_case.h"
+#include "meshmorph/io/foam_dictionary.h"
+#include "meshmorph/mesh/mesh_geometry.h"
+#include "meshmorph/morph/constraints.h"
+#include "meshmorph/morph/deformation_dict.h"
+#include "meshmorph/morph/deformation_methods.h"
+#include "meshmorph/morph/distributed_case.h"
+#include "meshmorph/morph/duplicate_points.h"
+#include "meshmorph/morph/morph_log.h"
+#include "meshmorph/morph/morph_output.h"
+#include "meshmorph/morph/point_displacement_input.h"
+#include "meshmorph/morph/surface_projector.h"
+#include "meshmorph/parallel/collective.h"
+#include "meshmorph/quality/cell_validity.h"
+#include "meshmorph/quality/quality_summary.h"
+
+namespace meshmorph::morph
+{
+
+namespace fs = std::filesystem;
+
+namespace
+{
+
+//! The motion in steps (morph_steps.h), with its timings and the constraint error.
+SteppedMorph fit_in_steps(const MorphOptions& options, const MorphCase& in, const CompactList& cf,
+                          MorphResult& result)
+{
+    const PolyMesh& mesh = in.foam.mesh;
+    const Constraints& c = result.constraints;
+    const DeformationSettings& settings = in.settings;
+    const Index n_fit = c.n_prescribed_points + c.n_slip_points;
+    log::info() << "Method: " << describe(settings, n_fit);
+    log::info() << "Steps: "
+                << (needs_fit(settings) ? describe(in.step_settings)
+                                        : "1 (ffd moves its control points once)");
+    const DeformationMaker make = [&](const Points& points)
+    { return make_deformation(settings, points, n_fit); };
+    const InvalidCells invalid_before{result.before.negative_volume_cells,
+                                      result.before.incorrectly_oriented_face_pyramids};
+    const Decomposition* parts = options.parallel ? &in.decomposition : nullptr;
+    SteppedMorph stepped = morph_in_steps(mesh, cf, c, in.step_settings, make, needs_fit(settings),
+                                          invalid_before, parts);
+    result.steps = stepped.steps;
+    for (const StepRecord& s : stepped.steps)
+    {
+        result.timings.fit += s.fit_seconds;
+        result.timings.evaluate += s.evaluate_seconds;
+        result.timings.check += s.check_seconds;
+        result.timings.untangle += s.untangle_seconds;
+    }
+    result.morph = std::move(stepped.last);
+    result.morph.displacement = std::move(stepped.displacement);
+    measure_constraint_error(c, mesh.points, result.morph, parts);
+    result.max_displacement =
+        parallel::Communicator::world().max(max_norm(result.morph.displacement));
+    log_fit(result, settings, global_count(in.decomposition, mesh.n_points(), true));
+    result.valid_fraction = stepped.valid_fraction;
+    return stepped;
+}
+
+void warn_if_partly_valid(const SteppedMorph& stepped, const StepSettings& step_settings)
+{
+    if (stepped.valid_fraction >= 1.0)
+        return;
+    log::warning() << "the motion is valid up to " << format_scalar(stepped.valid_fraction, 4)
+                   << " of itself; beyond, "
+                   << (step_settings.steps == 0
+                           ? "even a step of 1/" + std::to_string(step_settings.max_steps) +
+                                 " of it creates invalid cells"
+                           : "a step creates invalid cells (try more steps, or steps auto)");
+}
+
+//! Why a morph is refused: invalid cells that were not there before.
+std::vector<std::string> refusal_reasons(const QualityReport& before, const QualityReport& after)
+{
+    std::vector<std::string> reasons;
+    if (after.negative_volume_cells > before.negative_volume_cells)
+        reasons.push_back(std::to_string(after.negative_volume_cells) + " negative-volume cells (" +
+                          std::to_string(before.negative_volume_cells) + " before)");
+    if (after.incorrectly_oriented_face_pyramids > before.incorrectly_oriented_face_pyramids)
+        reasons.push_back(std::to_string(after.incorrectly_oriented_face_pyramids) +
+                          " incorrectly oriented face pyramids (" +
+                          std::to_string(before.incorrectly_oriented_face_pyramids) + " before)");
+    return reasons;
+}
+
+//! The before/after table; then whether the result is refused (true: write nothing).
+bool judge(const MorphOptions& options, MorphResult& result)
+{
+    if (parallel::Communicator::world().master()) // other ranks hold only their part's report
+    {
+        std::ostringstream summary;
+        print_quality_summary(summary, &result.before, &result.after);
+        log::info() << "Mesh quality before and after the morph:\n" << summary.str();
+    }
+    const std::vector<std::string> reasons = refusal_reasons(result.before, result.after);
+    if (reasons.empty())
+        return false;
+    result.refusal = "the morphed mesh has " + reasons.front() +
+                     (reasons.size() > 1 ? " and " + reasons.back() : std::string());
+    if (!options.force)
+    {
+        result.refused = true; // the caller reports it (morphMesh: exit status 3)
+        return true;
+    }
+    log::warning() << "-force: writing although " << result.refusal;
+    return false;
+}
+
+} // namespace
+
+fs::path morph_dict_path(const MorphOptions& options, const fs::path& case_dir)
+{
+    fs::path path =
+        options.dict.empty() ? fs::path("system") / options.region / "morphDict" : options.dict;
+    return path.is_relative() ? case_dir / path : path;
+}
+
+void read_morph_dict(const MorphOptions& options, MorphCase& in, MorphResult& result)
+{
+    in.case_dir = fs::absolute(options.case_dir).lexically_normal();
+    if (!fs::is_directory(in.case_dir))
+        throw IoError("case directory " + in.case_dir.string() + " does not exist");
+    in.dict_path = morph_dict_path(options, in.case_dir);
+    const io::FoamDictionary dict = io::read_dictionary(in.dict_path);
+    in.setup = read_morph_setup(dict);
+    in.settings = read_deformation_settings(dict, options.method);
+    in.step_settings = read_step_settings(dict);
+    result.method = to_string(in.settings.method);
+}
+
+void read_morph_mesh(const MorphOptions& options, MorphCase& in, MorphResult& result)
+{
+    const parallel::Communicator& comm = parallel::Communicator::world();
+    in.mesh_case =
+        options.parallel ? io::processor_case(in.case_dir, comm, "morphMesh") : in.case_dir;
+    io::PolyMeshReadOptions read_options;
+    read_options.time = options.time;
+    read_options.region = options.region;
+    parallel::collective(comm,
+                         [&]
+                         {
+                             in.foam = io::read_poly_mesh(in.mesh_case, read_options);
+                             if (options.parallel)
+                                 in.decomposition = read_decomposition(in.foam, comm);
+                         });
+    const PolyMesh& mesh = in.foam.mesh;
+    result.instance = in.foam.points_instance;
+    result.region = options.region;
+    result.parallel = options.parallel;
+    log::info() << "Read mesh from " << in.foam.points_dir.string()
+                << (options.parallel ? " (and the other processors)" : "") << ": "
+                << global_count(in.decomposition, mesh.n_points(), true) << " points, "
+                << global_count(in.decomposition, mesh.n_cells, false) << " cells, "
+                << mesh.patches.size() << " patches";
+}
+
+void resolve_constraints(const MorphOptions& options, const MorphCase& in, MorphResult& result,
+                         const PointDisplacementInputs* given)
+{
+    const parallel::Communicator& comm = parallel::Communicator::world();
+    const PolyMesh& mesh = in.foam.mesh;
+    ConstraintInputs inputs;
+    auto projector = std::make_shared<SurfaceProjector>(in.case_dir);
+    inputs.project_to_surface = [projector](const std::string& file, const Points& query)
+    { return (*projector)(file, query); };
+    std::vector<PatchAssignment> assignment;
+    parallel::collective(comm,
+                         [&] { assignment = assign_patches(mesh, in.setup, options.parallel); });
+    inputs.patches = &assignment;
+    PointDisplacementInputs displacement;
+    if (std::any_of(assignment.begin(), assignment.end(),
+                    [](const PatchAssignment& a)
+                    { return a.motion == MotionType::point_displacement; }))
+    {
+        if (given == nullptr)
+            displacement = read_point_displacement(in.mesh_case, in.foam, options.region, comm);
+        const PointDisplacementInputs& values = given ? *given : displacement;
+        inputs.point_displacement = &values.internal;
+        inputs.patch_point_displacement = &values.patches;
+    }
+    if (options.parallel)
+        inputs.decomposition = &in.decomposition;
+    result.constraints = build_constraints(mesh, in.setup, inputs);
+    if (options.parallel)
+        set_global_patch_points(mesh, in.decomposition, result.constraints.patches);
+    check_duplicate_prescribed_points(mesh, result.constraints, in.foam.points.path.string());
+}
+
+std::string morph_output_instance(const MorphOptions& options, const MorphCase& in)
+{
+    if (options.overwrite)
+        return in.foam.points_instance;
+    const std::vector<io::TimeDir> times = io::list_times(in.mesh_case);
+    return io::next_time_name(times, in.foam.time, io::read_time_settings(in.case_dir));
+}
+
+void check_output_options(const MorphOptions& options)
+{
+    if (options.parallel && options.vtk)
+        throw InvalidInput("-vtk is not available with -parallel yet (reconstructPar, then "
+                           "checkMeshQuality -vtk)");
+#if !MESHMORPH_WITH_VTK
+    if (options.vtk)
+        throw InvalidInput("-vtk: this build has no VTK support (MESHMORPH_WITH_VTK=OFF)");
+#endif
+}
+
+void morph_resolved(const MorphOptions& options, const MorphCase& in, const CompactList& cf,
+                    MorphResult& result, PolyMesh& moved)
+{
+    SteppedMorph stepped = fit_in_steps(options, in, cf, result);
+    const Stopwatch stage;
+    warn_if_partly_valid(stepped, in.step_settings);
+    moved.points = std::move(stepped.points); // exactly the points stepped.geometry is of
+    CheckMeshSettings check_settings;
+    check_settings.scaled_jacobian = options.scaled_jacobian;
+    result.after = check_morph_mesh(moved, cf, stepped.geometry, check_settings, in.decomposition);
+    result.timings.check += stage.seconds();
+    judge(options, result);
+}
+
+void write_morph_result(const MorphOptions& options, const MorphCase& in, const PolyMesh& moved,
+                        MorphResult& result)
+{
+    const Stopwatch stage;
+    parallel::collective(
+        parallel::Communicator::world(),
+        [&]
+        {
+            if (!options.overwrite)
+                warn_if_replacing(in.mesh_case, result.output_instance, in.foam.region);
+            if (!options.parallel)
+                warn_if_decomposed(in.case_dir);
+            result.points_file = write_morphed_points(options, moved.points, in.foam, in.mesh_case,
+                                                      result.output_instance);
+        });
+    result.written = true;
+    if (options.vtk)
+        write_vtk(in.case_dir, options, moved, result);
+    result.timings.write = stage.seconds();
+    log::info() << "Wrote " << result.points_file.string() << " in "
+                << format_seconds(result.timings.write) << " s";
+    if (!result.vtk_file.empty())
+        log::info() << "Wrote " << result.vtk_file.string()
+                    << " (point data: displacement; cell data: nonOrthogonality, skewness, "
+                       "aspectRatio)";
+}
+
+} // namespace meshmorph::morph

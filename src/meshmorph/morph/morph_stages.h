@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file The stages of a morph of a case, public so that front ends other than morphMesh
+//! (the Python module) can run them in memory: read the mesh, read the morphDict, resolve
+//! the prescriptions into constraints, check, fit and evaluate in steps, judge, write.
+//! morph_case() (morph_case.h) is these stages in order.
+#pragma once
+
+#include <filesystem>
+
+#include "meshmorph/io/read_poly_mesh.h"
+#include "meshmorph/morph/decomposition.h"
+#include "meshmorph/morph/deformation_settings.h"
+#include "meshmorph/morph/morph_result.h"
+#include "meshmorph/morph/morph_setup.h"
+#include "meshmorph/morph/morph_steps.h"
+#include "meshmorph/morph/point_displacement_input.h"
+
+namespace meshmorph::morph
+{
+
+//! A case read for a morph: the morphDict's settings and the mesh (this rank's part in a
+//! -parallel run).
+struct MorphCase
+{
+    std::filesystem::path case_dir, dict_path, mesh_case;
+    MorphSetup setup;
+    DeformationSettings settings;
+    StepSettings step_settings;
+    io::FoamPolyMesh foam;
+    Decomposition decomposition;
+    const Decomposition* parts(const MorphOptions& o) const
+    {
+        return o.parallel ? &decomposition : nullptr;
+    }
+};
+
+//! `<case>/system[/<region>]/morphDict`, or options.dict (relative to the case).
+std::filesystem::path morph_dict_path(const MorphOptions& options,
+                                      const std::filesystem::path& case_dir);
+
+//! \brief Read the morphDict of options into `in` (setup, settings, step settings); sets
+//! in.case_dir and in.dict_path, and result.method. \throw IoError, ParseError.
+void read_morph_dict(const MorphOptions& options, MorphCase& in, MorphResult& result);
+
+//! \brief Read the mesh of options (a collective with -parallel) into `in`.
+//! \pre in.case_dir is set (read_morph_dict, or by the caller). \throw IoError, ParseError.
+void read_morph_mesh(const MorphOptions& options, MorphCase& in, MorphResult& result);
+
+//! \brief The prescriptions of in.setup resolved into result.constraints (surfaces and the
+//! pointDisplacement field read as the entries need them; `given` replaces the field).
+//! \throw ParseError, InvalidInput, IoError.
+void resolve_constraints(const MorphOptions& options, const MorphCase& in, MorphResult& result,
+                         const PointDisplacementInputs* given = nullptr);
+
+//! \brief Refuse output options this build or run cannot honour (-vtk with -parallel or
+//! without VTK). \throw InvalidInput.
+void check_output_options(const MorphOptions& options);
+
+//! \brief Fit and evaluate the resolved constraints in steps, check the result and judge
+//! it (result.after, result.refused). \pre result.before holds the check of in.foam.mesh.
+//! Writes nothing. \param moved a mesh with in's topology (a copy, kept by callers that
+//! morph repeatedly); receives the morphed points.
+void morph_resolved(const MorphOptions& options, const MorphCase& in, const CompactList& cf,
+                    MorphResult& result, PolyMesh& moved);
+
+//! \brief Write the morphed points to result.output_instance (and the VTK file if asked).
+void write_morph_result(const MorphOptions& options, const MorphCase& in, const PolyMesh& moved,
+                        MorphResult& result);
+
+//! The instance the points go to: the mesh's own with -overwrite, else the next time.
+std::string morph_output_instance(const MorphOptions& options, const MorphCase& in);
+
+} // namespace meshmorph::morph

@@ -1,0 +1,154 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""meshmorph.DesignStudy against morphMesh -variables/-variant/-sensitivity, and the
+transpose product against finite differences."""
+import json
+import shutil
+
+import numpy as np
+import pytest
+
+import meshmorph
+from conftest import run, run_json
+
+A = np.array([0.8, 0.3, 1, 0.05, -0.05, 0.05, -0.05, 0.02, 0.02, 0.02, 0.02])
+
+
+def test_setup_and_variant_equal_the_command_line(design_pipe, tmp_path):
+    cli_case = tmp_path / "cli"
+    shutil.copytree(design_pipe, cli_case)
+    cli_setup = run_json("morphMesh", "-variables", cwd=cli_case)
+    cli_variant = run_json("morphMesh", "-variant", "(" + " ".join(map(repr, A)) + ")",
+                           cwd=cli_case)
+
+    setup = meshmorph.setup_design(design_pipe)
+    assert [v["name"] for v in setup["variables"]] == [v["name"] for v in cli_setup["variables"]]
+    assert setup["method"] == cli_setup["method"]
+    study = meshmorph.DesignStudy(design_pipe)
+    assert study.names == [v["name"] for v in setup["variables"]]
+    assert study.bounds[0] == (-2.0, 2.0) and study.bounds[2] is None
+
+    report = study.evaluate(A)
+    assert report["valid"] and not report["written"]
+    for key in ("maxConstraintError", "maxDisplacement", "maxPrescribedDisplacement"):
+        assert report[key] == cli_variant[key], key
+    assert report["after"]["maxNonOrthogonality"] == cli_variant["after"]["maxNonOrthogonality"]
+    path = study.write()
+    assert path.name == "points" and path.parent.parent.name == "1"
+    assert path.read_bytes() == (cli_case / "1/polyMesh/points").read_bytes()
+    x = study.points(A)
+    assert np.array_equal(x, study.points(A))
+    assert np.array_equal(meshmorph.Case(design_pipe, time="1").initial_points,
+                          meshmorph.Case(cli_case, time="1").initial_points)
+
+
+def test_transpose_product_equals_sensitivity_and_finite_differences(design_pipe):
+    meshmorph.setup_design(design_pipe)
+    study = meshmorph.DesignStudy(design_pipe)
+    x0 = study.initial_points
+    rng = np.random.default_rng(7)
+    g = rng.normal(size=x0.shape)
+    dJda = study.transpose_product(g)
+    assert np.array_equal(dJda, study.transpose_product(g.reshape(-1)))  # flat dXv too
+
+    # J(a) = sum g . x(a) is linear in a: central differences are exact up to round-off.
+    h = 0.1
+    for j in range(len(A)):
+        e = np.zeros(len(A))
+        e[j] = h
+        fd = (np.sum(g * study.points(A + e)) - np.sum(g * study.points(A - e))) / (2 * h)
+        assert fd == pytest.approx(dJda[j], rel=1e-9, abs=1e-9 * np.abs(dJda).max())
+
+    # A nonlinear J (the squared distance of the wall from a target): the chain rule
+    # dJ/da = F^T dJ/dx against central differences.
+    target = x0 * 1.01
+    wall = meshmorph.Case(design_pipe).patch_points("wall")
+
+    def J(a):
+        x = study.points(a)
+        return 0.5 * np.sum((x[wall] - target[wall]) ** 2)
+
+    x = study.points(A)
+    dJdx = np.zeros_like(x)
+    dJdx[wall] = x[wall] - target[wall]
+    grad = study.transpose_product(dJdx)
+    h = 1e-4
+    for j in range(len(A)):
+        e = np.zeros(len(A))
+        e[j] = h
+        fd = (J(A + e) - J(A - e)) / (2 * h)
+        assert fd == pytest.approx(grad[j], rel=1e-6, abs=1e-8 * np.abs(grad).max())
+
+
+def test_transpose_product_equals_morphmesh_sensitivity(design_pipe):
+    run("morphMesh", "-variables", cwd=design_pipe)
+    (design_pipe / "dJdx").write_text(
+        "FoamFile { version 2.0; format ascii; class pointVectorField; object dJdx; }\n"
+        "dimensions [0 0 0 0 0 0 0];\ninternalField uniform (0 0 0);\nboundaryField\n{\n"
+        "    wall { type fixedValue; value uniform (1 1 0); }\n"
+        "    \"(inlet|outlet)\" { type fixedValue; value uniform (0 0 0); }\n}\n")
+    cli = run_json("morphMesh", "-sensitivity", "dJdx", cwd=design_pipe)
+    study = meshmorph.DesignStudy(design_pipe)
+    case = meshmorph.Case(design_pipe)
+    g = np.zeros((case.n_points, 3))
+    g[case.patch_points("wall")] = [1.0, 1.0, 0.0]
+    dJda = study.transpose_product(g)
+    gradient = cli["dJda"] if isinstance(cli["dJda"], dict) else dict(zip(study.names, cli["dJda"]))
+    for name, value in zip(study.names, dJda):
+        assert value == pytest.approx(gradient[name], rel=1e-12, abs=1e-12 * np.abs(dJda).max())
+
+
+def test_is_valid_agrees_with_the_full_check(design_pipe):
+    meshmorph.setup_design(design_pipe)
+    study = meshmorph.DesignStudy(design_pipe)
+    assert study.is_valid(A) and study.evaluate(A)["valid"]
+    # The lattice bumps have no bounds: five times one control point's unit move folds the
+    # wall's cells.
+    wild = np.zeros(len(A))
+    wild[3] = 5.0
+    assert not study.is_valid(wild)
+    report = study.evaluate(wild, back_off=True)
+    assert not report["valid"] and report["backOff"].startswith("bump.1.1.1.x ")
+    with pytest.raises(meshmorph.InputError, match="refused"):
+        study.write()
+
+
+def test_design_errors(design_pipe):
+    with pytest.raises(meshmorph.IoError):
+        meshmorph.DesignStudy(design_pipe)  # no set-up yet
+    meshmorph.setup_design(design_pipe)
+    study = meshmorph.DesignStudy(design_pipe)
+    with pytest.raises(meshmorph.InputError, match="11 design variables"):
+        study.points([1.0, 2.0])
+    with pytest.raises(meshmorph.InputError, match="not finite"):
+        study.points(A * np.nan)
+    with pytest.raises(meshmorph.InputError, match="outside its bounds"):
+        study.points(A * 100)
+    with pytest.raises(ValueError, match="dJ/dx"):
+        study.transpose_product(np.zeros((3, 3)))
+    with pytest.raises(meshmorph.InputError, match="evaluate"):
+        study.write()
+    # A changed dictionary makes the set-up stale: the CLI's message.
+    dict_path = design_pipe / "system" / "morphDict"
+    dict_path.write_text(dict_path.read_text().replace("angle 2;", "angle 3;"))
+    with pytest.raises(meshmorph.InputError, match="-variables again"):
+        meshmorph.DesignStudy(design_pipe)
+
+
+def test_idwarp_aliases(design_pipe):
+    meshmorph.setup_design(design_pipe)
+    mesh = meshmorph.USMesh({"gridFile": str(design_pipe)})
+    xs = mesh.getSurfaceCoordinates()
+    assert xs.shape == (len(meshmorph.Case(design_pipe).patch_points("wall")), 3)
+    target = xs.copy()
+    target[:, 0] += 0.002 * np.cos(np.pi * target[:, 2])
+    mesh.setSurfaceCoordinates(target)
+    report = mesh.warpMesh()
+    assert not report["refused"] and report["maxConstraintError"] < 1e-12
+    assert np.allclose(mesh.getSurfaceCoordinates(), target, rtol=0, atol=1e-14)
+    grid = mesh.getSolverGrid()
+    assert grid.shape == (3 * meshmorph.Case(design_pipe).n_points,)
+    dXv = np.random.default_rng(1).normal(size=grid.shape)
+    study = meshmorph.DesignStudy(design_pipe)
+    assert np.array_equal(mesh.warpDeriv(dXv), study.transpose_product(dXv.reshape(-1, 3)))
+    with pytest.raises(meshmorph.InputError):
+        mesh.setSurfaceCoordinates(target[:-1])
