@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <mutex>
 #include <optional>
 #include <string>
 
@@ -28,6 +29,17 @@ void route_log_to_python(py::module_& m);
 morph::MorphOptions case_options(const py::object& case_dir, const std::string& region,
                                  const py::object& time, bool latest_time, const py::object& dict,
                                  const std::optional<std::string>& method, bool force);
+
+//! \brief Run f() with the GIL released and `busy` locked: the library's work runs while
+//! other Python threads go on, and calls on one object from several threads take turns.
+//! The lock is taken only without the GIL (the log sink takes the GIL), so no two threads
+//! can wait for each other.
+template <class F> auto without_gil(std::mutex& busy, F&& f)
+{
+    const py::gil_scoped_release release;
+    const std::lock_guard<std::mutex> guard(busy);
+    return f();
+}
 
 //! A JSON document as Python objects (dict, list, float, ...).
 py::object to_python(const nlohmann::json& j);

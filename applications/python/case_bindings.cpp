@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // meshmorph.Case: app::MorphSession with numpy arrays in and out.
 #include <memory>
+#include <mutex>
 
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -26,13 +27,19 @@ struct PyCase
 {
     std::unique_ptr<app::MorphSession> session;
     std::shared_ptr<const Points> snapshot;
-    void changed() { snapshot.reset(); }
+    std::unique_ptr<std::mutex> busy = std::make_unique<std::mutex>();
 };
 
 py::array_t<double> current_points(PyCase& c)
 {
-    if (!c.snapshot)
-        c.snapshot = std::make_shared<const Points>(c.session->points());
+    const std::shared_ptr<const Points> snapshot =
+        without_gil(*c.busy,
+                    [&]
+                    {
+                        if (!c.snapshot)
+                            c.snapshot = std::make_shared<const Points>(c.session->points());
+                        return c.snapshot;
+                    });
     // The capsule shares the snapshot: the view outlives later morphs unchanged.
     auto* keep = new std::shared_ptr<const Points>(c.snapshot);
     const py::capsule owner(keep,
@@ -105,22 +112,18 @@ app::Prescriptions prescriptions_from(const py::object& patches, const py::objec
     return p;
 }
 
-py::object morph_report(const morph::MorphResult& r)
+//! morphMesh's JSON document of a result (made under the object's lock).
+std::string morph_json(const morph::MorphResult& r)
 {
-    return to_python(
-        nlohmann::json::parse(app::morph_json(r, r.refused ? app::exit_refused : app::exit_ok)));
+    return app::morph_json(r, r.refused ? app::exit_refused : app::exit_ok);
 }
 
-py::object check_report(const PyCase& c, bool all_geometry, bool all_topology)
+py::object check_report(PyCase& c, bool all_geometry, bool all_topology)
 {
     CheckMeshSettings settings;
     settings.all_geometry = all_geometry;
     settings.all_topology = all_topology;
-    QualityReport report;
-    {
-        const py::gil_scoped_release release;
-        report = c.session->check(settings);
-    }
+    const QualityReport report = without_gil(*c.busy, [&] { return c.session->check(settings); });
     nlohmann::json j = quality_json(report);
     j["case"] = c.session->case_dir().string();
     j["time"] = c.session->foam().time;
@@ -166,7 +169,8 @@ void bind_case(py::module_& m)
                      const morph::MorphOptions o =
                          case_options(case_dir, region, time, latest_time, dict, method, force);
                      const py::gil_scoped_release release;
-                     return PyCase{std::make_unique<app::MorphSession>(o), nullptr};
+                     return PyCase{std::make_unique<app::MorphSession>(o), nullptr,
+                                   std::make_unique<std::mutex>()};
                  }),
              py::arg("case") = ".", py::kw_only(), py::arg("region") = "",
              py::arg("time") = py::none(), py::arg("latest_time") = false,
@@ -200,16 +204,24 @@ void bind_case(py::module_& m)
             [](PyCase& c, const py::object& points)
             {
                 Points p = points_from(points, c.session->mesh().n_points(), "points");
-                c.session->set_points(std::move(p));
-                c.changed();
+                without_gil(*c.busy,
+                            [&]
+                            {
+                                c.session->set_points(std::move(p));
+                                c.snapshot.reset();
+                            });
             },
             py::arg("points"), "Replace the current points ((n, 3), copied).")
         .def(
             "reset",
             [](PyCase& c)
             {
-                c.session->reset();
-                c.changed();
+                without_gil(*c.busy,
+                            [&]
+                            {
+                                c.session->reset();
+                                c.snapshot.reset();
+                            });
             },
             "Back to the points as read.")
         .def_property_readonly(
@@ -252,13 +264,15 @@ void bind_case(py::module_& m)
                         py::module_::import("os").attr("fspath")(dict));
                 const app::Prescriptions p =
                     given ? prescriptions_from(patches, points) : app::Prescriptions{};
-                c.changed();
-                const morph::MorphResult* r = nullptr;
-                {
-                    const py::gil_scoped_release release;
-                    r = given ? &c.session->morph(p) : &c.session->morph(dict_path);
-                }
-                return morph_report(*r);
+                const std::string report =
+                    without_gil(*c.busy,
+                                [&]
+                                {
+                                    c.snapshot.reset();
+                                    return morph_json(given ? c.session->morph(p)
+                                                            : c.session->morph(dict_path));
+                                });
+                return to_python(nlohmann::json::parse(report));
             },
             py::arg("dict") = py::none(), py::kw_only(), py::arg("patches") = py::none(),
             py::arg("points") = py::none(),
@@ -272,28 +286,21 @@ void bind_case(py::module_& m)
             "the case has one, gives the method and the patches not named (else fixed).")
         .def(
             "check",
-            [](const PyCase& c, bool all_geometry, bool all_topology)
+            [](PyCase& c, bool all_geometry, bool all_topology)
             { return check_report(c, all_geometry, all_topology); },
             py::kw_only(), py::arg("all_geometry") = false, py::arg("all_topology") = false,
             "checkMesh's numbers for the current points, as a dict with the keys of "
             "checkMeshQuality -json.")
         .def(
             "is_valid",
-            [](const PyCase& c)
-            {
-                const py::gil_scoped_release release;
-                return c.session->is_valid();
-            },
+            [](PyCase& c) { return without_gil(*c.busy, [&] { return c.session->is_valid(); }); },
             "Whether the current points have no more negative-volume cells or wrongly "
             "oriented face pyramids than the mesh as read: the two checks a morph is judged "
             "by, nothing else (for line searches).")
         .def(
             "write",
             [](PyCase& c, bool overwrite)
-            {
-                const py::gil_scoped_release release;
-                return c.session->write(overwrite);
-            },
+            { return without_gil(*c.busy, [&] { return c.session->write(overwrite); }); },
             py::kw_only(), py::arg("overwrite") = false,
             "Write the current points atomically to the next time after the mesh's (or with "
             "overwrite=True into the mesh's own instance, keeping points.orig); returns the "

@@ -2,6 +2,7 @@
 // meshmorph.DesignStudy and meshmorph.setup_design: the design/ module (morphMesh
 // -variables, -variant, -sensitivity) with numpy arrays in and out.
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include <pybind11/stl.h>
@@ -25,6 +26,7 @@ struct PyStudy
 {
     std::unique_ptr<design::DesignStudy> study;
     std::optional<design::VariantResult> last;
+    std::unique_ptr<std::mutex> busy = std::make_unique<std::mutex>();
 };
 
 std::vector<double> amplitudes_from(const PyStudy& s, const py::handle& a)
@@ -37,21 +39,20 @@ std::vector<double> amplitudes_from(const PyStudy& s, const py::handle& a)
 py::object evaluate(PyStudy& s, const py::handle& a, bool back_off)
 {
     const std::vector<double> amplitudes = amplitudes_from(s, a);
-    {
-        const py::gil_scoped_release release;
-        s.last = s.study->evaluate(amplitudes, back_off);
-    }
-    return to_python(app::variant_json(*s.study, *s.last));
+    const nlohmann::json report = without_gil(*s.busy,
+                                              [&]
+                                              {
+                                                  s.last = s.study->evaluate(amplitudes, back_off);
+                                                  return app::variant_json(*s.study, *s.last);
+                                              });
+    return to_python(report);
 }
 
 py::array_t<double> displaced_points(PyStudy& s, const py::handle& a)
 {
     const std::vector<double> amplitudes = amplitudes_from(s, a);
-    Points x;
-    {
-        const py::gil_scoped_release release;
-        x = s.study->initial_points() + s.study->combine(amplitudes);
-    }
+    Points x = without_gil(
+        *s.busy, [&] { return Points(s.study->initial_points() + s.study->combine(amplitudes)); });
     return points_array(std::move(x));
 }
 
@@ -65,11 +66,8 @@ py::array_t<double> transpose_product(PyStudy& s, const py::handle& g)
                                     mesh.n_points(), "dJ/dx");
     if (!dJdx.allFinite())
         throw InvalidInput("dJ/dx: a value is not finite (NaN or inf)");
-    std::vector<double> dJda;
-    {
-        const py::gil_scoped_release release;
-        dJda = s.study->transpose_product(dJdx);
-    }
+    const std::vector<double> dJda =
+        without_gil(*s.busy, [&] { return s.study->transpose_product(dJdx); });
     py::array_t<double> out(py::ssize_t(dJda.size()));
     std::copy(dJda.begin(), dJda.end(), out.mutable_data());
     return out;
@@ -77,20 +75,26 @@ py::array_t<double> transpose_product(PyStudy& s, const py::handle& g)
 
 py::object write(PyStudy& s, bool overwrite, const py::object& time)
 {
-    if (!s.last)
-        throw InvalidInput("no variant evaluated yet: call evaluate(a) before write()");
-    if (s.last->refused)
-        throw InvalidInput("the last variant was refused (" + s.last->refusal +
-                           "): nothing written (open the study with force to write anyway)");
-    const design::DesignCase& dc = s.study->design_case();
-    const std::string instance = overwrite        ? dc.foam.points_instance
-                                 : time.is_none() ? s.study->next_instance(dc.foam.time)
-                                                  : std::string(py::str(time));
-    {
-        const py::gil_scoped_release release;
-        s.study->write(*s.last, instance);
-    }
-    return py::cast(s.last->points_file);
+    const std::optional<std::string> named =
+        time.is_none() ? std::nullopt : std::optional<std::string>(py::str(time));
+    const std::filesystem::path written = without_gil(
+        *s.busy,
+        [&]
+        {
+            if (!s.last)
+                throw InvalidInput("no variant evaluated yet: call evaluate(a) before write()");
+            if (s.last->refused)
+                throw InvalidInput("the last variant was refused (" + s.last->refusal +
+                                   "): nothing written (open the study with force to write "
+                                   "anyway)");
+            const design::DesignCase& dc = s.study->design_case();
+            const std::string instance = overwrite ? dc.foam.points_instance
+                                         : named   ? *named
+                                                   : s.study->next_instance(dc.foam.time);
+            s.study->write(*s.last, instance);
+            return s.last->points_file;
+        });
+    return py::cast(written);
 }
 
 } // namespace
@@ -127,7 +131,9 @@ void bind_design(py::module_& m)
                      const morph::MorphOptions o =
                          case_options(case_dir, region, time, latest_time, dict, {}, force);
                      const py::gil_scoped_release release;
-                     return PyStudy{std::make_unique<design::DesignStudy>(o), {}};
+                     return PyStudy{std::make_unique<design::DesignStudy>(o),
+                                    {},
+                                    std::make_unique<std::mutex>()};
                  }),
              py::arg("case") = ".", py::kw_only(), py::arg("region") = "",
              py::arg("time") = py::none(), py::arg("latest_time") = false,
@@ -159,9 +165,12 @@ void bind_design(py::module_& m)
             [](PyStudy& s, const py::handle& a)
             {
                 const std::vector<double> amplitudes = amplitudes_from(s, a);
-                s.last.reset(); // the study's mesh now holds this variant's points
-                const py::gil_scoped_release release;
-                return s.study->is_valid(amplitudes);
+                return without_gil(*s.busy,
+                                   [&]
+                                   {
+                                       s.last.reset(); // the study's mesh now holds this variant
+                                       return s.study->is_valid(amplitudes);
+                                   });
             },
             py::arg("a"),
             "Whether the variant a has no more negative-volume cells or wrongly oriented face "

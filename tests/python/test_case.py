@@ -190,3 +190,40 @@ def test_bad_input_raises_with_the_applications_messages(pipe):
             call()
         assert case.is_valid(), name  # nothing half-done
     assert np.array_equal(case.points, case.initial_points)
+
+
+def test_threads_take_turns_on_one_case(pipe):
+    """The GIL is released during a morph: calls on one case from several threads must
+    neither crash nor mix their results."""
+    import threading
+
+    write_dict(pipe / "system" / "morphDict", SQUEEZE)
+    case = meshmorph.Case(pipe)
+    case.morph()
+    expected = case.points.copy()
+    errors = []
+
+    def work():
+        try:
+            for _ in range(3):
+                case.morph()
+                assert case.is_valid()
+                assert np.array_equal(case.points, expected)
+        except Exception as e:  # reported below, not lost in the thread
+            errors.append(e)
+
+    threads = [threading.Thread(target=work) for _ in range(3)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors, errors
+
+
+def test_log_goes_to_python_logging(pipe, caplog):
+    write_dict(pipe / "system" / "morphDict", SQUEEZE)
+    case = meshmorph.Case(pipe)
+    with caplog.at_level("INFO", logger="meshmorph"):
+        case.morph()
+    assert any(r.name == "meshmorph" and r.message.startswith("Method: rbf")
+               for r in caplog.records)
