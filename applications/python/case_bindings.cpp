@@ -100,15 +100,31 @@ app::PointSetPrescription point_set(const std::string& name, const py::handle& v
     return s;
 }
 
+//! The entries of a {name: value} argument, refusing anything else with a TypeError.
+std::vector<std::pair<std::string, py::handle>> named_entries(const py::object& table,
+                                                              const char* argument)
+{
+    if (!py::isinstance<py::dict>(table))
+        throw py::type_error(std::string(argument) + ": expected a dict {name: value}");
+    std::vector<std::pair<std::string, py::handle>> entries;
+    for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(table))
+    {
+        if (!py::isinstance<py::str>(key))
+            throw py::type_error(std::string(argument) + ": names must be strings");
+        entries.emplace_back(py::cast<std::string>(key), value);
+    }
+    return entries;
+}
+
 app::Prescriptions prescriptions_from(const py::object& patches, const py::object& points)
 {
     app::Prescriptions p;
     if (!patches.is_none())
-        for (const auto& [key, value] : py::cast<py::dict>(patches))
-            p.patches.push_back(patch_prescription(py::cast<std::string>(key), value));
+        for (const auto& [name, value] : named_entries(patches, "patches"))
+            p.patches.push_back(patch_prescription(name, value));
     if (!points.is_none())
-        for (const auto& [key, value] : py::cast<py::dict>(points))
-            p.point_sets.push_back(point_set(py::cast<std::string>(key), value));
+        for (const auto& [name, value] : named_entries(points, "points"))
+            p.point_sets.push_back(point_set(name, value));
     return p;
 }
 
