@@ -30,12 +30,28 @@ morph::MorphOptions case_options(const py::object& case_dir, const std::string& 
                                  const py::object& time, bool latest_time, const py::object& dict,
                                  const std::optional<std::string>& method, bool force);
 
+//! Counts the calls running without the GIL, so that the interpreter's exit can wait for
+//! them (a thread still inside the library when python finalises would be ended in the
+//! middle of C++ code).
+class CallsInFlight
+{
+public:
+    //! \throw meshmorph InvalidInput once the interpreter is shutting down.
+    CallsInFlight();
+    ~CallsInFlight();
+    CallsInFlight(const CallsInFlight&) = delete;
+    CallsInFlight& operator=(const CallsInFlight&) = delete;
+    //! At exit: refuse new calls and wait (the caller has released the GIL) for those running.
+    static void close_and_wait();
+};
+
 //! \brief Run f() with the GIL released and `busy` locked: the library's work runs while
 //! other Python threads go on, and calls on one object from several threads take turns.
 //! The lock is taken only without the GIL (the log sink takes the GIL), so no two threads
 //! can wait for each other.
 template <class F> auto without_gil(std::mutex& busy, F&& f)
 {
+    const CallsInFlight call;
     const py::gil_scoped_release release;
     const std::lock_guard<std::mutex> guard(busy);
     return f();

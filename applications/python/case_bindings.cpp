@@ -41,10 +41,11 @@ py::array_t<double> current_points(PyCase& c)
                         return c.snapshot;
                     });
     // The capsule shares the snapshot: the view outlives later morphs unchanged.
-    auto* keep = new std::shared_ptr<const Points>(c.snapshot);
+    // (The local copy: another thread may reset c.snapshot once the lock is released.)
+    auto* keep = new std::shared_ptr<const Points>(snapshot);
     const py::capsule owner(keep,
                             [](void* p) { delete static_cast<std::shared_ptr<const Points>*>(p); });
-    return points_view(*c.snapshot, owner);
+    return points_view(*snapshot, owner);
 }
 
 morph::MotionType motion_named(const std::string& word, const std::string& patch)
@@ -101,17 +102,17 @@ app::PointSetPrescription point_set(const std::string& name, const py::handle& v
 }
 
 //! The entries of a {name: value} argument, refusing anything else with a TypeError.
-std::vector<std::pair<std::string, py::handle>> named_entries(const py::object& table,
+std::vector<std::pair<std::string, py::object>> named_entries(const py::object& table,
                                                               const char* argument)
 {
     if (!py::isinstance<py::dict>(table))
         throw py::type_error(std::string(argument) + ": expected a dict {name: value}");
-    std::vector<std::pair<std::string, py::handle>> entries;
+    std::vector<std::pair<std::string, py::object>> entries; // owned: conversions run Python
     for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(table))
     {
         if (!py::isinstance<py::str>(key))
             throw py::type_error(std::string(argument) + ": names must be strings");
-        entries.emplace_back(py::cast<std::string>(key), value);
+        entries.emplace_back(py::cast<std::string>(key), py::reinterpret_borrow<py::object>(value));
     }
     return entries;
 }
@@ -134,11 +135,12 @@ std::string morph_json(const morph::MorphResult& r)
     return app::morph_json(r, r.refused ? app::exit_refused : app::exit_ok);
 }
 
-py::object check_report(PyCase& c, bool all_geometry, bool all_topology)
+py::object check_report(PyCase& c, bool all_geometry, bool all_topology, bool scaled_jacobian)
 {
     CheckMeshSettings settings;
     settings.all_geometry = all_geometry;
     settings.all_topology = all_topology;
+    settings.scaled_jacobian = scaled_jacobian;
     const QualityReport report = without_gil(*c.busy, [&] { return c.session->check(settings); });
     nlohmann::json j = quality_json(report);
     j["case"] = c.session->case_dir().string();
@@ -174,16 +176,22 @@ py::dict zone_table(const std::vector<Zone>& zones)
 
 void bind_case(py::module_& m)
 {
+    static const std::string case_doc =
+        std::string("Read the mesh of a case. ") + case_arguments_doc +
+        " scaled_jacobian: morph reports include minScaledJacobian before and after, as "
+        "morphMesh -json's do (it costs as much as the checks).";
     py::class_<PyCase>(m, "Case",
                        "An OpenFOAM case's mesh in memory, morphed, checked and written any "
                        "number of times. Every morph starts from the mesh as read.")
         .def(py::init(
                  [](const py::object& case_dir, const std::string& region, const py::object& time,
                     bool latest_time, const py::object& dict,
-                    const std::optional<std::string>& method, bool force)
+                    const std::optional<std::string>& method, bool force, bool scaled_jacobian)
                  {
-                     const morph::MorphOptions o =
+                     morph::MorphOptions o =
                          case_options(case_dir, region, time, latest_time, dict, method, force);
+                     o.scaled_jacobian = scaled_jacobian;
+                     const CallsInFlight call; // (library calls that may log run without the GIL)
                      const py::gil_scoped_release release;
                      return PyCase{std::make_unique<app::MorphSession>(o), nullptr,
                                    std::make_unique<std::mutex>()};
@@ -191,7 +199,7 @@ void bind_case(py::module_& m)
              py::arg("case") = ".", py::kw_only(), py::arg("region") = "",
              py::arg("time") = py::none(), py::arg("latest_time") = false,
              py::arg("dict") = py::none(), py::arg("method") = py::none(), py::arg("force") = false,
-             case_arguments_doc)
+             py::arg("scaled_jacobian") = false, case_doc.c_str())
         .def_property_readonly("case_dir", [](const PyCase& c) { return c.session->case_dir(); })
         .def_property_readonly("region",
                                [](const PyCase& c) { return c.session->options().region; })
@@ -302,11 +310,13 @@ void bind_case(py::module_& m)
             "the case has one, gives the method and the patches not named (else fixed).")
         .def(
             "check",
-            [](PyCase& c, bool all_geometry, bool all_topology)
-            { return check_report(c, all_geometry, all_topology); },
+            [](PyCase& c, bool all_geometry, bool all_topology, bool scaled_jacobian)
+            { return check_report(c, all_geometry, all_topology, scaled_jacobian); },
             py::kw_only(), py::arg("all_geometry") = false, py::arg("all_topology") = false,
-            "checkMesh's numbers for the current points, as a dict with the keys of "
-            "checkMeshQuality -json.")
+            py::arg("scaled_jacobian") = true,
+            "checkMesh's numbers for the current points, as a dict with the keys and values "
+            "of checkMeshQuality -json (scaled_jacobian=False skips minScaledJacobian, which "
+            "costs as much as the checks, and reports it as None).")
         .def(
             "is_valid",
             [](PyCase& c) { return without_gil(*c.busy, [&] { return c.session->is_valid(); }); },

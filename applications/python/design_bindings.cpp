@@ -42,6 +42,7 @@ py::object evaluate(PyStudy& s, const py::handle& a, bool back_off)
     const nlohmann::json report = without_gil(*s.busy,
                                               [&]
                                               {
+                                                  s.last.reset(); // until the new one is whole
                                                   s.last = s.study->evaluate(amplitudes, back_off);
                                                   return app::variant_json(*s.study, *s.last);
                                               });
@@ -58,12 +59,12 @@ py::array_t<double> displaced_points(PyStudy& s, const py::handle& a)
 
 py::array_t<double> transpose_product(PyStudy& s, const py::handle& g)
 {
-    const PolyMesh& mesh = s.study->design_case().foam.mesh;
+    const Index n_points = s.study->initial_points().rows(); // x0: never changes
     const py::array flat = py::array::ensure(g);
-    const bool is_flat = flat && flat.ndim() == 1 && flat.size() == 3 * mesh.n_points();
+    const bool is_flat = flat && flat.ndim() == 1 && flat.size() == 3 * n_points;
     const Points dJdx = points_from(is_flat ? py::object(flat.attr("reshape")(-1, 3))
                                             : py::object(py::reinterpret_borrow<py::object>(g)),
-                                    mesh.n_points(), "dJ/dx");
+                                    n_points, "dJ/dx");
     if (!dJdx.allFinite())
         throw InvalidInput("dJ/dx: a value is not finite (NaN or inf)");
     const std::vector<double> dJda =
@@ -110,6 +111,7 @@ void bind_design(py::module_& m)
                 case_options(case_dir, region, time, latest_time, dict, method, false);
             std::optional<design::DesignSetupResult> r;
             {
+                const CallsInFlight call; // (library calls that may log run without the GIL)
                 const py::gil_scoped_release release;
                 r = design::setup_design(o);
             }
@@ -130,6 +132,7 @@ void bind_design(py::module_& m)
                  {
                      const morph::MorphOptions o =
                          case_options(case_dir, region, time, latest_time, dict, {}, force);
+                     const CallsInFlight call; // (library calls that may log run without the GIL)
                      const py::gil_scoped_release release;
                      return PyStudy{std::make_unique<design::DesignStudy>(o),
                                     {},

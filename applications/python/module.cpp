@@ -4,6 +4,11 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "bindings.h"
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
 #include "python_errors.h"
 
@@ -36,28 +41,73 @@ py::object to_python(const nlohmann::json& j)
     return py::module_::import("json").attr("loads")(j.dump());
 }
 
+namespace
+{
+
+std::atomic<int> calls_in_flight{0};
+std::atomic<bool> closing{false};
+
+//! One log line to Python's logging. Never throws (it runs in a destructor); drops the line
+//! once the interpreter is finalising (taking the GIL then would end the thread).
+void log_to_python(log::Level level, const std::string& message) noexcept
+{
+    if (_Py_IsFinalizing())
+        return;
+    try
+    {
+        const py::gil_scoped_acquire gil;
+        const char* method = level == log::Level::error     ? "error"
+                             : level == log::Level::warning ? "warning"
+                             : level == log::Level::info    ? "info"
+                                                            : "debug";
+        try
+        {
+            py::module_::import("logging").attr("getLogger")("meshmorph").attr(method)(message);
+        }
+        catch (py::error_already_set& e)
+        {
+            e.discard_as_unraisable("meshmorph log");
+        }
+    }
+    catch (...) // a line lost is better than std::terminate in a destructor
+    {
+    }
+}
+
+} // namespace
+
+CallsInFlight::CallsInFlight()
+{
+    if (closing.load())
+        throw InvalidInput("the Python interpreter is shutting down: meshmorph takes no new calls");
+    ++calls_in_flight;
+}
+
+CallsInFlight::~CallsInFlight()
+{
+    --calls_in_flight;
+}
+
+void CallsInFlight::close_and_wait()
+{
+    closing.store(true);
+    while (calls_in_flight.load() > 0)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
 void route_log_to_python(py::module_& m)
 {
     log::set_level(log::Level::info);
-    log::set_sink(
-        [](log::Level level, const std::string& message)
+    log::set_sink(log_to_python);
+    // At exit, before the interpreter finalises: no new calls, those running finish (their
+    // log lines need the GIL, hence released), then the default sink again.
+    py::module_::import("atexit").attr("register")(py::cpp_function(
+        []
         {
-            const py::gil_scoped_acquire gil;
-            const char* method = level == log::Level::error     ? "error"
-                                 : level == log::Level::warning ? "warning"
-                                 : level == log::Level::info    ? "info"
-                                                                : "debug";
-            try
-            {
-                py::module_::import("logging").attr("getLogger")("meshmorph").attr(method)(message);
-            }
-            catch (py::error_already_set& e)
-            {
-                e.discard_as_unraisable("meshmorph log");
-            }
-        });
-    // Back to the default sink before the interpreter goes away.
-    py::module_::import("atexit").attr("register")(py::cpp_function([] { log::set_sink({}); }));
+            const py::gil_scoped_release release;
+            CallsInFlight::close_and_wait();
+            log::set_sink({});
+        }));
     (void)m;
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 namespace meshmorph::python
 {
@@ -11,19 +12,27 @@ namespace meshmorph::python
 namespace
 {
 
-//! The object as a C-contiguous float64 array, refusing what is not real numbers (strings,
-//! objects, complex) rather than letting numpy cast it silently.
-py::array_t<double, py::array::c_style | py::array::forcecast> real_array(const py::handle& obj,
-                                                                          const std::string& what)
+using RealArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+//! The object as a numpy array of real numbers (not yet converted), refusing what is not
+//! real numbers (strings, objects, complex, booleans) rather than letting numpy cast it.
+py::array real_numbers(const py::handle& obj, const std::string& what)
 {
-    const py::array any = py::array::ensure(obj);
+    py::array any = py::array::ensure(obj);
     if (!any)
         throw py::type_error(what + ": expected an array of numbers");
     const char kind = any.dtype().kind();
     if (kind != 'f' && kind != 'i' && kind != 'u')
         throw py::type_error(what + ": expected real numbers, got an array of dtype " +
                              std::string(py::str(any.dtype())));
-    return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(any);
+    return any;
+}
+
+//! C-contiguous float64 (a copy unless it is one already). The constructor raises the
+//! Python error (e.g. MemoryError) where ensure() would return a null array.
+RealArray as_doubles(const py::array& any)
+{
+    return RealArray(py::reinterpret_borrow<py::object>(any));
 }
 
 std::string shape_of(const py::array& a)
@@ -38,12 +47,15 @@ std::string shape_of(const py::array& a)
 
 Points points_from(const py::handle& obj, Index rows, const std::string& what)
 {
-    const auto a = real_array(obj, what);
-    const bool shape_ok = a.ndim() == 2 && a.shape(1) == 3 && (rows < 0 || a.shape(0) == rows);
+    const py::array any = real_numbers(obj, what);
+    // The shape is checked before the conversion: a wrong array is never copied.
+    const bool shape_ok =
+        any.ndim() == 2 && any.shape(1) == 3 && (rows < 0 || any.shape(0) == rows);
     if (!shape_ok)
         throw py::value_error(what + ": expected shape (" +
                               (rows < 0 ? std::string("n") : std::to_string(rows)) + ", 3), got " +
-                              shape_of(a));
+                              shape_of(any));
+    const RealArray a = as_doubles(any);
     Points p(a.shape(0), 3);
     if (p.size() > 0)
         std::memcpy(p.data(), a.data(), sizeof(double) * std::size_t(p.size()));
@@ -52,9 +64,11 @@ Points points_from(const py::handle& obj, Index rows, const std::string& what)
 
 Vector3 vector_from(const py::handle& obj, const std::string& what)
 {
-    const auto a = real_array(obj, what);
-    if (a.ndim() != 1 || a.shape(0) != 3)
-        throw py::value_error(what + ": expected a vector of 3 numbers, got shape " + shape_of(a));
+    const py::array any = real_numbers(obj, what);
+    if (any.ndim() != 1 || any.shape(0) != 3)
+        throw py::value_error(what + ": expected a vector of 3 numbers, got shape " +
+                              shape_of(any));
+    const RealArray a = as_doubles(any);
     return Vector3(a.at(0), a.at(1), a.at(2));
 }
 
@@ -67,27 +81,42 @@ std::vector<Index> labels_from(const py::handle& obj, const std::string& what)
     if (any.size() > 0 && kind != 'i' && kind != 'u')
         throw py::type_error(what + ": point labels must be integers, got dtype " +
                              std::string(py::str(any.dtype())));
-    const auto a =
-        py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(any);
-    if (a.ndim() != 1)
-        throw py::value_error(what + ": expected a 1-D array of labels, got shape " + shape_of(a));
-    std::vector<Index> labels(std::size_t(a.size()));
-    for (py::ssize_t k = 0; k < a.size(); ++k)
+    if (any.ndim() != 1)
+        throw py::value_error(what + ": expected a 1-D array of labels, got shape " +
+                              shape_of(any));
+    // Unsigned labels are read as unsigned, so that none wraps to a negative number.
+    using Unsigned = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>;
+    using Signed = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+    std::vector<Index> labels(std::size_t(any.size()));
+    const auto narrow = [&](auto label, py::ssize_t k)
     {
-        const std::int64_t label = a.data()[k];
         // Range-checked before narrowing to a 32-bit label build's Index.
-        if (label < std::numeric_limits<Index>::min() || label > std::numeric_limits<Index>::max())
+        if (std::cmp_less(label, std::numeric_limits<Index>::min()) ||
+            std::cmp_greater(label, std::numeric_limits<Index>::max()))
             throw py::value_error(what + ": label " + std::to_string(label) + " out of range");
         labels[std::size_t(k)] = static_cast<Index>(label);
+    };
+    if (kind == 'u')
+    {
+        const Unsigned a(py::reinterpret_borrow<py::object>(any));
+        for (py::ssize_t k = 0; k < a.size(); ++k)
+            narrow(a.data()[k], k);
+    }
+    else
+    {
+        const Signed a(py::reinterpret_borrow<py::object>(any));
+        for (py::ssize_t k = 0; k < a.size(); ++k)
+            narrow(a.data()[k], k);
     }
     return labels;
 }
 
 std::vector<double> reals_from(const py::handle& obj, const std::string& what)
 {
-    const auto a = real_array(obj, what);
-    if (a.ndim() != 1)
-        throw py::value_error(what + ": expected a 1-D array, got shape " + shape_of(a));
+    const py::array any = real_numbers(obj, what);
+    if (any.ndim() != 1)
+        throw py::value_error(what + ": expected a 1-D array, got shape " + shape_of(any));
+    const RealArray a = as_doubles(any);
     return std::vector<double>(a.data(), a.data() + a.size());
 }
 

@@ -109,25 +109,27 @@ MorphSession::MorphSession(const morph::MorphOptions& options) : options_(option
     if (options.parallel)
         throw InvalidInput("a decomposed case (-parallel) cannot be opened in memory yet: "
                            "reconstructPar, or run morphMesh -parallel");
-    in_.case_dir = fs::absolute(options.case_dir).lexically_normal();
-    if (!fs::is_directory(in_.case_dir))
-        throw IoError("case directory " + in_.case_dir.string() + " does not exist");
-    in_.dict_path = morph::morph_dict_path(options, in_.case_dir);
+    case_dir_ = fs::absolute(options.case_dir).lexically_normal();
+    if (!fs::is_directory(case_dir_))
+        throw IoError("case directory " + case_dir_.string() + " does not exist");
+    dict_path_ = morph::morph_dict_path(options, case_dir_);
+    in_.case_dir = case_dir_;
+    in_.dict_path = dict_path_;
     morph::read_morph_mesh(options, in_, result_);
     cell_faces_ = cell_faces(in_.foam.mesh);
-    moved_ = in_.foam.mesh;
+    moved_.emplace(in_.foam.mesh);
 }
 
 void MorphSession::set_points(Points points)
 {
     require_rows(points, mesh().n_points(), "points");
-    moved_.points = std::move(points);
+    moved_->points = std::move(points);
     result_ = morph::MorphResult{};
 }
 
 void MorphSession::reset()
 {
-    moved_.points = initial_points();
+    moved_->points = initial_points();
     result_ = morph::MorphResult{};
 }
 
@@ -170,7 +172,7 @@ const morph::MorphResult& MorphSession::morph(const Prescriptions& prescriptions
     if (prescriptions.patches.empty() && prescriptions.point_sets.empty())
         throw InvalidInput("no prescriptions given: name patches or point sets to move");
     morph::MorphResult ignored;
-    if (fs::exists(in_.dict_path))
+    if (fs::exists(dict_path_)) // the options' morphDict, whatever an earlier morph read
         morph::read_morph_dict(options_, in_, ignored);
     else
     {
@@ -207,12 +209,12 @@ const morph::MorphResult& MorphSession::morph(const Prescriptions& prescriptions
 
 QualityReport MorphSession::check(const CheckMeshSettings& settings) const
 {
-    return check_mesh(moved_, cell_faces_, compute_geometry(moved_, cell_faces_), settings);
+    return check_mesh(*moved_, cell_faces_, compute_geometry(*moved_, cell_faces_), settings);
 }
 
 bool MorphSession::is_valid() const
 {
-    const InvalidCells now = count_invalid_cells(moved_, compute_geometry(moved_, cell_faces_));
+    const InvalidCells now = count_invalid_cells(*moved_, compute_geometry(*moved_, cell_faces_));
     if (!invalid_before_)
         invalid_before_ = count_invalid_cells(mesh(), compute_geometry(mesh(), cell_faces_));
     return !now.worse_than(*invalid_before_);
@@ -228,7 +230,7 @@ fs::path MorphSession::write(bool overwrite)
     const std::string instance = morph::morph_output_instance(options, in_);
     if (!overwrite)
         morph::warn_if_replacing(in_.mesh_case, instance, options.region);
-    return morph::write_morphed_points(options, moved_.points, in_.foam, in_.mesh_case, instance);
+    return morph::write_morphed_points(options, moved_->points, in_.foam, in_.mesh_case, instance);
 }
 
 } // namespace meshmorph::app

@@ -55,12 +55,12 @@ public:
 
     const io::FoamPolyMesh& foam() const { return in_.foam; }
     const PolyMesh& mesh() const { return in_.foam.mesh; }
-    const std::filesystem::path& case_dir() const { return in_.case_dir; }
+    const std::filesystem::path& case_dir() const { return case_dir_; }
     const morph::MorphOptions& options() const { return options_; }
     //! The points as read (x0), which every morph starts from.
     const Points& initial_points() const { return in_.foam.mesh.points; }
     //! The current points: x0, the last morph's, or those set.
-    const Points& points() const { return moved_.points; }
+    const Points& points() const { return moved_->points; }
     //! \brief Replace the current points. \throw InvalidInput for a wrong row count or a
     //! non-finite coordinate.
     void set_points(Points points);
@@ -94,9 +94,10 @@ private:
     void run_morph(const morph::MorphOptions& options, const morph::PointDisplacementInputs* given);
 
     morph::MorphOptions options_;
+    std::filesystem::path case_dir_, dict_path_; //!< absolute; the options' morphDict
     morph::MorphCase in_;
     CompactList cell_faces_;
-    PolyMesh moved_; //!< the topology of in_.foam.mesh with the current points
+    std::optional<PolyMesh> moved_; //!< the topology of in_.foam.mesh with the current points
     std::optional<QualityReport> before_;
     mutable std::optional<InvalidCells> invalid_before_; //!< of x0, on first use
     morph::MorphResult result_;

@@ -286,14 +286,18 @@ void DesignStudy::write(VariantResult& r, const std::string& instance)
 {
     const Stopwatch stage;
     r.output_instance = instance;
+    // Into the mesh's own instance is an overwrite, however it was asked for: the original
+    // points are kept as points.orig.
+    morph::MorphOptions options = options_;
+    options.overwrite = options.overwrite || instance == case_.foam.points_instance;
     parallel::collective(
         parallel::Communicator::world(),
         [&]
         {
-            if (!options_.overwrite)
-                morph::warn_if_replacing(case_.mesh_case, instance, options_.region);
-            r.points_file = morph::write_morphed_points(options_, case_.foam.mesh.points,
-                                                        case_.foam, case_.mesh_case, instance);
+            if (!options.overwrite)
+                morph::warn_if_replacing(case_.mesh_case, instance, options.region);
+            r.points_file = morph::write_morphed_points(options, case_.foam.mesh.points, case_.foam,
+                                                        case_.mesh_case, instance);
         });
     r.written = true;
     r.write_seconds = stage.seconds();

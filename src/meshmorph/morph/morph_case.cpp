@@ -40,11 +40,11 @@ MorphResult morph_case(const MorphOptions& options)
     result.timings.check = stage.seconds();
     warn_if_broken(result.before, in.foam.points_dir);
 
-    PolyMesh moved = mesh;
+    std::optional<PolyMesh> moved;
     morph_resolved(options, in, cf, result, moved);
     if (result.refused)
         return result;
-    write_morph_result(options, in, moved, result);
+    write_morph_result(options, in, *moved, result);
     return result;
 }
 

@@ -222,15 +222,17 @@ void check_output_options(const MorphOptions& options)
 }
 
 void morph_resolved(const MorphOptions& options, const MorphCase& in, const CompactList& cf,
-                    MorphResult& result, PolyMesh& moved)
+                    MorphResult& result, std::optional<PolyMesh>& moved)
 {
     SteppedMorph stepped = fit_in_steps(options, in, cf, result);
     const Stopwatch stage;
     warn_if_partly_valid(stepped, in.step_settings);
-    moved.points = std::move(stepped.points); // exactly the points stepped.geometry is of
+    if (!moved)
+        moved.emplace(in.foam.mesh);
+    moved->points = std::move(stepped.points); // exactly the points stepped.geometry is of
     CheckMeshSettings check_settings;
     check_settings.scaled_jacobian = options.scaled_jacobian;
-    result.after = check_morph_mesh(moved, cf, stepped.geometry, check_settings, in.decomposition);
+    result.after = check_morph_mesh(*moved, cf, stepped.geometry, check_settings, in.decomposition);
     result.timings.check += stage.seconds();
     judge(options, result);
 }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 
 #include "meshmorph/io/read_poly_mesh.h"
 #include "meshmorph/morph/decomposition.h"
@@ -58,10 +59,11 @@ void check_output_options(const MorphOptions& options);
 
 //! \brief Fit and evaluate the resolved constraints in steps, check the result and judge
 //! it (result.after, result.refused). \pre result.before holds the check of in.foam.mesh.
-//! Writes nothing. \param moved a mesh with in's topology (a copy, kept by callers that
-//! morph repeatedly); receives the morphed points.
+//! Writes nothing. \param moved receives the morphed mesh: in's topology, copied after the
+//! fit (so that the copy does not add to the fit's peak memory) unless the caller keeps one
+//! from an earlier morph.
 void morph_resolved(const MorphOptions& options, const MorphCase& in, const CompactList& cf,
-                    MorphResult& result, PolyMesh& moved);
+                    MorphResult& result, std::optional<PolyMesh>& moved);
 
 //! \brief Write the morphed points to result.output_instance (and the VTK file if asked).
 void write_morph_result(const MorphOptions& options, const MorphCase& in, const PolyMesh& moved,
