@@ -279,3 +279,28 @@ def test_log_goes_to_python_logging(pipe, caplog):
         case.morph()
     assert any(r.name == "meshmorph" and r.message.startswith("Method: rbf")
                for r in caplog.records)
+
+
+def test_region_and_time_select_what_morphmesh_selects(pipe, tmp_path):
+    """-region and -time/-latestTime: a region's mesh, dictionary and output directories,
+    and the newest time's points."""
+    region = pipe / "constant" / "fluid"
+    shutil.move(str(pipe / "constant" / "polyMesh"), str(region / "polyMesh"))
+    write_dict(pipe / "system" / "fluid" / "morphDict", SQUEEZE)
+    other = tmp_path / "cli"
+    shutil.copytree(pipe, other)
+    run("morphMesh", "-region", "fluid", cwd=other)
+
+    case = meshmorph.Case(pipe, region="fluid")
+    assert case.region == "fluid" and case.n_cells == 2240
+    case.morph()
+    path = case.write()
+    assert path == pipe / "1" / "fluid" / "polyMesh" / "points"
+    assert path.read_bytes() == (other / "1/fluid/polyMesh/points").read_bytes()
+
+    newest = meshmorph.Case(pipe, region="fluid", latest_time=True)
+    assert newest.time == "1" and np.array_equal(newest.initial_points, case.points)
+    first = meshmorph.Case(pipe, region="fluid", time="constant")
+    assert np.array_equal(first.initial_points, case.initial_points)
+    with pytest.raises(ValueError, match="not both"):
+        meshmorph.Case(pipe, region="fluid", time="1", latest_time=True)
