@@ -28,8 +28,11 @@ def application(name):
 
 def run(name, *args, cwd=None, expect=0):
     """Run an application; returns its completed process (stdout, stderr as text)."""
+    # Without LD_PRELOAD: a sanitizer runtime preloaded into python for a sanitized module
+    # (docs/python.md) must not be preloaded into the applications as well.
+    env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
     done = subprocess.run([application(name), *map(str, args)], cwd=cwd, capture_output=True,
-                          text=True, stdin=subprocess.DEVNULL)
+                          text=True, stdin=subprocess.DEVNULL, env=env)
     assert done.returncode == expect, f"{name} {args}: exit {done.returncode}\n{done.stderr}"
     return done
 
