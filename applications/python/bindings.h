@@ -22,7 +22,10 @@ void bind_case(py::module_& m);
 //! meshmorph.DesignStudy and meshmorph.setup_design (the design/ module).
 void bind_design(py::module_& m);
 //! The library's log lines to Python's logging (logger "meshmorph").
-void route_log_to_python(py::module_& m);
+void route_log_to_python();
+
+//! A str or os.PathLike as a path (os.fspath). \throw TypeError for anything else.
+std::filesystem::path path_from(const py::handle& path);
 
 //! The options of a case as the applications' -case, -region, -time/-latestTime, -dict,
 //! -method, -force give them.

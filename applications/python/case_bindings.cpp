@@ -75,9 +75,7 @@ app::PatchPrescription patch_prescription(const std::string& name, const py::han
     if (a && a.ndim() == 1)
     {
         p.type = morph::MotionType::translate;
-        p.vector = vector_from(value, "patch '" + name + "'");
-        if (!p.vector.allFinite())
-            throw InvalidInput("patch '" + name + "': a value is not finite (NaN or inf)");
+        p.vector = vector_from(value, "patch '" + name + "'"); // finiteness: MorphSession
         return p;
     }
     p.type = morph::MotionType::point_displacement;
@@ -284,8 +282,7 @@ void bind_case(py::module_& m)
                     throw py::value_error("give dict or patches/points, not both");
                 std::optional<std::filesystem::path> dict_path;
                 if (!dict.is_none())
-                    dict_path = py::cast<std::filesystem::path>(
-                        py::module_::import("os").attr("fspath")(dict));
+                    dict_path = path_from(dict);
                 const app::Prescriptions p =
                     given ? prescriptions_from(patches, points) : app::Prescriptions{};
                 const std::string report =

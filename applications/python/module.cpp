@@ -15,13 +15,17 @@
 namespace meshmorph::python
 {
 
+std::filesystem::path path_from(const py::handle& path)
+{
+    return py::cast<std::filesystem::path>(py::module_::import("os").attr("fspath")(path));
+}
+
 morph::MorphOptions case_options(const py::object& case_dir, const std::string& region,
                                  const py::object& time, bool latest_time, const py::object& dict,
                                  const std::optional<std::string>& method, bool force)
 {
     morph::MorphOptions o;
-    o.case_dir =
-        py::cast<std::filesystem::path>(py::module_::import("os").attr("fspath")(case_dir));
+    o.case_dir = path_from(case_dir);
     o.region = region;
     if (!time.is_none() && latest_time)
         throw py::value_error("give time or latest_time, not both");
@@ -30,7 +34,7 @@ morph::MorphOptions case_options(const py::object& case_dir, const std::string& 
     else if (latest_time)
         o.time = io::TimeSelection::latest_time();
     if (!dict.is_none())
-        o.dict = py::cast<std::filesystem::path>(py::module_::import("os").attr("fspath")(dict));
+        o.dict = path_from(dict);
     o.method = method;
     o.force = force;
     return o;
@@ -95,7 +99,7 @@ void CallsInFlight::close_and_wait()
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
 
-void route_log_to_python(py::module_& m)
+void route_log_to_python()
 {
     log::set_level(log::Level::info);
     log::set_sink(log_to_python);
@@ -108,7 +112,6 @@ void route_log_to_python(py::module_& m)
             CallsInFlight::close_and_wait();
             log::set_sink({});
         }));
-    (void)m;
 }
 
 } // namespace meshmorph::python
@@ -118,7 +121,7 @@ PYBIND11_MODULE(_core, m)
     m.doc() = "meshmorph's C++ core: cases, morphs, checks and design variables in memory "
               "(use the package meshmorph, which re-exports these).";
     meshmorph::python::register_errors(m);
-    meshmorph::python::route_log_to_python(m);
+    meshmorph::python::route_log_to_python();
     meshmorph::python::bind_case(m);
     meshmorph::python::bind_design(m);
 }

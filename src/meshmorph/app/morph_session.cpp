@@ -25,17 +25,12 @@ namespace fs = std::filesystem;
 namespace
 {
 
-bool all_finite(const Points& p)
-{
-    return p.allFinite();
-}
-
 void require_rows(const Points& values, Index rows, const std::string& what)
 {
     if (values.rows() != rows)
         throw InvalidInput(what + ": " + std::to_string(values.rows()) + " rows given, " +
                            std::to_string(rows) + " expected");
-    if (!all_finite(values))
+    if (!values.allFinite())
         throw InvalidInput(what + ": a value is not finite (NaN or inf)");
 }
 
@@ -187,6 +182,8 @@ const morph::MorphResult& MorphSession::morph(const Prescriptions& prescriptions
     for (const PatchPrescription& p : prescriptions.patches)
     {
         const Index k = require_patch(mesh(), p.patch);
+        if (!p.vector.allFinite())
+            throw InvalidInput("patch '" + p.patch + "': a value is not finite (NaN or inf)");
         set_patch_entry(in_.setup, p);
         if (p.type != morph::MotionType::point_displacement)
             continue;
