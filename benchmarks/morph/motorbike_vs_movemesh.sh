@@ -8,7 +8,7 @@
 # oriented face pyramids, negative volumes, max non-orthogonality, max skewness, min volume).
 #
 # Usage: motorbike_vs_movemesh.sh [-cache DIR] [-morphMesh PATH] [-lifts "0.05 0.09 0.135"]
-#                                 [-scaling [-factors "1 1.26 1.59 2"]] [-out DIR]
+#                                 [-scaling [-factors "1 1.26 1.59 2"]] [-rbf "KEYS"] [-out DIR]
 # See usage() below. The two tools, per lift f (lift = f x 1.3516 m), each in a copy of the
 # mesh (constant/polyMesh, system, 0) under OUT/runs/<run>/<tool>, log in log.<tool>:
 #   moveMesh   constant/dynamicMeshDict: displacementLaplacian, inverseDistance diffusivity
@@ -20,8 +20,10 @@
 #              fixed; `morphMesh -case C -json C/morph.json` writes 1/polyMesh/points, or
 #              refuses (exit 3) when the morph would invert cells (recorded, not fatal).
 # Then `checkMesh -latestTime` on each result, and the largest point displacement (how far
-# the motion spreads; the lift is the largest prescribed one). Tables (Markdown, CSV, JSON)
-# go to OUT.
+# the motion spreads; the lift is the largest prescribed one), and morphMesh's stage times
+# from its -json document: read, fit, evaluate, check, untangle, write, the roofline (read +
+# write: the I/O no morph can avoid) and its ratio to moveMesh's time, the global RBF's
+# centres and residual. Tables (Markdown, CSV, JSON) go to OUT.
 # The two set-ups differ on the points the tyres share with lowerWall (57 on the full mesh):
 # moveMesh's point patch values let the later patch (the bike) win, so they rise with the
 # bike and pull the floor up; morphMesh's default conflict rule `fixed` holds them.
@@ -44,7 +46,7 @@ marker=.motorbike_vs_movemesh   # marks the run directories this script may dele
 usage() {
     cat <<EOF
 usage: $foam_script_name [-cache DIR] [-morphMesh PATH] [-lifts "F ..."] [-scaling]
-                          [-factors "K ..."] [-out DIR]
+                          [-factors "K ..."] [-rbf "KEYS"] [-out DIR]
 
   -cache DIR        the full motorBike case (scripts/openfoam/motorbike.sh DIR full); built
                     there when missing (minutes), reused when present, never modified
@@ -61,6 +63,8 @@ usage: $foam_script_name [-cache DIR] [-morphMesh PATH] [-lifts "F ..."] [-scali
                     the full mesh on a 2-core machine, several times that for factor 2,
                     ~1.6M points)
   -factors "K ..."  block count factors for -scaling (default "1 1.26 1.59 2"; 1 = the cache)
+  -rbf "KEYS"       morphDict's rbf sub-dictionary, e.g. "greedy { spread 1; jumpSlope 1; }"
+                    (default: none, morphMesh's defaults)
   -out DIR          results: results.{md,csv,json} (lifts) or scaling.{md,csv,json,png},
                     and the runs in DIR/runs (default $root/build/bench/motorbike)
   -help             this text
@@ -76,6 +80,7 @@ morph_mesh=$root/build/release/applications/morphMesh/morphMesh
 lifts="0.05 0.09 0.135"
 factors="1 1.26 1.59 2"
 scaling=false
+rbf_keys=""
 out=$root/build/bench/motorbike
 while [[ $# -gt 0 ]]; do
     case $1 in
@@ -84,6 +89,7 @@ while [[ $# -gt 0 ]]; do
         -lifts)     [[ $# -ge 2 ]] || usage; lifts=$2; shift 2 ;;
         -factors)   [[ $# -ge 2 ]] || usage; factors=$2; shift 2 ;;
         -scaling)   scaling=true; shift ;;
+        -rbf)       [[ $# -ge 2 ]] || usage; rbf_keys=$2; shift 2 ;;
         -out)       [[ $# -ge 2 ]] || usage; out=$2; shift 2 ;;
         -help|--help|-h) usage 0 ;;
         *) echo "$foam_script_name: unknown option '$1'" >&2; usage ;;
@@ -331,11 +337,13 @@ DICT
 
 #! make_morphmesh_case <src> <dst> <lift>: copy_case plus system/morphDict.
 make_morphmesh_case() {
-    local src=$1 dst=$2 lift=$3
+    local src=$1 dst=$2 lift=$3 rbf_line=""
+    [[ -z "$rbf_keys" ]] || rbf_line="rbf { $rbf_keys }"
     copy_case "$src" "$dst"
     cat >"$dst/system/morphDict" <<DICT
 FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }
 method rbf;
+$rbf_line
 boundary
 {
     "motorBike_.*" { type translate; vector (0 0 $lift); }
@@ -454,7 +462,7 @@ print("NA" if x0 is None or x1 is None else f"{np.linalg.norm(x1 - x0, axis=1).m
 PY
 }
 
-csv_header="study,mesh,points,cells,lift_fraction,lift_m,tool,exit_status,wall_s,cpu_s,peak_rss_mb,failed_checks,failed_check_names,baseline_failed_checks,baseline_failed_check_names,wrongly_oriented_faces,negative_volume_cells,max_non_orthogonality,severely_non_orthogonal_faces,max_skewness,highly_skewed_faces,min_volume,max_displacement_m,note"
+csv_header="study,mesh,points,cells,lift_fraction,lift_m,tool,exit_status,wall_s,cpu_s,peak_rss_mb,failed_checks,failed_check_names,baseline_failed_checks,baseline_failed_check_names,wrongly_oriented_faces,negative_volume_cells,max_non_orthogonality,severely_non_orthogonal_faces,max_skewness,highly_skewed_faces,min_volume,max_displacement_m,read_s,fit_s,evaluate_s,check_s,untangle_s,write_s,roofline_s,centres,global_residual,jump_constraints,note"
 
 #! run_tool <study> <mesh label> <source case> <run dir> <fraction> <tool> <baseline numbers>:
 #! makes the case, runs the tool timed, checks its result and appends a CSV row.
@@ -487,14 +495,40 @@ run_tool() {
     numbers=$(check_result "$dir")
     local failed names pyr neg nonortho nsevere skew nskew minvol
     IFS=$'\t' read -r failed names pyr neg nonortho nsevere skew nskew minvol _ _ <<<"$numbers"
-    local b_failed b_names b_points b_cells max_disp
+    local b_failed b_names b_points b_cells max_disp stages
     max_disp=$(max_displacement "$dir")
+    stages=$(morph_stages "$dir" "$tool")
     IFS=$'\t' read -r b_failed b_names _ _ _ _ _ _ _ b_points b_cells <<<"$baseline"
     note=${note//\"/\'}
-    printf '%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,"%s",%s,"%s",%s,%s,%s,%s,%s,%s,%s,%s,"%s"\n' \
+    printf '%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,"%s",%s,"%s",%s,%s,%s,%s,%s,%s,%s,%s,%s,"%s"\n' \
         "$study" "$label" "$b_points" "$b_cells" "$fraction" "$lift" "$tool" "$run_status" \
         "$run_wall" "$run_cpu" "$run_rss_mb" "$failed" "$names" "$b_failed" "$b_names" \
-        "$pyr" "$neg" "$nonortho" "$nsevere" "$skew" "$nskew" "$minvol" "$max_disp" "$note" >>"$csv"
+        "$pyr" "$neg" "$nonortho" "$nsevere" "$skew" "$nskew" "$minvol" "$max_disp" "$stages" \
+        "$note" >>"$csv"
+}
+
+#! morph_stages <dir> <tool>: morphMesh's stage times from its -json document (read, fit,
+#! evaluate, check, untangle, write), the roofline (read + write: the I/O no morph avoids),
+#! the global part's centres, its residual relative to the largest prescribed displacement
+#! on the constraints it fits and the number of jump constraints it leaves to the local
+#! correction (last accepted step), comma-separated; NA for moveMesh or a missing document.
+morph_stages() {
+    if [[ $2 != morphMesh || ! -s "$1/morph.json" ]]; then
+        echo "NA,NA,NA,NA,NA,NA,NA,NA,NA,NA"
+        return 0
+    fi
+    "$python" - "$1/morph.json" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+t = j.get("timings", {})
+stage = [t.get(k) for k in ("read", "fit", "evaluate", "check", "untangle", "write")]
+roof = t["read"] + t["write"] if "read" in t and "write" in t else None
+steps = [s for s in j.get("steps", []) if s.get("accepted")]
+residual = steps[-1].get("globalResidual") if steps else None
+jumps = steps[-1].get("jumpConstraints") if steps else None
+fields = stage + [roof, j.get("centres"), residual, jumps]
+print(",".join("NA" if v is None else (f"{v:.4g}" if isinstance(v, float) else str(v)) for v in fields))
+PY
 }
 
 #! morph_refusal <dir>: morphMesh's reason for refusing (from morph.json, else its log).
@@ -585,6 +619,16 @@ for (mesh, frac), rs in groups.items():
         md.append("")
         md.append(f"morphMesh / moveMesh: time {t:.2f}x, memory {m:.2f}x"
                   + ("" if a["exit_status"] == "0" else f' (morphMesh exit {a["exit_status"]}: no mesh written)'))
+    if "morphMesh" in by_tool and by_tool["morphMesh"]["read_s"] not in ("NA", ""):
+        a = by_tool["morphMesh"]
+        md.append("")
+        md.append("morphMesh stages [s]: " + ", ".join(f'{k} {a[k + "_s"]}' for k in
+                  ("read", "fit", "evaluate", "check", "untangle", "write"))
+                  + f'; roofline (read + write alone) {a["roofline_s"]} s'
+                  + (f' = {float(a["roofline_s"]) / float(by_tool["moveMesh"]["wall_s"]):.3f}x moveMesh'
+                     if "moveMesh" in by_tool and float(by_tool["moveMesh"]["wall_s"]) > 0 else "")
+                  + f'; global RBF: {a["centres"]} centres, residual {a["global_residual"]} of the largest prescribed '
+                  + f'displacement on the constraints it fits, {a["jump_constraints"]} jump constraints left to the correction')
     notes = [f'{r["tool"]}: {r["note"]}' for r in rs if r["note"]]
     if notes:
         md.append("")

@@ -54,6 +54,8 @@ TEST(GreedyRbfDeformation, with_all_constraints_as_centres_equals_the_full_fit)
         s.tolerance = 0.0;
         s.rms_tolerance = 0.0;
         s.max_centres = 400;
+        s.spread = 0.0;     // the plain largest residuals ...
+        s.jump_slope = 0.0; // ... of every constraint, until all are centres
         GreedyRbfDeformation greedy(s);
         greedy.fit(x, d);
         EXPECT_EQ(greedy.report().num_centres, 400) << to_string(k);
@@ -122,6 +124,7 @@ TEST(GreedyRbfDeformation, logs_each_round_and_the_rounds_grow_like_log_of_the_c
     s.tolerance = 1e-9; // not reachable within the budget: every round runs
     s.rms_tolerance = 1e-9;
     s.max_centres = 1280;
+    s.spread = 0.0; // full batches: the count grows by 1.5 a round
     GreedyRbfDeformation greedy(s);
     log::CaptureScope capture;
     greedy.fit(x, d);
@@ -156,6 +159,8 @@ TEST(GreedyRbfDeformation, stops_at_the_best_round_when_more_centres_make_the_fi
     s.tolerance = 1e-6;
     s.rms_tolerance = 1e-6;
     s.max_centres = 3000;
+    s.spread = 0.0; // the crowded batches of the largest residuals, every constraint fitted
+    s.jump_slope = 0.0;
     GreedyRbfDeformation greedy(s);
     log::CaptureScope capture;
     greedy.fit(x, d);
@@ -179,6 +184,71 @@ TEST(GreedyRbfDeformation, stops_at_the_best_round_when_more_centres_make_the_fi
         for (Eigen::Index j = 0; j < B.cols(); ++j)
             ASSERT_NEAR(B(Eigen::Index(i), j), j == centres[i] ? 1.0 : 0.0, 1e-8)
                 << "centre " << i << ", constraint " << j;
+}
+
+TEST(GreedyRbfDeformation, spread_batches_reach_the_tolerance_with_the_contact_left_out)
+{
+    // The data of the test above: a lifted sphere touching (a hair above) a fixed plane.
+    // Crowded batches stop at the best round far from the tolerance; spread batches, with
+    // the constraints next to the contact left to the local correction, reach it.
+    const Points floor = test::random_points(3000, 0.0, 1.0, 17);
+    Points plane = floor;
+    plane.col(2).setZero();
+    const Points ball = test::sphere_points(3000, Vector3(0.5, 0.5, 0.2001), 0.2);
+    Points x(plane.rows() + ball.rows(), 3);
+    x << plane, ball;
+    const double lift = 0.05;
+    Points d = Points::Zero(x.rows(), 3);
+    d.bottomRows(ball.rows()).col(2).setConstant(lift);
+    GreedySettings s;
+    s.max_centres = 3000;
+    s.spread = 0.0;
+    s.jump_slope = 0.0;
+    GreedyRbfDeformation crowded(s);
+    crowded.fit(x, d);
+    EXPECT_FALSE(crowded.converged());
+    EXPECT_EQ(crowded.jump_constraints(), 0);
+
+    s.spread = 1.0;
+    s.jump_slope = 1.0;
+    GreedyRbfDeformation spread(s);
+    log::CaptureScope capture;
+    spread.fit(x, d);
+    EXPECT_TRUE(spread.converged()) << capture.text();
+    EXPECT_FALSE(spread.stopped_growing());
+    EXPECT_NE(capture.text().find("left to the local correction"), std::string::npos);
+    // The jumps are the points around the contact and only those: a plane point and a
+    // sphere point whose values differ by the lift closer than the lift (slope 1) lie
+    // within ~sqrt(2 r lift) = 0.14 of the contact, horizontally.
+    Points got(x.rows(), 3);
+    spread.evaluate(x, got);
+    Index jumps = 0;
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+    {
+        const double r = std::hypot(x(i, 0) - 0.5, x(i, 1) - 0.5);
+        const double z = x(i, 2);
+        // Points beyond the band's reach are fitted to the tolerance.
+        if (r > 0.2 && !(i >= plane.rows() && z < 0.2))
+            EXPECT_LE((got.row(i) - d.row(i)).norm(), 1e-2 * lift * (1 + 1e-9)) << "point " << i;
+        if (r < 0.02 && (i < plane.rows() || z < 0.01))
+            ++jumps; // certainly on the jump: within the contact's neighbourhood
+    }
+    EXPECT_GT(jumps, 0);
+    EXPECT_GE(spread.jump_constraints(), jumps);
+    EXPECT_LT(spread.jump_constraints(), x.rows() / 10);
+    // Each kept centre is interpolated exactly; none is a jump constraint.
+    for (Index c : spread.centre_indices())
+        EXPECT_NEAR((got.row(c) - d.row(c)).norm(), 0.0, 1e-9 * lift);
+}
+
+TEST(GreedyRbfDeformation, rejects_negative_spread_or_jump_slope)
+{
+    GreedySettings s;
+    s.spread = -1.0;
+    EXPECT_THROW(GreedyRbfDeformation{s}, InvalidInput);
+    s.spread = 0.0;
+    s.jump_slope = -0.5;
+    EXPECT_THROW(GreedyRbfDeformation{s}, InvalidInput);
 }
 
 } // namespace meshmorph

@@ -53,6 +53,7 @@ std::string morph_json(const morph::MorphResult& result, int exit_status)
                               {"to", s.to},
                               {"centres", s.centres},
                               {"globalResidual", s.max_global_residual},
+                              {"jumpConstraints", s.jump_constraints},
                               {"negativeVolumeCells", s.invalid.negative_volume_cells},
                               {"incorrectlyOrientedFacePyramids", s.invalid.wrong_pyramids},
                               {"untangle",

@@ -11,9 +11,20 @@
 namespace meshmorph
 {
 
+void detail::limit_to_ball(Eigen::Ref<Points> d, double radius)
+{
+#pragma omp parallel for schedule(static)
+    for (Eigen::Index i = 0; i < d.rows(); ++i)
+    {
+        const double n = d.row(i).norm();
+        if (n > radius)
+            d.row(i) *= radius / n;
+    }
+}
+
 CorrectedDeformation::CorrectedDeformation(std::unique_ptr<SpaceDeformation> global,
-                                           const IdwSettings& correction)
-    : global_(std::move(global)), correction_(correction)
+                                           const IdwSettings& correction, bool limit)
+    : global_(std::move(global)), correction_(correction), limit_(limit)
 {
     if (!global_)
         throw InvalidInput("CorrectedDeformation: no global deformation given");
@@ -54,11 +65,18 @@ void CorrectedDeformation::fit(const Eigen::Ref<const Points>& handles,
     report_.method += "+idw";
     report_.max_displacement = displacements.rowwise().norm().maxCoeff();
     report_.max_residual = residual.rowwise().norm().maxCoeff();
+    if (report_.jump_constraints == 0)
+        report_.max_fitted_residual = report_.max_residual;
     report_.rms_residual = std::sqrt(residual.rowwise().squaredNorm().mean());
 }
 
 void CorrectedDeformation::write_field(FieldWriter& out) const
 {
+    if (limit_)
+    {
+        out.put(FieldKind::limited);
+        out.put(report_.max_displacement);
+    }
     out.put(FieldKind::sum);
     global_->write_field(out);
     correction_.write_field(out);
@@ -71,6 +89,8 @@ void CorrectedDeformation::evaluate(const Eigen::Ref<const Points>& points,
     Points c(points.rows(), 3);
     correction_.evaluate(points, c);
     out += c;
+    if (limit_)
+        detail::limit_to_ball(out, report_.max_displacement);
 }
 
 const FitReport& CorrectedDeformation::report() const

@@ -7,6 +7,7 @@
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/deform/bspline_basis.h"
+#include "meshmorph/deform/corrected_deformation.h"
 #include "meshmorph/deform/ffd_deformation.h"
 #include "meshmorph/deform/field_stream.h"
 #include "meshmorph/deform/idw_deformation.h"
@@ -95,6 +96,31 @@ private:
     std::unique_ptr<SpaceDeformation> a_, b_;
 };
 
+class LimitedField : public RestoredField
+{
+public:
+    LimitedField(double radius, std::unique_ptr<SpaceDeformation> field)
+        : radius_(radius), field_(std::move(field))
+    {
+    }
+    //! As CorrectedDeformation::evaluate with its limit.
+    void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override
+    {
+        field_->evaluate(points, out);
+        detail::limit_to_ball(out, radius_);
+    }
+    void write_field(FieldWriter& out) const override
+    {
+        out.put(FieldKind::limited);
+        out.put(radius_);
+        field_->write_field(out);
+    }
+
+private:
+    double radius_;
+    std::unique_ptr<SpaceDeformation> field_;
+};
+
 std::unique_ptr<SpaceDeformation> read_idw(FieldReader& in)
 {
     const IdwSettings settings = in.get<IdwSettings>();
@@ -141,6 +167,13 @@ std::unique_ptr<SpaceDeformation> read_body(FieldReader& in)
     {
         std::unique_ptr<SpaceDeformation> a = read_body(in);
         return std::make_unique<SumField>(std::move(a), read_body(in));
+    }
+    case FieldKind::limited:
+    {
+        const double radius = in.get<double>();
+        if (!(radius >= 0.0))
+            throw IoError("fitted field: a limit radius that is negative or not a number");
+        return std::make_unique<LimitedField>(radius, read_body(in));
     }
     }
     throw IoError("fitted field: unknown kind");

@@ -26,6 +26,7 @@ enum class FieldKind : std::uint32_t
     ffd = 3,       //!< an FFD lattice and its control displacements (FFD, DM-FFD)
     sum = 4,       //!< two fields added (a global field and its local correction)
     idw_local = 5, //!< IDW for one region only: normalisation and the essential tree
+    limited = 6,   //!< a field projected onto a ball: its radius, then the field
 };
 
 //! Where a written field will be evaluated (a -parallel rank's points): fields whose size

@@ -15,6 +15,7 @@
 #include "meshmorph/core/stopwatch.h"
 #include "meshmorph/core/tie_break.h"
 #include "meshmorph/deform/field_stream.h"
+#include "meshmorph/deform/jump_detection.h"
 #include "meshmorph/deform/lapack.h"
 #include "meshmorph/deform/rbf_evaluator.h"
 #include "meshmorph/deform/rbf_setup.h"
@@ -241,6 +242,7 @@ struct GreedyRbfDeformation::Impl
     bool fitted = false;
     bool converged = false;
     bool stopped_growing = false; //!< stopped because the residual grew (see fit())
+    Index jump_constraints = 0;   //!< left out of the fit (GreedySettings::jump_slope)
     std::vector<Index> centre_indices;
     std::vector<double> history;
     std::vector<double> rms_history;
@@ -258,6 +260,8 @@ GreedyRbfDeformation::GreedyRbfDeformation(const GreedySettings& settings)
     impl_->setup = detail::rbf_kernel_setup(settings.rbf);
     if (!(settings.tolerance >= 0.0) || !(settings.rms_tolerance >= 0.0))
         throw InvalidInput("greedy RBF tolerances must be >= 0");
+    if (!(settings.spread >= 0.0) || !(settings.jump_slope >= 0.0))
+        throw InvalidInput("greedy RBF: spread and jumpSlope must be >= 0 (0: off)");
     if (settings.max_centres < 1 || settings.initial_centres < 0 || settings.batch_size < 0)
         throw InvalidInput("greedy RBF: max_centres must be >= 1, initial_centres and "
                            "batch_size >= 0");
@@ -270,10 +274,11 @@ GreedyRbfDeformation& GreedyRbfDeformation::operator=(GreedyRbfDeformation&&) no
 //! Which constraints are centres, and which the factor refused (linearly dependent).
 struct detail::CentreMarks
 {
-    explicit CentreMarks(Eigen::Index n) : is_centre(std::size_t(n), 0), rejected(std::size_t(n), 0)
+    explicit CentreMarks(Eigen::Index n)
+        : is_centre(std::size_t(n), 0), rejected(std::size_t(n), 0), jump(std::size_t(n), 0)
     {
     }
-    std::vector<char> is_centre, rejected;
+    std::vector<char> is_centre, rejected, jump;
 };
 
 namespace
@@ -349,7 +354,8 @@ std::vector<Eigen::Index> candidates(const Eigen::VectorXd& err, const CentreMar
 {
     std::vector<Eigen::Index> cand;
     for (Eigen::Index i = 0; i < err.size(); ++i)
-        if (!marks.is_centre[std::size_t(i)] && !marks.rejected[std::size_t(i)] && err[i] > 0.0)
+        if (!marks.is_centre[std::size_t(i)] && !marks.rejected[std::size_t(i)] &&
+            !marks.jump[std::size_t(i)] && err[i] > 0.0)
             cand.push_back(i);
     return cand;
 }
@@ -366,6 +372,55 @@ void keep_largest_residuals(std::vector<Eigen::Index>& cand, const Eigen::Vector
     cand.resize(std::size_t(b));
 }
 
+//! Marks the constraints on a near-discontinuity of the data (jump_points). Pairs farther
+//! apart than 2 max|h| / slope cannot jump; nor are pairs farther apart than 1/20 of the
+//! constraints' extent looked at (a change over such a distance is no near-discontinuity).
+Eigen::Index mark_jumps(const Points& X, const Eigen::MatrixXd& H, double slope, CentreMarks& marks)
+{
+    if (!(slope > 0.0) || X.rows() < 2)
+        return 0;
+    const double extent = (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
+    const double reach = std::min(2.0 * H.rowwise().norm().maxCoeff() / slope, extent / 20.0);
+    Index count = 0;
+    marks.jump = detail::jump_points(X, H, slope, reach, count);
+    return count;
+}
+
+//! The batch of a round: candidates by decreasing residual (above `floor`), each kept
+//! unless it lies closer to a point already kept than spread x its distance to the nearest
+//! centre (compared coarsened: tie_break.h). A new centre corrects the field within about
+//! that distance, so the batch spreads over every region with a large residual instead of
+//! crowding the worst one (the crowded batch makes the interpolant oscillate where the
+//! centres are sparse).
+std::vector<Eigen::Index> spread_batch(const std::vector<Eigen::Index>& sorted,
+                                       const Eigen::VectorXd& err, double floor, const Points& X,
+                                       const std::vector<Eigen::Index>& centres, Eigen::Index b,
+                                       double spread)
+{
+    std::vector<Eigen::Index> kept;
+    for (Eigen::Index j : sorted)
+    {
+        if (Eigen::Index(kept.size()) >= b || !(coarsened(err[j]) > coarsened(floor)))
+            break;
+        double to_centre2 = std::numeric_limits<double>::infinity();
+        for (Eigen::Index c : centres)
+            to_centre2 = std::min(to_centre2, (X.row(j) - X.row(c)).squaredNorm());
+        const double limit2 = coarsened(spread * spread * to_centre2);
+        bool crowded = false;
+        for (Eigen::Index k : kept)
+            if (coarsened((X.row(j) - X.row(k)).squaredNorm()) < limit2)
+            {
+                crowded = true;
+                break;
+            }
+        if (!crowded)
+            kept.push_back(j);
+    }
+    if (kept.empty() && !sorted.empty()) // none above the floor: the largest, so rounds progress
+        kept.push_back(sorted.front());
+    return kept;
+}
+
 } // namespace
 
 void GreedyRbfDeformation::prepare(const Eigen::Ref<const Points>& constraints,
@@ -375,6 +430,7 @@ void GreedyRbfDeformation::prepare(const Eigen::Ref<const Points>& constraints,
     d.fitted = false;
     d.converged = false;
     d.stopped_growing = false;
+    d.jump_constraints = 0;
     d.history.clear();
     d.rms_history.clear();
     d.report = FitReport{};
@@ -424,6 +480,11 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
 
     const std::vector<Eigen::Index> U = unisolvent_rows(d.P);
     CentreMarks marks(N);
+    d.jump_constraints = mark_jumps(Xphys, H, s.jump_slope, marks);
+    if (d.jump_constraints > 0)
+        log::info() << "    greedy RBF: " << d.jump_constraints
+                    << " constraints on jumps (displacement changing faster than jumpSlope "
+                    << s.jump_slope << " times the distance) left to the local correction";
     for (Eigen::Index u : U)
         marks.is_centre[std::size_t(u)] = 1;
     const Eigen::Index budget = std::max<Eigen::Index>(s.max_centres, p);
@@ -456,9 +517,16 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
     {
         set_model(H);
         d.model.evaluate(Xphys, got);
-        const Eigen::VectorXd err = (Eigen::MatrixXd(got) - H).rowwise().norm();
+        Eigen::VectorXd err = (Eigen::MatrixXd(got) - H).rowwise().norm();
+        Eigen::Index n_fitted = 0;
+        for (Eigen::Index i = 0; i < N; ++i)
+            if (marks.jump[std::size_t(i)])
+                err[i] = 0.0;
+            else
+                ++n_fitted;
         const double max_err = err.maxCoeff();
-        const double rms = std::sqrt(err.squaredNorm() / double(N));
+        const double rms =
+            std::sqrt(err.squaredNorm() / double(std::max<Eigen::Index>(n_fitted, 1)));
         d.history.push_back(max_err);
         d.rms_history.push_back(rms);
         log::info() << "    greedy RBF round " << iterations << ": " << p + system.size()
@@ -469,7 +537,7 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
             d.converged = true;
             return iterations;
         }
-        if (rms > best_rms)
+        if (rms > best_rms && !(s.spread > 0.0))
         {
             // More centres made the fit worse: the data vary too sharply for a global
             // interpolant at this resolution (a moving wall touching a fixed one), and the
@@ -485,8 +553,11 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
                         << " centres of the best round";
             return iterations - 1;
         }
-        best_rms = rms;
-        best_size = system.size();
+        if (rms <= best_rms)
+        {
+            best_rms = rms;
+            best_size = system.size();
+        }
         std::vector<Eigen::Index> cand = candidates(err, marks);
         if (cand.empty())
         {
@@ -500,8 +571,19 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
         // factor are r x b and b x b: 4096 keeps them below ~0.7 GB at r = 20000).
         const Eigen::Index b =
             s.batch_size > 0 ? s.batch_size : std::clamp<Eigen::Index>(centres / 2, 1, 4096);
-        keep_largest_residuals(cand, err,
-                               std::min({b, Eigen::Index(cand.size()), budget - centres}));
+        if (s.spread > 0.0)
+        {
+            keep_largest_residuals(cand, err, Eigen::Index(cand.size())); // all, sorted
+            std::vector<Eigen::Index> taken(system.unisolvent());
+            taken.insert(taken.end(), system.selected().begin(), system.selected().end());
+            // Above the max tolerance while it is not met; then (the RMS one is not) any.
+            const double floor = max_err > s.tolerance * max_disp ? s.tolerance * max_disp : 0.0;
+            cand = spread_batch(cand, err, floor, d.merged.centres, taken,
+                                std::min(b, budget - centres), s.spread);
+        }
+        else
+            keep_largest_residuals(cand, err,
+                                   std::min({b, Eigen::Index(cand.size()), budget - centres}));
         for (Eigen::Index j : cand)
             marks.is_centre[std::size_t(j)] = 1;
         add_centres(system, cand, marks);
@@ -530,6 +612,9 @@ void GreedyRbfDeformation::finish_report(const Eigen::Ref<const Points>& constra
     d.report.iterations = iterations;
     d.report.condition_estimate = system.condition_lower_bound();
     detail::residual_report(*this, constraints, displacements, d.report);
+    d.report.jump_constraints = d.jump_constraints;
+    if (d.jump_constraints > 0 && !d.history.empty())
+        d.report.max_fitted_residual = d.history.back(); // the kept round's, over the others
     if (!d.converged && !d.stopped_growing)
     {
         const double max_disp = d.merged.displacements.rows() > 0
@@ -584,6 +669,10 @@ const std::vector<double>& GreedyRbfDeformation::rms_history() const
 bool GreedyRbfDeformation::stopped_growing() const
 {
     return impl_->stopped_growing;
+}
+Index GreedyRbfDeformation::jump_constraints() const
+{
+    return impl_->jump_constraints;
 }
 
 Eigen::MatrixXd GreedyRbfDeformation::handle_basis(const Eigen::Ref<const Points>& points) const

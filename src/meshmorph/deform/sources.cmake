@@ -10,6 +10,7 @@ set(MESHMORPH_DEFORM_SOURCES
     meshmorph/deform/bspline_basis.cpp
     meshmorph/deform/ffd_deformation.cpp
     meshmorph/deform/dmffd_deformation.cpp
+    meshmorph/deform/jump_detection.cpp
     meshmorph/deform/greedy_rbf_deformation.cpp
     meshmorph/deform/handle_basis.cpp
     meshmorph/deform/idw_tree.cpp

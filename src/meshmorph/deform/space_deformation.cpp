@@ -124,6 +124,7 @@ void residual_report(const SpaceDeformation& d, const Eigen::Ref<const Points>& 
         max_d = std::max(max_d, displacements.row(i).norm());
     }
     report.max_residual = max_r;
+    report.max_fitted_residual = max_r;
     report.rms_residual = handles.rows() > 0 ? std::sqrt(sum_r2 / double(handles.rows())) : 0.0;
     report.max_displacement = max_d;
 }

@@ -31,6 +31,10 @@ struct FitReport
     double max_displacement = 0.0; //!< max |displacement| over the handles
     double max_residual = 0.0;     //!< max_i |d(h_i) - dh_i| (Euclidean), absolute
     double rms_residual = 0.0;     //!< sqrt(mean_i |d(h_i) - dh_i|^2), absolute
+    //! Handles a global part leaves to a local correction (greedy RBF: jumps), and the max
+    //! residual over the others (equal to max_residual when none is left out).
+    Index jump_constraints = 0;
+    double max_fitted_residual = 0.0;
 };
 
 //! A map d: R^3 -> R^3 fitted to prescribed handle displacements.

@@ -121,7 +121,8 @@ template <class Parse> auto parse_named(const io::FoamEntry& e, Parse parse)
 //! keeps its default; rmsTolerance unset: no RMS criterion beyond the max one).
 GreedySettings read_greedy_settings(const io::FoamDictionary& g, SizeEntry& centres_entry)
 {
-    g.check_keywords({"tolerance", "rmsTolerance", "maxCentres", "initialCentres", "batchSize"},
+    g.check_keywords({"tolerance", "rmsTolerance", "maxCentres", "initialCentres", "batchSize",
+                      "spread", "jumpSlope"},
                      "rbf.greedy");
     GreedySettings gs;
     gs.tolerance = g.get_or<double>("tolerance", gs.tolerance);
@@ -129,6 +130,11 @@ GreedySettings read_greedy_settings(const io::FoamDictionary& g, SizeEntry& cent
     gs.max_centres = g.get_or<std::int32_t>("maxCentres", gs.max_centres);
     gs.initial_centres = g.get_or<std::int32_t>("initialCentres", gs.initial_centres);
     gs.batch_size = g.get_or<std::int32_t>("batchSize", gs.batch_size);
+    gs.spread = g.get_or<double>("spread", gs.spread);
+    gs.jump_slope = g.get_or<double>("jumpSlope", gs.jump_slope);
+    for (const char* key : {"spread", "jumpSlope"})
+        if (const io::FoamEntry* e = g.find(key); e && !(e->get<double>() >= 0.0))
+            throw e->error(std::string(key) + " must be >= 0 (0: off)");
     if (!(gs.tolerance > 0.0))
         throw g.entry("tolerance").error("tolerance must be > 0");
     if (gs.max_centres < 1)
@@ -142,7 +148,9 @@ GreedySettings read_greedy_settings(const io::FoamDictionary& g, SizeEntry& cent
 //! greedy { ... } }`
 void read_rbf_settings(const io::FoamDictionary& d, DeformationSettings& s)
 {
-    d.check_keywords({"kernel", "shape", "polynomial", "supportRadius", "order", "greedy"}, "rbf");
+    d.check_keywords({"kernel", "shape", "polynomial", "supportRadius", "order", "greedy", "limit"},
+                     "rbf");
+    s.limit = d.get_or<bool>("limit", s.limit);
     if (const io::FoamEntry* e = d.find("kernel"))
         s.rbf.kernel = parse_named(*e, rbf_kernel_from_string);
     s.rbf.shape_parameter = d.get_or<double>("shape", s.rbf.shape_parameter);

@@ -57,23 +57,24 @@ Made make_rbf(const DeformationSettings& s, const Eigen::Ref<const Points>&, Ind
     }
     else
         global = std::make_unique<RbfDeformation>(s.rbf);
-    return std::make_unique<CorrectedDeformation>(std::move(global), s.idw);
+    return std::make_unique<CorrectedDeformation>(std::move(global), s.idw, s.limit);
 }
 
 void describe_rbf(std::ostream& out, const DeformationSettings& s, Index n_constraints)
 {
     out << "rbf (" << to_string(s.rbf.kernel) << ", "
         << (s.rbf.polynomial ? "linear polynomial" : "no polynomial") << ", ";
+    const std::string limit = s.limit ? "; limited to the largest prescribed displacement" : "";
     if (!is_greedy(s, n_constraints))
     {
-        out << "direct, exact)";
+        out << "direct, exact" << limit << ")";
         return;
     }
     const GreedySettings g = s.greedy.value_or(GreedySettings{});
     out << "greedy"
         << (s.greedy ? "" : " (automatic above " + std::to_string(s.direct_limit) + " constraints)")
         << ", tolerance " << g.tolerance << ", max " << g.max_centres
-        << " centres; IDW correction of the residual: exact)";
+        << " centres; IDW correction of the residual: exact" << limit << ")";
 }
 
 FitSize rbf_size(const DeformationSettings& s, Index n_constraints)

@@ -66,6 +66,9 @@ struct DeformationSettings
     Index direct_limit = 5000;
     //! `method idw`, and the correction that makes a greedy RBF exact (`idw { ... }`).
     IdwSettings idw;
+    //! `rbf { limit yes; }`: no point moves further than the largest prescribed displacement
+    //! (CorrectedDeformation's projection; the RBF alone overshoots around a translated body).
+    bool limit = true;
     DmffdSettings dmffd;
     FfdSettings ffd;
     std::vector<ControlDisplacement> ffd_displacements;

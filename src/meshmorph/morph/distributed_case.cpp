@@ -69,7 +69,9 @@ QualityReport distributed_check(const PolyMesh& mesh, const CompactList& cf,
 {
     const parallel::Communicator& comm = *d.comm;
     const ProcessorFaces processors = exchange_processor_faces(mesh, geometry, comm);
-    const QualityReport local = check_mesh(mesh, cf, geometry, settings, &processors);
+    CheckMeshSettings local_settings = settings;
+    local_settings.unchanged_topology = nullptr; // a reduced report is not this rank's part
+    const QualityReport local = check_mesh(mesh, cf, geometry, local_settings, &processors);
     QualityReport r = reduce_report(local, mesh, settings, processors,
                                     io::global_point_count(d.global_point, comm));
     r.negative_volume_cells = Index(comm.sum(std::int64_t(local.negative_volume_cells)));

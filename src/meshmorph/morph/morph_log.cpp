@@ -76,10 +76,17 @@ void log_fit(const MorphResult& result, const DeformationSettings& settings, Ind
     log::info() << "Evaluated " << n_points << " points in "
                 << format_seconds(result.timings.evaluate) << " s; max displacement "
                 << format_scalar(result.max_displacement, 3);
-    if (r.method.ends_with("+idw"))
+    const double rel = 1.0 / std::max(r.max_displacement, 1e-300);
+    if (r.method.ends_with("+idw") && r.jump_constraints == 0)
         log::info() << "Global RBF residual " << format_scalar(r.max_residual, 3) << " ("
-                    << format_scalar(r.max_residual / std::max(r.max_displacement, 1e-300), 3)
+                    << format_scalar(r.max_residual * rel, 3)
                     << " relative), taken up by the local IDW correction";
+    else if (r.method.ends_with("+idw"))
+        log::info() << "Global RBF residual " << format_scalar(r.max_fitted_residual * rel, 3)
+                    << " (relative) on the constraints it fits; the local IDW correction takes "
+                       "up that and the "
+                    << r.jump_constraints << " constraints on jumps (residual up to "
+                    << format_scalar(r.max_residual * rel, 3) << ")";
     log::info() << "Largest displacement " << format_scalar(result.max_displacement, 3)
                 << " (largest prescribed " << format_scalar(result.morph.max_prescribed, 3) << ")";
     if (result.max_displacement > 1.01 * result.morph.max_prescribed &&
@@ -87,8 +94,7 @@ void log_fit(const MorphResult& result, const DeformationSettings& settings, Ind
         log::warning() << "points away from the constraints move up to "
                        << format_scalar(result.max_displacement / result.morph.max_prescribed, 3)
                        << " times the largest prescribed displacement (the global RBF "
-                          "overshoots): method idw never exceeds it; rbf { kernel biharmonic; } "
-                          "overshoots less than the triharmonic kernel";
+                          "overshoots): rbf { limit yes; } or method idw never exceed it";
     log::info() << "Max constraint error " << format_scalar(result.morph.max_constraint_error, 3)
                 << " (" << format_scalar(result.morph.relative_constraint_error, 3)
                 << " of the largest prescribed displacement "

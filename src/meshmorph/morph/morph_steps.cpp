@@ -237,7 +237,8 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         PointMorph m = morph_points(current, step, *deformation, fit, false, decomposition);
         record.centres = m.report.num_centres;
         record.max_global_residual =
-            m.report.max_residual / std::max(m.report.max_displacement, 1e-300);
+            m.report.max_fitted_residual / std::max(m.report.max_displacement, 1e-300);
+        record.jump_constraints = m.report.jump_constraints;
         record.fit_seconds = m.fit_seconds;
         record.evaluate_seconds = m.evaluate_seconds;
         other = current.points + m.displacement;

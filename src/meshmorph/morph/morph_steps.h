@@ -51,7 +51,10 @@ struct StepRecord
 {
     double from = 0.0, to = 1.0; //!< fractions of the motion
     Index centres = 0;
-    double max_global_residual = 0.0; //!< relative residual the local correction took up
+    //! Relative residual the local correction took up, over the constraints the global part
+    //! fits (all but the jump constraints, which the correction takes up alone).
+    double max_global_residual = 0.0;
+    Index jump_constraints = 0;
     double fit_seconds = 0.0, evaluate_seconds = 0.0, check_seconds = 0.0;
     InvalidCells invalid;    //!< after the repair, if there was one
     UntangleReport untangle; //!< the repair (invalid_before 0: none was needed)

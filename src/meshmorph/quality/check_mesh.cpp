@@ -155,7 +155,33 @@ void run_topology_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
     r.face_zone_topology = face_zone_topology(mesh);
     r.non_manifold_points = non_manifold_points(r, processors != nullptr);
     r.non_manifold_total = size_of(r.non_manifold_points);
+    r.n_topology_checks = Index(checks.size());
     r.cell_zones = cell_zone_summaries(mesh, cell_faces, g);
+}
+
+//! The topology part of `before`, a report of the same faces, cells and zones: only the
+//! zones' geometric summaries are recomputed.
+void reuse_topology(const QualityReport& before, const PolyMesh& mesh,
+                    const CompactList& cell_faces, const MeshGeometry& g, QualityReport& r)
+{
+    r.checks.assign(before.checks.begin(), before.checks.begin() + before.n_topology_checks);
+    r.n_topology_checks = before.n_topology_checks;
+    r.cell_to_region = before.cell_to_region;
+    r.patch_topology = before.patch_topology;
+    r.face_zone_topology = before.face_zone_topology;
+    r.non_manifold_points = before.non_manifold_points;
+    r.non_manifold_total = before.non_manifold_total;
+    r.cell_zones = cell_zone_summaries(mesh, cell_faces, g);
+}
+
+//! Whether `before` can stand for this check's topology part.
+bool can_reuse_topology(const CheckMeshSettings& s, const ProcessorFaces* processors,
+                        const QualityReport& r)
+{
+    const QualityReport* before = s.unchanged_topology;
+    return before != nullptr && processors == nullptr && !s.all_topology &&
+           before->n_topology_checks > 0 && before->n_cells == r.n_cells &&
+           before->n_faces == r.n_faces && before->n_points == r.n_points;
 }
 
 //! The domain's bounding box; in a -parallel run, of every rank's points.
@@ -264,7 +290,9 @@ QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
     if (settings.scaled_jacobian)
         report.cell_scaled_jacobian = scaled_jacobian(mesh, cell_faces, shapes);
     report.min_scaled_jacobian = min_finite(report.cell_scaled_jacobian);
-    if (!settings.no_topology)
+    if (!settings.no_topology && can_reuse_topology(settings, processors, report))
+        reuse_topology(*settings.unchanged_topology, mesh, cell_faces, geometry, report);
+    else if (!settings.no_topology)
         run_topology_checks(mesh, cell_faces, geometry, pf, settings.all_topology, processors,
                             report);
     run_geometry_checks(mesh, cell_faces, geometry, settings, processors, report);

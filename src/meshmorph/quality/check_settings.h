@@ -9,6 +9,8 @@
 namespace meshmorph
 {
 
+struct QualityReport;
+
 //! The meshQualityDict criteria (snappyHexMesh's, spec §5). A criterion is enabled by its
 //! value exactly as in OpenFOAM (see the table in the spec); the defaults here disable all.
 struct MeshQualitySettings
@@ -43,6 +45,10 @@ struct CheckMeshSettings
     bool scaled_jacobian = true;
     //! -meshQuality: the criteria from system/meshQualityDict.
     std::optional<MeshQualitySettings> mesh_quality;
+    //! The report of a check of the same mesh before its points moved (a morph changes no
+    //! face, cell or zone): its topology checks and tables are taken over instead of being
+    //! recomputed. Serial checks without all_topology only; ignored otherwise.
+    const QualityReport* unchanged_topology = nullptr;
 };
 
 } // namespace meshmorph

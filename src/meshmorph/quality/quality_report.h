@@ -62,6 +62,7 @@ struct QualityReport
 
     //! Every check run, in report order: topology, geometry, -allGeometry, -meshQuality.
     std::vector<CheckResult> checks;
+    Index n_topology_checks = 0; //!< the leading checks that are topology checks
     //! The statistic `key` (a JSON key, e.g. "minVolume") of any check, or nullptr.
     const Statistic* statistic(std::string_view key) const;
 
