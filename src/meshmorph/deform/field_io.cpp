@@ -184,9 +184,10 @@ void write_report(FieldWriter& out, const FitReport& r)
     out.put_string(r.method);
     out.put_string(r.solver);
     for (Index v : {r.num_handles, r.num_merged_duplicates, r.num_centres, r.polynomial_terms,
-                    r.rank, r.iterations})
+                    r.rank, r.iterations, r.jump_constraints})
         out.put(v);
-    for (double v : {r.condition_estimate, r.max_displacement, r.max_residual, r.rms_residual})
+    for (double v : {r.condition_estimate, r.max_displacement, r.max_residual, r.rms_residual,
+                     r.max_fitted_residual})
         out.put(v);
 }
 
@@ -196,9 +197,10 @@ FitReport read_report(FieldReader& in)
     r.method = in.get_string();
     r.solver = in.get_string();
     for (Index* v : {&r.num_handles, &r.num_merged_duplicates, &r.num_centres, &r.polynomial_terms,
-                     &r.rank, &r.iterations})
+                     &r.rank, &r.iterations, &r.jump_constraints})
         *v = in.get<Index>();
-    for (double* v : {&r.condition_estimate, &r.max_displacement, &r.max_residual, &r.rms_residual})
+    for (double* v : {&r.condition_estimate, &r.max_displacement, &r.max_residual, &r.rms_residual,
+                      &r.max_fitted_residual})
         *v = in.get<double>();
     return r;
 }

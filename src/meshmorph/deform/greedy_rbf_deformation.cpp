@@ -101,10 +101,18 @@ public:
             const double one = 1.0;
             dtrsm_("L", "L", "N", "N", &m, &n, &one, L_.data(), &ld, Kon.data(), &m);
         }
+        // The Schur complement S = Knn - Kon^T Kon (lower triangle, what dpotrf reads) by
+        // BLAS, which runs on one thread here: Eigen's product splits its blocks by the
+        // number of OpenMP threads, and the last bits of S, then the centres chosen from
+        // residuals amplified by the condition number, would follow the thread count.
         Eigen::MatrixXd S = Knn;
-        if (r0 > 0)
-            S.noalias() -= Kon.transpose() * Kon;
         const int n = detail::lapack_int(b);
+        if (r0 > 0)
+        {
+            const int k = detail::lapack_int(r0);
+            const double minus_one = -1.0, one = 1.0;
+            dsyrk_("L", "T", &n, &k, &minus_one, Kon.data(), &k, &one, S.data(), &n);
+        }
         int info = 0;
         dpotrf_("L", &n, S.data(), &n, &info);
         Eigen::Index keep = b;
