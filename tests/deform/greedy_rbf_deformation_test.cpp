@@ -146,19 +146,38 @@ TEST(GreedyRbfDeformation, logs_each_round_and_the_rounds_grow_like_log_of_the_c
     EXPECT_EQ(greedy.report().num_centres, 1280);
 }
 
+namespace
+{
+
+//! Near-discontinuous data, like a tyre lifted off a fixed floor: n random points of the
+//! fixed plane z = 0 and n points of a sphere lifted by `lift`, a hair above the plane.
+struct BallOnFloor
+{
+    Points x, d;
+    Index n_plane = 0;
+    explicit BallOnFloor(Eigen::Index n, double lift = 0.05)
+    {
+        Points plane = test::random_points(n, 0.0, 1.0, 17);
+        plane.col(2).setZero();
+        const Points ball = test::sphere_points(n, Vector3(0.5, 0.5, 0.2001), 0.2);
+        x.resize(plane.rows() + ball.rows(), 3);
+        x << plane, ball;
+        d = Points::Zero(x.rows(), 3);
+        d.bottomRows(ball.rows()).col(2).setConstant(lift);
+        n_plane = plane.rows();
+    }
+};
+
+} // namespace
+
 TEST(GreedyRbfDeformation, stops_at_the_best_round_when_more_centres_make_the_fit_worse)
 {
     // Near-discontinuous data, like a tyre lifted off a fixed floor: a plane of fixed points
     // and, a hair above it, a lifted sphere. A global interpolant of this oscillates as
     // centres are added; the fit must keep its best round, never a worse one.
-    const Points floor = test::random_points(3000, 0.0, 1.0, 17);
-    Points plane = floor;
-    plane.col(2).setZero();
-    const Points ball = test::sphere_points(3000, Vector3(0.5, 0.5, 0.2001), 0.2);
-    Points x(plane.rows() + ball.rows(), 3);
-    x << plane, ball;
-    Points d = Points::Zero(x.rows(), 3);
-    d.bottomRows(ball.rows()).col(2).setConstant(0.05);
+    const BallOnFloor data(3000);
+    const Points& x = data.x;
+    const Points& d = data.d;
     GreedySettings s;
     s.tolerance = 1e-6;
     s.rms_tolerance = 1e-6;
@@ -195,15 +214,11 @@ TEST(GreedyRbfDeformation, spread_batches_reach_the_tolerance_with_the_contact_l
     // The data of the test above: a lifted sphere touching (a hair above) a fixed plane.
     // Crowded batches stop at the best round far from the tolerance; spread batches, with
     // the constraints next to the contact left to the local correction, reach it.
-    const Points floor = test::random_points(3000, 0.0, 1.0, 17);
-    Points plane = floor;
-    plane.col(2).setZero();
-    const Points ball = test::sphere_points(3000, Vector3(0.5, 0.5, 0.2001), 0.2);
-    Points x(plane.rows() + ball.rows(), 3);
-    x << plane, ball;
     const double lift = 0.05;
-    Points d = Points::Zero(x.rows(), 3);
-    d.bottomRows(ball.rows()).col(2).setConstant(lift);
+    const BallOnFloor data(3000, lift);
+    const Points& x = data.x;
+    const Points& d = data.d;
+    const Index n_plane = data.n_plane;
     GreedySettings s;
     s.max_centres = 3000;
     s.spread = 0.0;
@@ -232,9 +247,9 @@ TEST(GreedyRbfDeformation, spread_batches_reach_the_tolerance_with_the_contact_l
         const double r = std::hypot(x(i, 0) - 0.5, x(i, 1) - 0.5);
         const double z = x(i, 2);
         // Points beyond the band's reach are fitted to the tolerance.
-        if (r > 0.2 && !(i >= plane.rows() && z < 0.2))
+        if (r > 0.2 && !(i >= n_plane && z < 0.2))
             EXPECT_LE((got.row(i) - d.row(i)).norm(), 1e-2 * lift * (1 + 1e-9)) << "point " << i;
-        if (r < 0.02 && (i < plane.rows() || z < 0.01))
+        if (r < 0.02 && (i < n_plane || z < 0.01))
             ++jumps; // certainly on the jump: within the contact's neighbourhood
     }
     EXPECT_GT(jumps, 0);
@@ -263,14 +278,9 @@ TEST(GreedyRbfDeformation, spread_refinement_gives_the_same_field_on_one_thread_
     // Hundreds of centres: large enough for a threaded matrix product to split its work
     // by the thread count. Centres are chosen from residuals that the conditioning amplifies,
     // so the last bits of the factor must not depend on the threads.
-    const Points floor = test::random_points(4000, 0.0, 1.0, 17);
-    Points plane = floor;
-    plane.col(2).setZero();
-    const Points ball = test::sphere_points(4000, Vector3(0.5, 0.5, 0.2001), 0.2);
-    Points x(plane.rows() + ball.rows(), 3);
-    x << plane, ball;
-    Points d = Points::Zero(x.rows(), 3);
-    d.bottomRows(ball.rows()).col(2).setConstant(0.05);
+    const BallOnFloor data(4000);
+    const Points& x = data.x;
+    const Points& d = data.d;
     const Points probe = test::random_points(3000, 0.0, 1.0, 23);
     GreedySettings s;
     s.tolerance = 1e-3;
