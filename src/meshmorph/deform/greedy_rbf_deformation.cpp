@@ -394,21 +394,20 @@ Eigen::Index mark_jumps(const Points& X, const Eigen::MatrixXd& H, double slope,
     return count;
 }
 
-//! The batch of a round: candidates by decreasing residual (above `floor`), each kept
-//! unless it lies closer to a point already kept than spread x its distance to the nearest
-//! centre (compared coarsened: tie_break.h). A new centre corrects the field within about
-//! that distance, so the batch spreads over every region with a large residual instead of
-//! crowding the worst one (the crowded batch makes the interpolant oscillate where the
-//! centres are sparse).
-std::vector<Eigen::Index> spread_batch(const std::vector<Eigen::Index>& sorted,
-                                       const Eigen::VectorXd& err, double floor, const Points& X,
+//! The batch of a round from candidates sorted by decreasing residual: each kept unless it lies
+//! closer to a point already kept than spread x its distance to the nearest centre (compared
+//! coarsened: tie_break.h). A new centre corrects the field within about that distance, so the
+//! batch spreads over every region with a large residual instead of crowding the worst one (the
+//! crowded batch makes the interpolant oscillate where the centres are sparse). The first candidate
+//! is always kept.
+std::vector<Eigen::Index> spread_batch(const std::vector<Eigen::Index>& sorted, const Points& X,
                                        const std::vector<Eigen::Index>& centres, Eigen::Index b,
                                        double spread)
 {
     std::vector<Eigen::Index> kept;
     for (Eigen::Index j : sorted)
     {
-        if (Eigen::Index(kept.size()) >= b || !(coarsened(err[j]) > coarsened(floor)))
+        if (Eigen::Index(kept.size()) >= b)
             break;
         double to_centre2 = std::numeric_limits<double>::infinity();
         for (Eigen::Index c : centres)
@@ -424,8 +423,6 @@ std::vector<Eigen::Index> spread_batch(const std::vector<Eigen::Index>& sorted,
         if (!crowded)
             kept.push_back(j);
     }
-    if (kept.empty() && !sorted.empty()) // none above the floor: the largest, so rounds progress
-        kept.push_back(sorted.front());
     return kept;
 }
 
@@ -581,13 +578,22 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
             s.batch_size > 0 ? s.batch_size : std::clamp<Eigen::Index>(centres / 2, 1, 4096);
         if (s.spread > 0.0)
         {
-            keep_largest_residuals(cand, err, Eigen::Index(cand.size())); // all, sorted
             std::vector<Eigen::Index> taken(system.unisolvent());
             taken.insert(taken.end(), system.selected().begin(), system.selected().end());
             // Above the max tolerance while it is not met; then (the RMS one is not) any.
             const double floor = max_err > s.tolerance * max_disp ? s.tolerance * max_disp : 0.0;
-            cand = spread_batch(cand, err, floor, d.merged.centres, taken,
-                                std::min(b, budget - centres), s.spread);
+            std::vector<Eigen::Index> above; // only these are sorted
+            for (Eigen::Index j : cand)
+                if (coarsened(err[j]) > coarsened(floor))
+                    above.push_back(j);
+            if (above.empty())
+            {
+                keep_largest_residuals(cand, err, 1); // the largest alone: rounds progress
+                above = cand;
+            }
+            keep_largest_residuals(above, err, Eigen::Index(above.size()));
+            cand = spread_batch(above, d.merged.centres, taken, std::min(b, budget - centres),
+                                s.spread);
         }
         else
             keep_largest_residuals(cand, err,
