@@ -394,7 +394,45 @@ Eigen::Index mark_jumps(const Points& X, const Eigen::MatrixXd& H, double slope,
     return count;
 }
 
-//! The batch of a round from candidates sorted by decreasing residual: each kept unless it lies
+//! Sorts the candidates by their residual's octave (the binary exponent of residual / unit,
+//! largest first), then by decreasing distance to the nearest centre (coarsened), then by
+//! index. The residuals of a fit with condition ~1e10 carry round-off of ~1e-6 relative,
+//! which differs between processors and builds: ordered by the residuals themselves, two
+//! builds chose different centres on the motorBike. The octave changes only where a
+//! residual lies within that round-off of a power of two, and the distances come from the
+//! coordinates alone, so the centres are the same on every processor (the field still
+//! differs by round-off times the condition number: docs/same-result.md).
+void octave_then_farthest(std::vector<Eigen::Index>& cand, const Eigen::VectorXd& err, double unit,
+                          const Points& X, const std::vector<Eigen::Index>& centres)
+{
+    std::vector<double> key(cand.size());
+    std::vector<int> octave(cand.size());
+    for (std::size_t k = 0; k < cand.size(); ++k)
+        octave[k] = std::ilogb(err[cand[k]] / unit);
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < cand.size(); ++k)
+    {
+        double d2 = std::numeric_limits<double>::infinity();
+        for (Eigen::Index c : centres)
+            d2 = std::min(d2, (X.row(cand[k]) - X.row(c)).squaredNorm());
+        key[k] = coarsened(d2);
+    }
+    std::vector<std::size_t> order(cand.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b)
+              {
+                  if (octave[a] != octave[b])
+                      return octave[a] > octave[b];
+                  return key[a] > key[b] || (key[a] == key[b] && cand[a] < cand[b]);
+              });
+    std::vector<Eigen::Index> sorted(cand.size());
+    for (std::size_t k = 0; k < order.size(); ++k)
+        sorted[k] = cand[order[k]];
+    cand.swap(sorted);
+}
+
+//! The batch of a round from candidates in priority order: each kept unless it lies
 //! closer to a point already kept than spread x its distance to the nearest centre (compared
 //! coarsened: tie_break.h). A new centre corrects the field within about that distance, so the
 //! batch spreads over every region with a large residual instead of crowding the worst one (the
@@ -591,7 +629,8 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
                 keep_largest_residuals(cand, err, 1); // the largest alone: rounds progress
                 above = cand;
             }
-            keep_largest_residuals(above, err, Eigen::Index(above.size()));
+            const double unit = s.tolerance > 0.0 ? s.tolerance * max_disp : max_disp;
+            octave_then_farthest(above, err, unit, d.merged.centres, taken);
             cand = spread_batch(above, d.merged.centres, taken, std::min(b, budget - centres),
                                 s.spread);
         }

@@ -36,13 +36,14 @@ struct GreedySettings
     //! centres, at most 4096 (the count grows by 1.5 a round: the number of rounds grows like
     //! log(centres), and the last round overshoots the centres needed by at most 1.5x).
     Index batch_size = 0;
-    //! Spread batches (0: off, the plain largest residuals): a round's candidates are taken by
-    //! decreasing residual above the tolerance, each skipped when it lies closer to one already
-    //! taken than spread times its distance to the nearest centre, so a batch covers every region
-    //! with a large residual instead of crowding the worst one. The rounds then converge on data
-    //! where crowded batches make the interpolant oscillate where centres are sparse, and a round
-    //! whose RMS residual grows no longer ends the refinement (early rounds of a spread
-    //! batch often do, on their way to the tolerance).
+    //! Spread batches (0: off, the plain largest residuals): a round takes the constraints
+    //! whose residual is above the tolerance, by the octave of their residual (largest
+    //! first), then farthest from the centres first, skipping one that lies closer to one
+    //! already taken than spread times its distance to the nearest centre. A batch so covers
+    //! every region with a large residual instead of crowding the worst one (crowded batches
+    //! make the interpolant ring where centres are sparse), and its choice does not follow
+    //! the round-off of the residuals. A round whose RMS residual grows no longer ends the
+    //! refinement (early rounds of a spread batch often do, on their way to the tolerance).
     double spread = 1.0;
     //! Jump constraints (0: off): a constraint whose displacement differs from a neighbour's
     //! by more than jump_slope times their distance (a moving wall touching a fixed one, a
