@@ -102,7 +102,9 @@ TEST(CorrectedDeformation, the_limit_keeps_every_point_within_the_largest_prescr
     for (Eigen::Index i = 0; i < probe.rows(); ++i)
     {
         if (a.row(i).norm() <= c.lift)
+        {
             EXPECT_EQ(b.row(i), a.row(i)) << "probe " << i;
+        }
         const Eigen::Index j = (i * 7919) % probe.rows();
         EXPECT_LE((b.row(i) - b.row(j)).norm(), (a.row(i) - a.row(j)).norm() * (1 + 1e-12) + 1e-15);
     }

@@ -248,7 +248,9 @@ TEST(GreedyRbfDeformation, spread_batches_reach_the_tolerance_with_the_contact_l
         const double z = x(i, 2);
         // Points beyond the band's reach are fitted to the tolerance.
         if (r > 0.2 && !(i >= n_plane && z < 0.2))
+        {
             EXPECT_LE((got.row(i) - d.row(i)).norm(), 1e-2 * lift * (1 + 1e-9)) << "point " << i;
+        }
         if (r < 0.02 && (i < n_plane || z < 0.01))
             ++jumps; // certainly on the jump: within the contact's neighbourhood
     }
