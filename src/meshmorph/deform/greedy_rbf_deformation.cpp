@@ -394,74 +394,93 @@ Eigen::Index mark_jumps(const Points& X, const Eigen::MatrixXd& H, double slope,
     return count;
 }
 
-//! Sorts the candidates by their residual's octave (the binary exponent of residual / unit,
-//! largest first), then by decreasing distance to the nearest centre (coarsened), then by
-//! index. The residuals of a fit with condition ~1e10 carry round-off of ~1e-6 relative,
-//! which differs between processors and builds: ordered by the residuals themselves, two
-//! builds chose different centres on the motorBike. The octave changes only where a
-//! residual lies within that round-off of a power of two, and the distances come from the
-//! coordinates alone, so the centres are the same on every processor (the field still
-//! differs by round-off times the condition number: docs/same-result.md).
-void octave_then_farthest(std::vector<Eigen::Index>& cand, const Eigen::VectorXd& err, double unit,
-                          const Points& X, const std::vector<Eigen::Index>& centres)
+//! A candidate of a spread round: its residual's octave and its squared distance to the
+//! nearest centre, computed once for the ordering and the batch's spacing test.
+struct RankedCandidate
 {
-    std::vector<double> key(cand.size());
-    std::vector<int> octave(cand.size());
-    for (std::size_t k = 0; k < cand.size(); ++k)
-        octave[k] = std::ilogb(err[cand[k]] / unit);
+    Eigen::Index index;
+    int octave;
+    double to_centre2;
+};
+
+//! The candidates ordered by their residual's octave (the binary exponent of residual /
+//! unit, largest first), then by decreasing distance to the nearest centre (coarsened),
+//! then by index. The residuals of a fit with condition ~1e10 carry round-off of ~1e-6
+//! relative, which differs between processors and builds: ordered by the residuals
+//! themselves, two builds chose different centres on the motorBike. The octave changes only
+//! where a residual lies within that round-off of a power of two, and the distances come
+//! from the coordinates alone, so the centres are the same on every processor (the field
+//! still differs by round-off times the condition number: docs/same-result.md).
+std::vector<RankedCandidate> octave_then_farthest(const std::vector<Eigen::Index>& cand,
+                                                  const Eigen::VectorXd& err, double unit,
+                                                  const Points& X,
+                                                  const std::vector<Eigen::Index>& centres)
+{
+    std::vector<RankedCandidate> ranked(cand.size());
 #pragma omp parallel for schedule(static)
     for (std::size_t k = 0; k < cand.size(); ++k)
     {
         double d2 = std::numeric_limits<double>::infinity();
         for (Eigen::Index c : centres)
             d2 = std::min(d2, (X.row(cand[k]) - X.row(c)).squaredNorm());
-        key[k] = coarsened(d2);
+        ranked[k] = {cand[k], std::ilogb(err[cand[k]] / unit), d2};
     }
-    std::vector<std::size_t> order(cand.size());
-    std::iota(order.begin(), order.end(), std::size_t{0});
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b)
+    std::sort(ranked.begin(), ranked.end(),
+              [](const RankedCandidate& a, const RankedCandidate& b)
               {
-                  if (octave[a] != octave[b])
-                      return octave[a] > octave[b];
-                  return key[a] > key[b] || (key[a] == key[b] && cand[a] < cand[b]);
+                  if (a.octave != b.octave)
+                      return a.octave > b.octave;
+                  const double ka = coarsened(a.to_centre2), kb = coarsened(b.to_centre2);
+                  return ka > kb || (ka == kb && a.index < b.index);
               });
-    std::vector<Eigen::Index> sorted(cand.size());
-    for (std::size_t k = 0; k < order.size(); ++k)
-        sorted[k] = cand[order[k]];
-    cand.swap(sorted);
+    return ranked;
 }
 
 //! The batch of a round from candidates in priority order: each kept unless it lies
 //! closer to a point already kept than spread x its distance to the nearest centre (compared
-//! coarsened: tie_break.h). A new centre corrects the field within about that distance, so the
-//! batch spreads over every region with a large residual instead of crowding the worst one (the
-//! crowded batch makes the interpolant oscillate where the centres are sparse). The first candidate
-//! is always kept.
-std::vector<Eigen::Index> spread_batch(const std::vector<Eigen::Index>& sorted, const Points& X,
-                                       const std::vector<Eigen::Index>& centres, Eigen::Index b,
-                                       double spread)
+//! coarsened: tie_break.h). A new centre corrects the field within about that distance, so
+//! the batch spreads over every region with a large residual instead of crowding the worst
+//! one (the crowded batch makes the interpolant oscillate where the centres are sparse). The
+//! first candidate is always kept.
+std::vector<Eigen::Index> spread_batch(const std::vector<RankedCandidate>& ranked, const Points& X,
+                                       Eigen::Index b, double spread)
 {
     std::vector<Eigen::Index> kept;
-    for (Eigen::Index j : sorted)
+    for (const RankedCandidate& c : ranked)
     {
         if (Eigen::Index(kept.size()) >= b)
             break;
-        double to_centre2 = std::numeric_limits<double>::infinity();
-        for (Eigen::Index c : centres)
-            to_centre2 = std::min(to_centre2, (X.row(j) - X.row(c)).squaredNorm());
-        const double limit2 = coarsened(spread * spread * to_centre2);
+        const double limit2 = coarsened(spread * spread * c.to_centre2);
         bool crowded = false;
         for (Eigen::Index k : kept)
-            if (coarsened((X.row(j) - X.row(k)).squaredNorm()) < limit2)
+            if (coarsened((X.row(c.index) - X.row(k)).squaredNorm()) < limit2)
             {
                 crowded = true;
                 break;
             }
         if (!crowded)
-            kept.push_back(j);
+            kept.push_back(c.index);
     }
     return kept;
+}
+
+//! A spread round's batch (GreedySettings::spread): the candidates with a residual above
+//! `floor` (the largest alone when none is, so that rounds progress), ranked, spaced.
+std::vector<Eigen::Index> spread_round(std::vector<Eigen::Index> cand, const Eigen::VectorXd& err,
+                                       double floor, double unit, const Points& X,
+                                       const std::vector<Eigen::Index>& centres, Eigen::Index b,
+                                       double spread)
+{
+    std::vector<Eigen::Index> above; // only these are ranked
+    for (Eigen::Index j : cand)
+        if (coarsened(err[j]) > coarsened(floor))
+            above.push_back(j);
+    if (above.empty())
+    {
+        keep_largest_residuals(cand, err, 1);
+        above = cand;
+    }
+    return spread_batch(octave_then_farthest(above, err, unit, X, centres), X, b, spread);
 }
 
 } // namespace
@@ -620,19 +639,9 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
             taken.insert(taken.end(), system.selected().begin(), system.selected().end());
             // Above the max tolerance while it is not met; then (the RMS one is not) any.
             const double floor = max_err > s.tolerance * max_disp ? s.tolerance * max_disp : 0.0;
-            std::vector<Eigen::Index> above; // only these are sorted
-            for (Eigen::Index j : cand)
-                if (coarsened(err[j]) > coarsened(floor))
-                    above.push_back(j);
-            if (above.empty())
-            {
-                keep_largest_residuals(cand, err, 1); // the largest alone: rounds progress
-                above = cand;
-            }
             const double unit = s.tolerance > 0.0 ? s.tolerance * max_disp : max_disp;
-            octave_then_farthest(above, err, unit, d.merged.centres, taken);
-            cand = spread_batch(above, d.merged.centres, taken, std::min(b, budget - centres),
-                                s.spread);
+            cand = spread_round(std::move(cand), err, floor, unit, d.merged.centres, taken,
+                                std::min(b, budget - centres), s.spread);
         }
         else
             keep_largest_residuals(cand, err,
