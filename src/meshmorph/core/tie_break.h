@@ -34,6 +34,18 @@ inline double coarsened(double x)
     return std::ldexp(std::round(std::ldexp(m, tie_bits)), e - tie_bits);
 }
 
+//! coarsened(a) < coarsened(b), computing the roundings only where they could matter:
+//! coarsened() is monotone, so a >= b gives false, and non-negative values further apart
+//! than twice its relative rounding step keep their order.
+inline bool coarsened_less(double a, double b)
+{
+    if (!(a < b))
+        return false;
+    if (a >= 0.0 && a < b * (1.0 - 0x1p-28))
+        return true;
+    return coarsened(a) < coarsened(b);
+}
+
 //! \brief Index of the largest value of v, comparing coarsened() values; ties go to the
 //! lowest index. -1 for an empty vector.
 template <class Derived> Eigen::Index first_largest(const Eigen::DenseBase<Derived>& v)

@@ -200,8 +200,12 @@ private:
         if (n <= L_.rows())
             return;
         const Eigen::Index cap = std::max<Eigen::Index>(n, 2 * L_.rows());
-        Eigen::MatrixXd L = Eigen::MatrixXd::Zero(cap, cap);
-        L.topLeftCorner(r_, r_) = L_.topLeftCorner(r_, r_);
+        // Only the lower triangle of the leading r x r block is ever read (LAPACK's "L"), so
+        // only that is copied, and the rest is left untouched (not zeroed: at 2000 centres a
+        // zeroed capacity of 4000^2 is 128 MB of page faults for nothing).
+        Eigen::MatrixXd L(cap, cap);
+        L.topLeftCorner(r_, r_).triangularView<Eigen::Lower>() =
+            L_.topLeftCorner(r_, r_).triangularView<Eigen::Lower>();
         L_.swap(L);
     }
 
@@ -321,13 +325,10 @@ std::vector<Eigen::Index> farthest_point_centres(const Points& X, const Eigen::M
     while (Eigen::Index(U.size() + initial.size()) < n0)
     {
         Eigen::Index best = -1;
-        double farthest = 0.0;
         for (Eigen::Index i = 0; i < N; ++i)
-            if (!marks.is_centre[std::size_t(i)] && (best < 0 || coarsened(mind[i]) > farthest))
-            {
+            if (!marks.is_centre[std::size_t(i)] &&
+                (best < 0 || coarsened_less(mind[best], mind[i])))
                 best = i;
-                farthest = coarsened(mind[i]);
-            }
         if (best < 0)
             break;
         initial.push_back(best);
@@ -401,6 +402,7 @@ struct RankedCandidate
     Eigen::Index index;
     int octave;
     double to_centre2;
+    double to_centre2_key; //!< coarsened(to_centre2), the sort key
 };
 
 //! The candidates ordered by their residual's octave (the binary exponent of residual /
@@ -416,22 +418,35 @@ std::vector<RankedCandidate> octave_then_farthest(const std::vector<Eigen::Index
                                                   const Points& X,
                                                   const std::vector<Eigen::Index>& centres)
 {
+    // The centres as structure of arrays, so that the nearest-centre loop vectorises.
+    const std::size_t nc = centres.size();
+    std::vector<double> cx(nc), cy(nc), cz(nc);
+    for (std::size_t c = 0; c < nc; ++c)
+    {
+        cx[c] = X(centres[c], 0);
+        cy[c] = X(centres[c], 1);
+        cz[c] = X(centres[c], 2);
+    }
     std::vector<RankedCandidate> ranked(cand.size());
 #pragma omp parallel for schedule(static)
     for (std::size_t k = 0; k < cand.size(); ++k)
     {
+        const double x = X(cand[k], 0), y = X(cand[k], 1), z = X(cand[k], 2);
         double d2 = std::numeric_limits<double>::infinity();
-        for (Eigen::Index c : centres)
-            d2 = std::min(d2, (X.row(cand[k]) - X.row(c)).squaredNorm());
-        ranked[k] = {cand[k], std::ilogb(err[cand[k]] / unit), d2};
+        for (std::size_t c = 0; c < nc; ++c)
+        {
+            const double dx = x - cx[c], dy = y - cy[c], dz = z - cz[c];
+            d2 = std::min(d2, dx * dx + dy * dy + dz * dz);
+        }
+        ranked[k] = {cand[k], std::ilogb(err[cand[k]] / unit), d2, coarsened(d2)};
     }
     std::sort(ranked.begin(), ranked.end(),
               [](const RankedCandidate& a, const RankedCandidate& b)
               {
                   if (a.octave != b.octave)
                       return a.octave > b.octave;
-                  const double ka = coarsened(a.to_centre2), kb = coarsened(b.to_centre2);
-                  return ka > kb || (ka == kb && a.index < b.index);
+                  return a.to_centre2_key > b.to_centre2_key ||
+                         (a.to_centre2_key == b.to_centre2_key && a.index < b.index);
               });
     return ranked;
 }
@@ -450,10 +465,10 @@ std::vector<Eigen::Index> spread_batch(const std::vector<RankedCandidate>& ranke
     {
         if (Eigen::Index(kept.size()) >= b)
             break;
-        const double limit2 = coarsened(spread * spread * c.to_centre2);
+        const double limit2 = spread * spread * c.to_centre2;
         bool crowded = false;
         for (Eigen::Index k : kept)
-            if (coarsened((X.row(c.index) - X.row(k)).squaredNorm()) < limit2)
+            if (coarsened_less((X.row(c.index) - X.row(k)).squaredNorm(), limit2))
             {
                 crowded = true;
                 break;
