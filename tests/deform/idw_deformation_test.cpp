@@ -2,6 +2,8 @@
 // Properties of the IDW interpolation (src/meshmorph/deform/idw_*): exact at the handles,
 // a convex combination of the handle values, reproduction of constant fields, the tree
 // against the direct sum, invalid settings.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "deform_test_helpers.h"
@@ -169,6 +171,31 @@ TEST(IdwDeformation, tiny_inputs_one_handle_and_coincident_handles)
     EXPECT_TRUE(elsewhere.allFinite());
     EXPECT_GE(elsewhere.col(0).minCoeff(), 0.0);
     EXPECT_LE(elsewhere.col(0).maxCoeff(), 2.0);
+}
+
+TEST(IdwDeformation, a_point_on_a_handle_and_one_within_round_off_of_it_take_the_same_value)
+{
+    // A point equal to a handle is answered by a look-up, one a few ulp off by the sum's
+    // coincidence test: the two paths must agree, with the tree and without, and where two
+    // handles coincide (the look-up leaves those to the sum).
+    BodyInBox b = body_in_box();
+    b.handles.row(7) = b.handles.row(5);
+    b.values.row(7) = b.values.row(5) + Eigen::RowVector3d(1.0, 0.0, 0.0);
+    Points nudged = b.handles.topRows(20);
+    for (Eigen::Index i = 0; i < nudged.rows(); ++i)
+        nudged(i, 0) = std::nextafter(nudged(i, 0), 2.0);
+    for (const IdwSettings& s : {direct(), IdwSettings{}})
+    {
+        IdwDeformation idw(s);
+        idw.fit(b.handles, b.values);
+        const Points on = displacements(idw, b.handles.topRows(20));
+        const Points off = displacements(idw, nudged);
+        EXPECT_EQ(on, off) << "theta " << s.theta;
+        for (Eigen::Index i = 0; i < 20; ++i)
+            if (i != 5 && i != 7)
+                EXPECT_EQ(on.row(i), b.values.row(i)) << i;
+        EXPECT_TRUE(on.row(5) == b.values.row(5) || on.row(5) == b.values.row(7)) << on.row(5);
+    }
 }
 
 TEST(IdwDeformation, the_general_exponent_path_agrees_with_the_direct_sum)

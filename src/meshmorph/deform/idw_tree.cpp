@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -242,6 +243,74 @@ IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& w
         nodes_[k].child = split[k].child;
         compute_moments(nodes_[k]);
     }
+    index_lone_sources();
+}
+
+namespace
+{
+
+PointKey point_key(double x, double y, double z)
+{
+    // + 0.0 turns -0 into +0, which compares equal to it.
+    return {std::bit_cast<std::uint64_t>(x + 0.0), std::bit_cast<std::uint64_t>(y + 0.0),
+            std::bit_cast<std::uint64_t>(z + 0.0)};
+}
+
+} // namespace
+
+bool IdwTree::has_coincident_neighbour(Index j) const
+{
+    const std::size_t sj = static_cast<std::size_t>(j);
+    const double x = sx_[sj], y = sy_[sj], z = sz_[sj];
+    // Generous margins: a false "yes" only sends the point through the sum, which answers
+    // it as before.
+    const double reach = 4.0 * std::sqrt(idw_coincident2);
+    std::array<Index, 256> stack;
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0)
+    {
+        const Node& node = nodes_[std::size_t(stack[--top])];
+        const double dx = x - node.cx, dy = y - node.cy, dz = z - node.cz;
+        const double limit = node.radius * (1.0 + 1e-9) + reach;
+        if (dx * dx + dy * dy + dz * dz > limit * limit)
+            continue;
+        if (node.child >= 0)
+        {
+            stack[top++] = node.child;
+            stack[top++] = node.child + 1;
+            continue;
+        }
+        for (Index k = node.begin; k < node.end; ++k)
+        {
+            const std::size_t sk = static_cast<std::size_t>(k);
+            const double ex = x - sx_[sk], ey = y - sy_[sk], ez = z - sz_[sk];
+            if (k != j && ex * ex + ey * ey + ez * ez <= reach * reach)
+                return true;
+        }
+    }
+    return false;
+}
+
+void IdwTree::index_lone_sources()
+{
+    const std::int64_t m = static_cast<std::int64_t>(sx_.size());
+    std::vector<char> lone(static_cast<std::size_t>(m));
+#pragma omp parallel for schedule(dynamic, 256) if (m > 4096)
+    for (std::int64_t j = 0; j < m; ++j)
+        lone[std::size_t(j)] = has_coincident_neighbour(Index(j)) ? 0 : 1;
+    lone_.clear();
+    lone_.reserve(static_cast<std::size_t>(m));
+    for (std::int64_t j = 0; j < m; ++j)
+        if (lone[std::size_t(j)])
+            lone_.emplace(point_key(sx_[std::size_t(j)], sy_[std::size_t(j)], sz_[std::size_t(j)]),
+                          Index(j));
+}
+
+Index IdwTree::lone_source_at(double x, double y, double z) const
+{
+    const auto it = lone_.find(point_key(x, y, z));
+    return it == lone_.end() ? -1 : it->second;
 }
 
 void IdwTree::compute_moments(Node& node) const
@@ -437,6 +506,7 @@ IdwTree IdwTree::read_essential(FieldReader& in, const IdwWeight& weight, double
         if (node.begin < 0 || node.end < node.begin || node.end > m ||
             (node.child >= 0 && node.child + 1 >= n_nodes))
             throw IoError("fitted field: an IDW tree node out of range");
+    tree.index_lone_sources();
     return tree;
 }
 
@@ -473,6 +543,39 @@ double load_block(const Points& x, const std::vector<Index>& order, const SplitN
 } // namespace
 
 void IdwTree::weighted_mean(const Points& x, Points& out) const
+{
+    out.resize(x.rows(), 3);
+    // A point that is a lone source takes its value: the sum would find the same hit (a
+    // source's own leaf is never far for it) and nothing else within the coincidence
+    // distance. Only the other points go through the tree.
+    const std::int64_t n = static_cast<std::int64_t>(x.rows());
+    std::vector<Index> hit(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (std::int64_t i = 0; i < n; ++i)
+        hit[std::size_t(i)] = lone_source_at(x(i, 0), x(i, 1), x(i, 2));
+    std::vector<Index> rows;
+    for (std::int64_t i = 0; i < n; ++i)
+    {
+        const Index j = hit[std::size_t(i)];
+        if (j < 0)
+            rows.push_back(Index(i));
+        else
+            out.row(i) << vx_[std::size_t(j)], vy_[std::size_t(j)], vz_[std::size_t(j)];
+    }
+    if (rows.size() == std::size_t(n))
+    {
+        sum_over_tree(x, out);
+        return;
+    }
+    Points xs(static_cast<Eigen::Index>(rows.size()), 3), sums;
+    for (std::size_t k = 0; k < rows.size(); ++k)
+        xs.row(Eigen::Index(k)) = x.row(rows[k]);
+    sum_over_tree(xs, sums);
+    for (std::size_t k = 0; k < rows.size(); ++k)
+        out.row(rows[k]) = sums.row(Eigen::Index(k));
+}
+
+void IdwTree::sum_over_tree(const Points& x, Points& out) const
 {
     out.resize(x.rows(), 3);
     if (x.rows() == 0)

@@ -18,6 +18,8 @@
 //! and direct terms without per-point traversal.
 #pragma once
 
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "meshmorph/core/types.h"
@@ -36,6 +38,23 @@ struct IdwWeight
 //! Squared distance below which a query is taken to sit on a source (normalised units:
 //! 1e-13 of the sources' extent, far below any mesh spacing, far above round-off).
 inline constexpr double idw_coincident2 = 1e-26;
+
+//! A point's exact coordinates as a hash key.
+struct PointKey
+{
+    std::uint64_t x, y, z;
+    bool operator==(const PointKey&) const = default;
+};
+struct PointKeyHash
+{
+    std::size_t operator()(const PointKey& k) const
+    {
+        std::uint64_t h = k.x * 0x9e3779b97f4a7c15ull;
+        h ^= (k.y + 0x7f4a7c159e3779b9ull + (h << 6) + (h >> 2));
+        h ^= (k.z + 0x94d049bb133111ebull + (h << 6) + (h >> 2));
+        return static_cast<std::size_t>(h);
+    }
+};
 
 class IdwTree
 {
@@ -60,6 +79,11 @@ public:
     //! Number of sources (after nothing is merged: coincident sources all count).
     Index size() const { return static_cast<Index>(sx_.size()); }
 
+    //! The source a point equals exactly (tree order), or -1 when there is none or when
+    //! another source lies within the coincidence distance (then the sum decides which
+    //! value the point takes, as it always did).
+    Index lone_source_at(double x, double y, double z) const;
+
     //! The Node struct is public for the evaluation kernels in idw_tree.cpp.
     struct Node
     {
@@ -81,12 +105,21 @@ private:
     IdwTree(const IdwWeight& weight, double theta) : weight_(weight), theta_(theta) {}
     void build(Index node, std::vector<Index>& order, const Points& s, const Points& v);
     void compute_moments(Node& node) const;
+    void index_lone_sources();
+    //! Whether another source than j lies within the coincidence distance of source j.
+    bool has_coincident_neighbour(Index j) const;
+    //! The weighted mean at every row of x by the sum over the tree.
+    void sum_over_tree(const Points& x, Points& out) const;
 
     IdwWeight weight_;
     double theta_;
     std::vector<Node> nodes_;
     // Sources and values in tree order, structure of arrays.
     std::vector<double> sx_, sy_, sz_, vx_, vy_, vz_;
+    //! Exact coordinates (bit patterns, -0 as +0) of the sources without a coincident
+    //! neighbour -> their tree index. A mesh morph evaluates the field at every constraint,
+    //! and these points take their source's value without a sum over the tree.
+    std::unordered_map<PointKey, Index, PointKeyHash> lone_;
 };
 
 } // namespace meshmorph::detail
