@@ -80,8 +80,8 @@ public:
     Index size() const { return static_cast<Index>(sx_.size()); }
 
     //! The source a point equals exactly (tree order), or -1 when there is none or when
-    //! another source lies within the coincidence distance (then the sum decides which
-    //! value the point takes, as it always did).
+    //! another source of its leaf lies within the coincidence distance (then the sum
+    //! decides which of their values the point takes).
     Index lone_source_at(double x, double y, double z) const;
 
     //! The Node struct is public for the evaluation kernels in idw_tree.cpp.
@@ -106,8 +106,6 @@ private:
     void build(Index node, std::vector<Index>& order, const Points& s, const Points& v);
     void compute_moments(Node& node) const;
     void index_lone_sources();
-    //! Whether another source than j lies within the coincidence distance of source j.
-    bool has_coincident_neighbour(Index j) const;
     //! The weighted mean at every row of x by the sum over the tree.
     void sum_over_tree(const Points& x, Points& out) const;
 
