@@ -14,8 +14,10 @@
 #include <iostream>
 
 #include "meshmorph/app/check_mesh_case.h"
+#include "meshmorph/app/process_memory.h"
 
 int main(int argc, char* argv[])
 {
+    meshmorph::app::configure_process_memory(argv);
     return meshmorph::app::run_check_mesh_quality(argc, argv, std::cout, std::cerr);
 }

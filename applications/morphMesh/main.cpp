@@ -18,8 +18,10 @@
 #include <iostream>
 
 #include "meshmorph/app/morph_mesh.h"
+#include "meshmorph/app/process_memory.h"
 
 int main(int argc, char* argv[])
 {
+    meshmorph::app::configure_process_memory(argv);
     return meshmorph::app::run_morph_mesh(argc, argv, std::cout, std::cerr);
 }

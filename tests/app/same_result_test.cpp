@@ -25,15 +25,18 @@ namespace
 
 namespace fs = std::filesystem;
 
-//! morphMesh (the executable) on a copy of `source` with OMP_NUM_THREADS=threads; the
-//! points it wrote (its JSON report in <copy>/morph.json).
-Points morph_with_threads(const fs::path& source, int threads)
+//! morphMesh (the executable) on a copy of `source` with OMP_NUM_THREADS=threads (and the
+//! `extra` environment, its name a suffix of the copy); the points it wrote (its JSON
+//! report in <copy>/morph.json).
+Points morph_with_threads(const fs::path& source, int threads, const std::string& extra = "")
 {
-    const fs::path dir = source.string() + "_threads" + std::to_string(threads);
+    const fs::path dir = source.string() + "_threads" + std::to_string(threads) + extra;
     fs::remove_all(dir);
     fs::copy(source, dir, fs::copy_options::recursive);
     test::ProcessOptions options;
     options.environment = {"OMP_NUM_THREADS=" + std::to_string(threads)};
+    if (!extra.empty())
+        options.environment.push_back(extra);
     options.timeout_seconds = 600;
     const test::ProcessRun r = test::run_process(
         {MESHMORPH_MORPH_MESH_EXE, "-case", dir.string(), "-json", (dir / "morph.json").string()},
@@ -85,6 +88,20 @@ TEST(SameResult, greedy_rbf_with_idw_correction_writes_the_same_points_with_1_2_
     // A symmetric mesh: residuals and farthest points tie in exact arithmetic.
     expect_same_points_for_every_thread_count(
         test::venturi_case("same_greedy", 0.3, "rbf { greedy { tolerance 1e-2; } }\n"));
+}
+
+TEST(SameResult, the_points_do_not_depend_on_how_the_process_gets_its_memory)
+{
+    // By default morphMesh runs itself again with glibc's huge-page tunable
+    // (app/process_memory.h); MESHMORPH_HUGE_PAGES=0 keeps the first process. The arguments
+    // must survive the re-execution, and the points must not change.
+    const fs::path source =
+        test::venturi_case("same_memory", 0.3, "rbf { greedy { tolerance 1e-2; } }\n");
+    const Points plain = morph_with_threads(source, 2, "MESHMORPH_HUGE_PAGES=0");
+    const Points huge = morph_with_threads(source, 2);
+    ASSERT_GT(plain.rows(), 0);
+    ASSERT_EQ(huge.rows(), plain.rows());
+    EXPECT_EQ((huge - plain).cwiseAbs().maxCoeff(), 0.0);
 }
 
 } // namespace meshmorph::app
