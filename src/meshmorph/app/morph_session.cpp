@@ -146,8 +146,8 @@ void MorphSession::run_morph(const morph::MorphOptions& options,
     result.region = options.region;
     morph::resolve_constraints(options, in_, result, given);
     result.output_instance = morph::morph_output_instance(options, in_);
-    result.before = before();
-    morph::morph_resolved(options, in_, cell_faces_, result, moved_);
+    morph::BeforeCheck checked(before());
+    morph::morph_resolved(options, in_, cell_faces_, checked, result, moved_);
     result_ = std::move(result);
 }
 

@@ -7,8 +7,7 @@
 #include "meshmorph/core/log.h"
 #include "meshmorph/core/number_format.h"
 #include "meshmorph/core/stopwatch.h"
-#include "meshmorph/mesh/mesh_geometry.h"
-#include "meshmorph/morph/distributed_case.h"
+#include "meshmorph/morph/before_check.h"
 #include "meshmorph/morph/morph_log.h"
 #include "meshmorph/morph/morph_stages.h"
 
@@ -30,18 +29,14 @@ MorphResult morph_case(const MorphOptions& options)
                 << format_seconds(result.timings.read) << " s";
     log_setup(result.constraints);
 
-    stage.restart();
     const PolyMesh& mesh = in.foam.mesh;
     CheckMeshSettings check_settings;
     check_settings.scaled_jacobian = options.scaled_jacobian;
     const CompactList cf = cell_faces(mesh); // the topology does not change: one for all checks
-    result.before =
-        check_morph_mesh(mesh, cf, compute_geometry(mesh, cf), check_settings, in.decomposition);
-    result.timings.check = stage.seconds();
-    warn_if_broken(result.before, in.foam.points_dir);
+    BeforeCheck before(mesh, cf, check_settings, in.decomposition, in.foam.points_dir);
 
     std::optional<PolyMesh> moved;
-    morph_resolved(options, in, cf, result, moved);
+    morph_resolved(options, in, cf, before, result, moved, &in.foam.mesh);
     if (result.refused)
         return result;
     write_morph_result(options, in, *moved, result);

@@ -38,7 +38,7 @@ namespace
 
 //! The motion in steps (morph_steps.h), with its timings and the constraint error.
 SteppedMorph fit_in_steps(const MorphOptions& options, const MorphCase& in, const CompactList& cf,
-                          MorphResult& result)
+                          BeforeCheck& before, MorphResult& result, PolyMesh* in_place)
 {
     const PolyMesh& mesh = in.foam.mesh;
     const Constraints& c = result.constraints;
@@ -50,11 +50,10 @@ SteppedMorph fit_in_steps(const MorphOptions& options, const MorphCase& in, cons
                                         : "1 (ffd moves its control points once)");
     const DeformationMaker make = [&](const Points& points)
     { return make_deformation(settings, points, n_fit); };
-    const InvalidCells invalid_before{result.before.negative_volume_cells,
-                                      result.before.incorrectly_oriented_face_pyramids};
     const Decomposition* parts = options.parallel ? &in.decomposition : nullptr;
     SteppedMorph stepped = morph_in_steps(mesh, cf, c, in.step_settings, make, needs_fit(settings),
-                                          invalid_before, parts);
+                                          [&before] { return before.invalid(); }, parts,
+                                          in_place);
     result.steps = stepped.steps;
     for (const StepRecord& s : stepped.steps)
     {
@@ -222,12 +221,17 @@ void check_output_options(const MorphOptions& options)
 }
 
 void morph_resolved(const MorphOptions& options, const MorphCase& in, const CompactList& cf,
-                    MorphResult& result, std::optional<PolyMesh>& moved)
+                    BeforeCheck& before, MorphResult& result, std::optional<PolyMesh>& moved,
+                    PolyMesh* spent)
 {
-    SteppedMorph stepped = fit_in_steps(options, in, cf, result);
+    SteppedMorph stepped = fit_in_steps(options, in, cf, before, result, spent);
+    result.before = before.report();
+    result.timings.check += before.waited_seconds();
     const Stopwatch stage;
     warn_if_partly_valid(stepped, in.step_settings);
-    if (!moved)
+    if (!moved && spent != nullptr)
+        moved.emplace(std::move(*spent)); // its points are replaced below: nothing is copied
+    else if (!moved)
         moved.emplace(in.foam.mesh);
     moved->points = std::move(stepped.points); // exactly the points stepped.geometry is of
     CheckMeshSettings check_settings;

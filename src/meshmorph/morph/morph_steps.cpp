@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <optional>
 #include <stdexcept>
 
 #include "meshmorph/core/exceptions.h"
@@ -81,19 +82,32 @@ StepSettings read_steps(const io::FoamDictionary& dict)
     throw e->error("expected 'auto' or a number of steps from 1 to 10000");
 }
 
-//! What the repair of a step needs from the unmorphed mesh, computed on first use.
+//! What the repair of a step needs from the unmorphed mesh, computed on first use. In a
+//! morph in place the original points are kept aside from the mesh, which holds the steps'
+//! points: their geometry is computed with them swapped in for the moment.
 class OriginalState
 {
 public:
+    //! The unmorphed mesh itself.
     OriginalState(const PolyMesh& mesh, const CompactList& cell_faces)
-        : mesh_(mesh), cell_faces_(cell_faces)
+        : mesh_(&mesh), cell_faces_(cell_faces)
     {
     }
-    const Points& points() const { return mesh_.points; }
+    //! In place: the working mesh (the topology) and the original points kept aside.
+    OriginalState(PolyMesh& working, Points& aside, const CompactList& cell_faces)
+        : mesh_(&working), working_(&working), aside_(&aside), cell_faces_(cell_faces)
+    {
+    }
+    const Points& points() const { return aside_ ? *aside_ : mesh_->points; }
     const std::vector<char>& invalid_cells()
     {
-        if (invalid_.empty())
-            invalid_ = invalid_cell_flags(mesh_, cell_faces_, compute_geometry(mesh_, cell_faces_));
+        if (!invalid_.empty())
+            return invalid_;
+        if (working_)
+            std::swap(working_->points, *aside_);
+        invalid_ = invalid_cell_flags(*mesh_, cell_faces_, compute_geometry(*mesh_, cell_faces_));
+        if (working_)
+            std::swap(working_->points, *aside_);
         return invalid_;
     }
     //! Interior points (in a -parallel run also not on processor patches: a point shared
@@ -102,7 +116,7 @@ public:
     {
         if (movable_.empty())
         {
-            movable_ = boundary_point_mask(mesh_);
+            movable_ = boundary_point_mask(*mesh_);
             for (char& m : movable_)
                 m = m ? 0 : 1;
         }
@@ -110,7 +124,9 @@ public:
     }
 
 private:
-    const PolyMesh& mesh_;
+    const PolyMesh* mesh_;         //!< the topology, with the original points but in place
+    PolyMesh* working_ = nullptr; //!< in place: the same mesh, to swap points in and out
+    Points* aside_ = nullptr;     //!< in place: the original points
     const CompactList& cell_faces_;
     std::vector<char> invalid_, movable_;
 };
@@ -207,14 +223,26 @@ void measure_constraint_error(const Constraints& c, const Points& x0, PointMorph
 
 SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
                             const Constraints& c, const StepSettings& settings,
-                            const DeformationMaker& make, bool fit, const InvalidCells& before,
-                            const Decomposition* decomposition)
+                            const DeformationMaker& make, bool fit,
+                            const std::function<InvalidCells()>& invalid_before,
+                            const Decomposition* decomposition, PolyMesh* in_place)
 {
     const parallel::Communicator& comm = communicator(decomposition);
     SteppedMorph out;
-    OriginalState original(mesh, cell_faces);
+    if (in_place != nullptr && in_place != &mesh)
+        throw std::logic_error("morph_in_steps: in_place must be the mesh itself");
     // One working mesh: its points are the accepted state, or a trial swapped in and out.
-    PolyMesh current = mesh;
+    // In place it is the mesh itself, with its own points kept aside; else a copy.
+    std::optional<PolyMesh> copy;
+    std::optional<Points> aside;
+    if (in_place != nullptr)
+        aside = mesh.points;
+    else
+        copy.emplace(mesh);
+    PolyMesh& current = in_place != nullptr ? *in_place : *copy;
+    const Points& x0 = aside ? *aside : mesh.points; // the unmorphed points
+    OriginalState original = aside ? OriginalState(current, *aside, cell_faces)
+                                   : OriginalState(mesh, cell_faces);
     Points other;
     const bool is_auto = settings.steps == 0 && fit;
     const int fixed_steps = (settings.steps > 0 && fit) ? settings.steps : 1;
@@ -231,7 +259,7 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
             record.to = steps_done + 1 >= fixed_steps ? 1.0 : double(steps_done + 1) / fixed_steps;
         else
             record.to = stuck ? 1.0 : std::min(1.0, done + length);
-        const Constraints step = step_constraints(c, mesh.points, current.points, record.to);
+        const Constraints step = step_constraints(c, x0, current.points, record.to);
         std::unique_ptr<SpaceDeformation> deformation =
             make(bounding_corners(current.points, decomposition));
         PointMorph m = morph_points(current, step, *deformation, fit, false, decomposition);
@@ -241,6 +269,9 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         record.jump_constraints = m.report.jump_constraints;
         record.fit_seconds = m.fit_seconds;
         record.evaluate_seconds = m.evaluate_seconds;
+        // The check before the morph may still read the mesh: in place, wait for it before
+        // the mesh's points change.
+        const InvalidCells before = invalid_before();
         other = current.points + m.displacement;
         std::swap(current.points, other); // current: the trial; other: the accepted state
         const Stopwatch check_clock;
@@ -268,8 +299,10 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         done = record.to;
         ++steps_done;
     }
-    out.displacement = current.points - mesh.points;
+    out.displacement = current.points - x0;
     out.points = std::move(current.points);
+    if (aside)
+        current.points = std::move(*aside); // in place: the mesh as it was given
     return out;
 }
 

@@ -88,13 +88,20 @@ void measure_constraint_error(const Constraints& c, const Points& x0, PointMorph
                               const Decomposition* decomposition = nullptr);
 
 //! \brief Morph `mesh` in steps. \param fit false: one step with the deformation as made
-//! (FFD). \param before the original mesh's invalid counts (over every rank).
+//! (FFD). \param before the original mesh's invalid counts (over every rank), asked for
+//! when the first step is judged (the check before may still be running until then).
+//! \param in_place null, or `mesh` itself given mutable (a single morph of a case): its
+//! points are the working state during the call (the original ones kept aside: no copy
+//! of the mesh) and the original ones again at return. \throw as morph_points(); then
+//! an in-place `mesh` may be left with a step's points.
 //! \param decomposition -parallel: this rank's part (every decision is global: counts are
 //! summed over the ranks, the master fits). \throw as morph_points().
 SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
                             const Constraints& c, const StepSettings& settings,
-                            const DeformationMaker& make, bool fit, const InvalidCells& before,
-                            const Decomposition* decomposition = nullptr);
+                            const DeformationMaker& make, bool fit,
+                            const std::function<InvalidCells()>& before,
+                            const Decomposition* decomposition = nullptr,
+                            PolyMesh* in_place = nullptr);
 
 //! "auto" or the number.
 std::string describe(const StepSettings& settings);

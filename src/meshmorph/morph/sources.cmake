@@ -35,6 +35,7 @@ set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/point_displacement_input.cpp
     meshmorph/morph/morph_log.cpp
     meshmorph/morph/morph_output.cpp
+    meshmorph/morph/before_check.cpp
     meshmorph/morph/morph_stages.cpp
     meshmorph/morph/morph_case.cpp
 )
