@@ -75,13 +75,6 @@ std::vector<SplitNode> median_split(const Points& p, std::vector<Index>& order, 
     return nodes;
 }
 
-//! Symmetric 3x3 stored as xx yy zz xy xz yz: u^T m u and the trace.
-inline double quadratic(const double* m, double ux, double uy, double uz)
-{
-    return ux * ux * m[0] + uy * uy * m[1] + uz * uz * m[2] +
-           2.0 * (ux * uy * m[3] + ux * uz * m[4] + uy * uz * m[5]);
-}
-
 //! r^-a and beta r^-b from 1/r: a fixed (3, 5) fast path and a general one.
 struct Weight35
 {
@@ -151,6 +144,11 @@ struct Block
 };
 
 //! Adds the second-order expansion of a far node to the block's points in b.lane.
+//! With f the weight, R = x - centroid, r = |R|, delta = s - centroid (sum delta = 0):
+//!     sum f(|R - delta|) v ~ f sum v - f'/r R.(sum delta v)
+//!                            + 1/2 (f'' - f'/r) R^T (sum delta delta^T v) R / r^2
+//!                            + 1/2 f'/r tr(sum delta delta^T v),
+//! written in R rather than in R / r so that no per-term normalisation is needed.
 template <class W> void add_far(const IdwTree::Node& node, const W& weight, Block& b)
 {
     const double count = node.count;
@@ -160,39 +158,35 @@ template <class W> void add_far(const IdwTree::Node& node, const W& weight, Bloc
         b.r2[i] = rx * rx + ry * ry + rz * rz;
     }
     inverse_sqrt(b.r2, b.inv_r);
+    const auto& first = node.first;
     for (int i = 0; i < block_size; ++i)
     {
         const double rx = b.x[i] - node.cx, ry = b.y[i] - node.cy, rz = b.z[i] - node.cz;
-        const double inv_r = b.inv_r[i];
-        const double ux = rx * inv_r, uy = ry * inv_r, uz = rz * inv_r;
+        const double inv_r = b.inv_r[i], inv_r2 = inv_r * inv_r;
         double pa, pb;
         weight(inv_r, pa, pb);
         const double w0 = pa + pb;
-        const double w1 = -(weight.a * pa + weight.b * pb) * inv_r;
-        const double w2 =
-            (weight.a * (weight.a + 1.0) * pa + weight.b * (weight.b + 1.0) * pb) * inv_r * inv_r;
-        const double t = w1 * inv_r;
-        // f(R - delta) ~ f(R) - f'(r) u.delta + 1/2 [f''(r) (u.delta)^2 + f'(r)/r (|delta|^2 -
-        // (u.delta)^2)]; sum delta = 0 about the centroid.
-        const auto second_order = [&](const double* m)
-        {
-            const double q = quadratic(m, ux, uy, uz);
-            return 0.5 * (w2 * q + t * (m[0] + m[1] + m[2] - q));
-        };
+        const double d1_r = -(weight.a * pa + weight.b * pb) * inv_r2; // f'/r
+        const double d2 =
+            (weight.a * (weight.a + 1.0) * pa + weight.b * (weight.b + 1.0) * pb) * inv_r2; // f''
+        const double quad = 0.5 * (d2 - d1_r) * inv_r2;
+        const double trace = 0.5 * d1_r;
+        const double xx = rx * rx, yy = ry * ry, zz = rz * rz;
+        const double xy = 2.0 * rx * ry, xz = 2.0 * rx * rz, yz = 2.0 * ry * rz;
+        const auto second_order = [&](const double* m, double tr)
+        { return quad * (xx * m[0] + yy * m[1] + zz * m[2] + xy * m[3] + xz * m[4] + yz * m[5]) +
+                 trace * tr; };
         const double on = b.lane[i]; // x + 0 * t == x: lanes off keep their sums exactly
-        b.den[i] += on * (count * w0 + second_order(node.second));
-        b.nx[i] +=
-            on * (w0 * node.sv[0] -
-                  w1 * (ux * node.first[0][0] + uy * node.first[1][0] + uz * node.first[2][0]) +
-                  second_order(node.second_v[0]));
-        b.ny[i] +=
-            on * (w0 * node.sv[1] -
-                  w1 * (ux * node.first[0][1] + uy * node.first[1][1] + uz * node.first[2][1]) +
-                  second_order(node.second_v[1]));
-        b.nz[i] +=
-            on * (w0 * node.sv[2] -
-                  w1 * (ux * node.first[0][2] + uy * node.first[1][2] + uz * node.first[2][2]) +
-                  second_order(node.second_v[2]));
+        b.den[i] += on * (count * w0 + second_order(node.second, node.trace[0]));
+        b.nx[i] += on * (w0 * node.sv[0] -
+                         d1_r * (rx * first[0][0] + ry * first[1][0] + rz * first[2][0]) +
+                         second_order(node.second_v[0], node.trace[1]));
+        b.ny[i] += on * (w0 * node.sv[1] -
+                         d1_r * (rx * first[0][1] + ry * first[1][1] + rz * first[2][1]) +
+                         second_order(node.second_v[1], node.trace[2]));
+        b.nz[i] += on * (w0 * node.sv[2] -
+                         d1_r * (rx * first[0][2] + ry * first[1][2] + rz * first[2][2]) +
+                         second_order(node.second_v[2], node.trace[3]));
     }
 }
 
@@ -338,6 +332,9 @@ void IdwTree::compute_moments(Node& node) const
             node.second[q] += dd[q];
     }
     node.radius = std::sqrt(r2);
+    node.trace[0] = node.second[0] + node.second[1] + node.second[2];
+    for (int k = 0; k < 3; ++k)
+        node.trace[k + 1] = node.second_v[k][0] + node.second_v[k][1] + node.second_v[k][2];
 }
 
 namespace

@@ -97,6 +97,7 @@ public:
         double first[3][3] = {};    //!< [a][k] = sum delta_a v_k
         double second[6] = {};      //!< sum delta delta^T: xx yy zz xy xz yz
         double second_v[3][6] = {}; //!< [k] = sum delta delta^T v_k (same layout)
+        double trace[4] = {};       //!< of second, second_v[0..2]
         //! Written without its sources (write_essential): it must only ever be far.
         bool moments_only = false;
     };
