@@ -395,28 +395,44 @@ Eigen::Index mark_jumps(const Points& X, const Eigen::MatrixXd& H, double slope,
     return count;
 }
 
-//! A candidate of a spread round: its residual's octave and its squared distance to the
-//! nearest centre, computed once for the ordering and the batch's spacing test.
+//! A candidate of a spread round and its squared distance to the nearest centre, computed
+//! once for the ordering and the batch's spacing test.
 struct RankedCandidate
 {
     Eigen::Index index;
-    int octave;
     double to_centre2;
     double to_centre2_key; //!< coarsened(to_centre2), the sort key
 };
 
-//! The candidates ordered by their residual's octave (the binary exponent of residual /
-//! unit, largest first), then by decreasing distance to the nearest centre (coarsened),
-//! then by index. The residuals of a fit with condition ~1e10 carry round-off of ~1e-6
-//! relative, which differs between processors and builds: ordered by the residuals
-//! themselves, two builds chose different centres on the motorBike. The octave changes only
-//! where a residual lies within that round-off of a power of two, and the distances come
-//! from the coordinates alone, so the centres are the same on every processor (the field
-//! still differs by round-off times the condition number: docs/same-result.md).
-std::vector<RankedCandidate> octave_then_farthest(const std::vector<Eigen::Index>& cand,
-                                                  const Eigen::VectorXd& err, double unit,
-                                                  const Points& X,
-                                                  const std::vector<Eigen::Index>& centres)
+//! The candidates grouped by their residual's octave (the binary exponent of residual /
+//! unit), largest octave first, each group in index order. The residuals of a fit with
+//! condition ~1e10 carry round-off of ~1e-6 relative, which differs between processors and
+//! builds: ordered by the residuals themselves, two builds chose different centres on the
+//! motorBike. The octave changes only where a residual lies within that round-off of a
+//! power of two, so the groups are the same on every processor (the field still differs by
+//! round-off times the condition number: docs/same-result.md).
+std::vector<std::vector<Eigen::Index>> octaves(const std::vector<Eigen::Index>& cand,
+                                               const Eigen::VectorXd& err, double unit)
+{
+    std::vector<std::pair<int, Eigen::Index>> keyed(cand.size());
+    for (std::size_t k = 0; k < cand.size(); ++k)
+        keyed[k] = {-std::ilogb(err[cand[k]] / unit), cand[k]};
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<std::vector<Eigen::Index>> groups;
+    for (std::size_t k = 0; k < keyed.size(); ++k)
+    {
+        if (k == 0 || keyed[k].first != keyed[k - 1].first)
+            groups.emplace_back();
+        groups.back().push_back(keyed[k].second);
+    }
+    return groups;
+}
+
+//! One octave's candidates by decreasing distance to the nearest centre (coarsened: the
+//! distances come from the coordinates alone, so every processor orders them alike), then
+//! by index.
+std::vector<RankedCandidate> farthest_first(const std::vector<Eigen::Index>& group, const Points& X,
+                                            const std::vector<Eigen::Index>& centres)
 {
     // The centres as structure of arrays, so that the nearest-centre loop vectorises.
     const std::size_t nc = centres.size();
@@ -427,40 +443,37 @@ std::vector<RankedCandidate> octave_then_farthest(const std::vector<Eigen::Index
         cy[c] = X(centres[c], 1);
         cz[c] = X(centres[c], 2);
     }
-    std::vector<RankedCandidate> ranked(cand.size());
-#pragma omp parallel for schedule(static)
-    for (std::size_t k = 0; k < cand.size(); ++k)
+    std::vector<RankedCandidate> ranked(group.size());
+#pragma omp parallel for schedule(static) if (group.size() * nc > 100000)
+    for (std::size_t k = 0; k < group.size(); ++k)
     {
-        const double x = X(cand[k], 0), y = X(cand[k], 1), z = X(cand[k], 2);
+        const double x = X(group[k], 0), y = X(group[k], 1), z = X(group[k], 2);
         double d2 = std::numeric_limits<double>::infinity();
         for (std::size_t c = 0; c < nc; ++c)
         {
             const double dx = x - cx[c], dy = y - cy[c], dz = z - cz[c];
             d2 = std::min(d2, dx * dx + dy * dy + dz * dz);
         }
-        ranked[k] = {cand[k], std::ilogb(err[cand[k]] / unit), d2, coarsened(d2)};
+        ranked[k] = {group[k], d2, coarsened(d2)};
     }
     std::sort(ranked.begin(), ranked.end(),
               [](const RankedCandidate& a, const RankedCandidate& b)
               {
-                  if (a.octave != b.octave)
-                      return a.octave > b.octave;
                   return a.to_centre2_key > b.to_centre2_key ||
                          (a.to_centre2_key == b.to_centre2_key && a.index < b.index);
               });
     return ranked;
 }
 
-//! The batch of a round from candidates in priority order: each kept unless it lies
+//! Adds to the batch `kept`, up to b, candidates in priority order: each unless it lies
 //! closer to a point already kept than spread x its distance to the nearest centre (compared
 //! coarsened: tie_break.h). A new centre corrects the field within about that distance, so
 //! the batch spreads over every region with a large residual instead of crowding the worst
 //! one (the crowded batch makes the interpolant oscillate where the centres are sparse). The
-//! first candidate is always kept.
-std::vector<Eigen::Index> spread_batch(const std::vector<RankedCandidate>& ranked, const Points& X,
-                                       Eigen::Index b, double spread)
+//! first candidate of a round is always kept.
+void spread_batch(const std::vector<RankedCandidate>& ranked, const Points& X, Eigen::Index b,
+                  double spread, std::vector<Eigen::Index>& kept)
 {
-    std::vector<Eigen::Index> kept;
     for (const RankedCandidate& c : ranked)
     {
         if (Eigen::Index(kept.size()) >= b)
@@ -476,11 +489,11 @@ std::vector<Eigen::Index> spread_batch(const std::vector<RankedCandidate>& ranke
         if (!crowded)
             kept.push_back(c.index);
     }
-    return kept;
 }
 
 //! A spread round's batch (GreedySettings::spread): the candidates with a residual above
-//! `floor` (the largest alone when none is, so that rounds progress), ranked, spaced.
+//! `floor` (the largest alone when none is, so that rounds progress), by octave, then
+//! farthest first, spaced. An octave is ranked only if the batch is not full before it.
 std::vector<Eigen::Index> spread_round(std::vector<Eigen::Index> cand, const Eigen::VectorXd& err,
                                        double floor, double unit, const Points& X,
                                        const std::vector<Eigen::Index>& centres, Eigen::Index b,
@@ -488,14 +501,21 @@ std::vector<Eigen::Index> spread_round(std::vector<Eigen::Index> cand, const Eig
 {
     std::vector<Eigen::Index> above; // only these are ranked
     for (Eigen::Index j : cand)
-        if (coarsened(err[j]) > coarsened(floor))
+        if (coarsened_less(floor, err[j]))
             above.push_back(j);
     if (above.empty())
     {
         keep_largest_residuals(cand, err, 1);
         above = cand;
     }
-    return spread_batch(octave_then_farthest(above, err, unit, X, centres), X, b, spread);
+    std::vector<Eigen::Index> kept;
+    for (const std::vector<Eigen::Index>& group : octaves(above, err, unit))
+    {
+        spread_batch(farthest_first(group, X, centres), X, b, spread, kept);
+        if (Eigen::Index(kept.size()) >= b)
+            break;
+    }
+    return kept;
 }
 
 } // namespace

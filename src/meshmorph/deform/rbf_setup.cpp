@@ -150,18 +150,21 @@ MergedHandles merge_duplicates(const Eigen::Ref<const Points>& handles,
     for (Eigen::Index i = 0; i < m; ++i)
         max_disp = std::max(max_disp, displacements.row(i).norm());
     const double disp_tol = tolerance * max_disp;
-    const UniformGrid grid(normalised, std::max(tolerance, 1e-14));
+    // Cells a thousand times the tolerance (normalised coordinates are O(1), so the keys
+    // stay small): a handle's tolerance box nearly always lies in one cell.
+    const double radius = std::max(tolerance, 1e-14);
+    const UniformGrid grid(normalised, 1000.0 * radius);
     std::vector<Eigen::Index> kept;
     for (Eigen::Index i = 0; i < m; ++i)
     {
-        Eigen::Index dup = -1;
-        grid.for_each_near(normalised(i, 0), normalised(i, 1), normalised(i, 2),
-                           [&](Eigen::Index j)
-                           {
-                               if (j < i && dup < 0 &&
-                                   (normalised.row(i) - normalised.row(j)).norm() <= tolerance)
-                                   dup = j;
-                           });
+        Eigen::Index dup = -1; // the first handle it coincides with
+        grid.for_each_within(normalised(i, 0), normalised(i, 1), normalised(i, 2), radius,
+                             [&](Eigen::Index j)
+                             {
+                                 if (j < i && (dup < 0 || j < dup) &&
+                                     (normalised.row(i) - normalised.row(j)).norm() <= tolerance)
+                                     dup = j;
+                             });
         if (dup < 0)
         {
             out.representative[std::size_t(i)] = Index(kept.size());

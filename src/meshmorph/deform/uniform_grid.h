@@ -45,6 +45,26 @@ public:
                 }
     }
 
+    //! Calls f(index) for every point in the cells that the box of half-width `radius`
+    //! about x overlaps (a superset of the points within `radius` of x), in the order of
+    //! for_each_near. With cells much larger than the radius that is one cell nearly always,
+    //! where for_each_near searches 27.
+    template <class F> void for_each_within(double x, double y, double z, double radius, F&& f) const
+    {
+        const Key lo = key(x - radius, y - radius, z - radius);
+        const Key hi = key(x + radius, y + radius, z + radius);
+        for (std::int64_t kz = lo[2]; kz <= hi[2]; ++kz)
+            for (std::int64_t ky = lo[1]; ky <= hi[1]; ++ky)
+                for (std::int64_t kx = lo[0]; kx <= hi[0]; ++kx)
+                {
+                    const Key k{kx, ky, kz};
+                    auto it = std::lower_bound(entries_.begin(), entries_.end(),
+                                               Entry{k, std::int64_t(-1)});
+                    for (; it != entries_.end() && it->first == k; ++it)
+                        f(static_cast<Eigen::Index>(it->second));
+                }
+    }
+
 private:
     using Key = std::array<std::int64_t, 3>;
     using Entry = std::pair<Key, std::int64_t>;

@@ -92,7 +92,8 @@ FitHandles merge_coincident(const FitHandles& h, double same)
 {
     // Cell keys relative to the lower corner stay far below the integer range.
     const Points local = h.positions.rowwise() - h.positions.colwise().minCoeff();
-    const detail::UniformGrid grid(local, same);
+    // Cells much larger than `same`: a position's box nearly always lies in one.
+    const detail::UniformGrid grid(local, 1000.0 * same);
     std::vector<Eigen::Index> representative(static_cast<std::size_t>(h.positions.rows()), -1);
     Points sums = Points::Zero(h.values.rows(), 3);
     std::vector<int> counts(static_cast<std::size_t>(h.positions.rows()), 0);
@@ -100,13 +101,13 @@ FitHandles merge_coincident(const FitHandles& h, double same)
     {
         if (representative[std::size_t(a)] >= 0)
             continue;
-        grid.for_each_near(local(a, 0), local(a, 1), local(a, 2),
-                           [&](Eigen::Index b)
-                           {
-                               if (representative[std::size_t(b)] < 0 &&
-                                   (h.positions.row(a) - h.positions.row(b)).norm() <= same)
-                                   representative[std::size_t(b)] = a;
-                           });
+        grid.for_each_within(local(a, 0), local(a, 1), local(a, 2), same,
+                             [&](Eigen::Index b)
+                             {
+                                 if (representative[std::size_t(b)] < 0 &&
+                                     (h.positions.row(a) - h.positions.row(b)).norm() <= same)
+                                     representative[std::size_t(b)] = a;
+                             });
     }
     for (Eigen::Index i = 0; i < h.positions.rows(); ++i)
     {
