@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
+#include <cstdio>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -242,7 +244,18 @@ IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& w
         nodes_[k].child = split[k].child;
         compute_moments(nodes_[k]);
     }
+    index_probes();
     index_lone_sources();
+}
+
+void IdwTree::index_probes()
+{
+    probes_.resize(nodes_.size());
+    for (std::size_t k = 0; k < nodes_.size(); ++k)
+    {
+        const Node& n = nodes_[k];
+        probes_[k] = {n.cx, n.cy, n.cz, n.radius, n.child, n.moments_only};
+    }
 }
 
 namespace
@@ -351,7 +364,7 @@ struct Term
 //! The lanes of the block's points for which `node` is far (radius < theta |x - centroid|,
 //! Barnes-Hut's test per point, so that each point's sum depends on the point alone and not
 //! on the block, nor on which points a rank holds).
-std::uint32_t far_lanes(const IdwTree::Node& node, double theta, const Block& b,
+std::uint32_t far_lanes(const IdwTree::Probe& node, double theta, const Block& b,
                         std::uint32_t active)
 {
     std::uint32_t far = 0;
@@ -370,28 +383,33 @@ std::uint32_t far_lanes(const IdwTree::Node& node, double theta, const Block& b,
 //! with the lanes it applies to. A node far for the whole ball (centre c, radius rho) is
 //! far for every point in it; a node that no point sees as far is opened for all. False if
 //! a point needs a node written as moments only (a tree written for another region).
-bool interaction_lists(const std::vector<IdwTree::Node>& nodes, double theta, const double c[3],
+bool interaction_lists(const std::vector<IdwTree::Probe>& nodes, double theta, const double c[3],
                        double rho, const Block& b, std::vector<Term>& far, std::vector<Term>& near)
 {
     far.clear();
     near.clear();
     const std::uint32_t all = b.n == 32 ? ~0u : (1u << b.n) - 1u;
+    // The ball's tests decide for all its points only with a margin far above round-off,
+    // so that they never disagree with the test of a point (see far_lanes). Squared, without
+    // a square root: a node is far for the whole ball when radius / theta' + rho < |c -
+    // centroid|, and may be far for some point unless radius / theta'' - rho >= |c - centroid|.
+    const double all_far = 1.0 / ((1.0 - 1e-9) * theta);
+    const double some_far = 1.0 / ((1.0 + 1e-9) * theta);
     std::array<Term, 256> stack;
     int top = 0;
     stack[top++] = {0, all};
     while (top > 0)
     {
         const Term t = stack[--top];
-        const IdwTree::Node& node = nodes[std::size_t(t.node)];
+        const IdwTree::Probe& node = nodes[std::size_t(t.node)];
         const double dx = c[0] - node.cx, dy = c[1] - node.cy, dz = c[2] - node.cz;
-        const double centre_distance = std::sqrt(dx * dx + dy * dy + dz * dz);
-        const double gap = centre_distance - rho;
-        // The ball's tests decide for all its points only with a margin far above round-off,
-        // so that they never disagree with the test of a point (see far_lanes).
+        const double d2 = dx * dx + dy * dy + dz * dz;
+        const double whole = node.radius * all_far + rho;
+        const double some = node.radius * some_far - rho;
         std::uint32_t far_here = 0;
-        if (gap > 0.0 && node.radius < (1.0 - 1e-9) * theta * gap)
+        if (whole * whole < d2)
             far_here = t.lanes; // the whole ball is far: so is every point
-        else if (node.radius < (1.0 + 1e-9) * theta * (centre_distance + rho))
+        else if (some <= 0.0 || some * some < d2)
             far_here = far_lanes(node, theta, b, t.lanes); // some point may be far
         if (far_here)
             far.push_back({t.node, far_here});
@@ -493,6 +511,7 @@ IdwTree IdwTree::read_essential(FieldReader& in, const IdwWeight& weight, double
         if (node.begin < 0 || node.end < node.begin || node.end > m ||
             (node.child >= 0 && node.child + 1 >= n_nodes))
             throw IoError("fitted field: an IDW tree node out of range");
+    tree.index_probes();
     tree.index_lone_sources();
     return tree;
 }
@@ -568,7 +587,9 @@ void IdwTree::sum_over_tree(const Points& x, Points& out) const
     if (x.rows() == 0)
         return;
     std::vector<Index> order;
+    const auto t0 = std::chrono::steady_clock::now();
     std::vector<SplitNode> blocks = median_split(x, order, block_size, true);
+    if (getenv("TIME_SPLIT")) fprintf(stderr, "split %zu: %.3f\n", (size_t)x.rows(), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     std::erase_if(blocks, [](const SplitNode& b) { return b.child >= 0; });
     const bool fast = weight_.far_exponent == 3 && weight_.near_exponent == 5;
     const Weight35 w35{weight_.beta};
@@ -587,7 +608,8 @@ void IdwTree::sum_over_tree(const Points& x, Points& out) const
             double c[3] = {0, 0, 0};
             const double rho = load_block(x, order, q, b, c);
             // An exception must not leave an OpenMP region: noted, thrown after it.
-            if (!interaction_lists(nodes_, theta_, c, rho, b, far, near))
+            if (getenv("NO_LISTS")) { far.clear(); near.clear(); } else
+            if (!interaction_lists(probes_, theta_, c, rho, b, far, near))
             {
                 outside_region = true;
                 continue;
@@ -600,12 +622,12 @@ void IdwTree::sum_over_tree(const Points& x, Points& out) const
             };
             const auto accumulate = [&](const auto& weight)
             {
-                for (const Term& t : far)
+                if (!getenv("NO_FAR")) for (const Term& t : far)
                 {
                     set_lanes(t.lanes);
                     add_far(nodes_[std::size_t(t.node)], weight, b);
                 }
-                for (const Term& t : near)
+                if (!getenv("NO_NEAR")) for (const Term& t : near)
                 {
                     set_lanes(t.lanes);
                     const Node& leaf = nodes_[std::size_t(t.node)];

@@ -102,8 +102,18 @@ public:
         bool moments_only = false;
     };
 
+    //! What the traversal reads of a node, apart from its moments (48 bytes, so that the
+    //! nodes a query block visits stay in the cache).
+    struct Probe
+    {
+        double cx, cy, cz, radius;
+        Index child;
+        bool moments_only;
+    };
+
 private:
     IdwTree(const IdwWeight& weight, double theta) : weight_(weight), theta_(theta) {}
+    void index_probes();
     void build(Index node, std::vector<Index>& order, const Points& s, const Points& v);
     void compute_moments(Node& node) const;
     void index_lone_sources();
@@ -113,6 +123,7 @@ private:
     IdwWeight weight_;
     double theta_;
     std::vector<Node> nodes_;
+    std::vector<Probe> probes_; //!< per node, as nodes_
     // Sources and values in tree order, structure of arrays.
     std::vector<double> sx_, sy_, sz_, vx_, vy_, vz_;
     //! Exact coordinates (bit patterns, -0 as +0) of the sources without a coincident
