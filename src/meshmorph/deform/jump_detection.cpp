@@ -95,8 +95,9 @@ bool jumps_into(const Points& x, const Eigen::MatrixXd& v, const std::vector<Eig
     {
         const Eigen::Index j = order[k];
         const double d2 = (x.row(i) - x.row(j)).squaredNorm();
-        if (j != i && coarsened(d2) <= coarsened(reach2) &&
-            coarsened((v.row(i) - v.row(j)).squaredNorm()) > coarsened(slope2 * d2))
+        // coarsened(d2) <= coarsened(reach2), coarsened(|dv|^2) > coarsened(slope2 d2).
+        if (j != i && !coarsened_less(reach2, d2) &&
+            coarsened_less(slope2 * d2, (v.row(i) - v.row(j)).squaredNorm()))
             return true;
     }
     return false;
