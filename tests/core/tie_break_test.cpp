@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -35,4 +36,22 @@ TEST(TieBreak, first_largest_breaks_round_off_ties_by_the_lowest_index)
     v[4] = 3.0 * (1 + 1e-6);
     EXPECT_EQ(first_largest(v), 4) << "a real difference wins";
     EXPECT_EQ(first_largest(Eigen::VectorXd()), -1);
+}
+
+TEST(TieBreak, coarsened_less_is_the_comparison_of_the_coarsened_values)
+{
+    // Pairs far apart, within round-off, straddling a rounding boundary, across binades,
+    // signed, zero and non-finite: the shortcut must agree with the rounding everywhere.
+    std::vector<double> values = {0.0, -0.0, 1e-300, 0.3, 0.1 + 0.2, 1.0, 1.0 + 1e-6,
+                                  1.0 + 0x1p-30, 1.0 + 0x1p-29, 1.0 - 0x1p-31, 2.0, 3.0,
+                                  -1.0, -1.0 - 1e-15, 7.5e12,
+                                  std::numeric_limits<double>::infinity(),
+                                  -std::numeric_limits<double>::infinity(),
+                                  std::numeric_limits<double>::quiet_NaN()};
+    for (double x = 0.7; x < 1.5; x += 0.013)
+        for (double rel : {0.0, 1e-16, 3e-10, 4.7e-10, 5e-10, 1e-9, 2e-9})
+            values.push_back(x * (1 + rel));
+    for (double a : values)
+        for (double b : values)
+            EXPECT_EQ(coarsened_less(a, b), coarsened(a) < coarsened(b)) << a << " " << b;
 }
