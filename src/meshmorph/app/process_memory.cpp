@@ -20,7 +20,7 @@ namespace
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 constexpr bool sanitized = true;
 #elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) ||                   \
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) ||                         \
     __has_feature(memory_sanitizer)
 constexpr bool sanitized = true;
 #else
@@ -64,8 +64,8 @@ void restart_with_huge_pages(char** argv)
         !kernel_has_huge_pages())
         return;
 #if defined(__GLIBC__)
-    const std::string with = tunables.empty() ? "glibc.malloc.hugetlb=1"
-                                              : tunables + ":glibc.malloc.hugetlb=1";
+    const std::string with =
+        tunables.empty() ? "glibc.malloc.hugetlb=1" : tunables + ":glibc.malloc.hugetlb=1";
     if (setenv("GLIBC_TUNABLES", with.c_str(), 1) != 0)
         return;
     execv("/proc/self/exe", argv);

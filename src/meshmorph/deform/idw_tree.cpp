@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <chrono>
-#include <cstdio>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -176,8 +174,10 @@ template <class W> void add_far(const IdwTree::Node& node, const W& weight, Bloc
         const double xx = rx * rx, yy = ry * ry, zz = rz * rz;
         const double xy = 2.0 * rx * ry, xz = 2.0 * rx * rz, yz = 2.0 * ry * rz;
         const auto second_order = [&](const double* m, double tr)
-        { return quad * (xx * m[0] + yy * m[1] + zz * m[2] + xy * m[3] + xz * m[4] + yz * m[5]) +
-                 trace * tr; };
+        {
+            return quad * (xx * m[0] + yy * m[1] + zz * m[2] + xy * m[3] + xz * m[4] + yz * m[5]) +
+                   trace * tr;
+        };
         const double on = b.lane[i]; // x + 0 * t == x: lanes off keep their sums exactly
         b.den[i] += on * (count * w0 + second_order(node.second, node.trace[0]));
         b.nx[i] += on * (w0 * node.sv[0] -
@@ -290,8 +290,7 @@ void IdwTree::index_lone_sources()
             for (Index k = node.begin; k < node.end && lone; ++k)
             {
                 const std::size_t sk = static_cast<std::size_t>(k);
-                const double dx = sx_[sj] - sx_[sk], dy = sy_[sj] - sy_[sk],
-                             dz = sz_[sj] - sz_[sk];
+                const double dx = sx_[sj] - sx_[sk], dy = sy_[sj] - sy_[sk], dz = sz_[sj] - sz_[sk];
                 lone = k == j || dx * dx + dy * dy + dz * dz > reach2;
             }
             if (!lone)
@@ -587,9 +586,7 @@ void IdwTree::sum_over_tree(const Points& x, Points& out) const
     if (x.rows() == 0)
         return;
     std::vector<Index> order;
-    const auto t0 = std::chrono::steady_clock::now();
     std::vector<SplitNode> blocks = median_split(x, order, block_size, true);
-    if (getenv("TIME_SPLIT")) fprintf(stderr, "split %zu: %.3f\n", (size_t)x.rows(), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     std::erase_if(blocks, [](const SplitNode& b) { return b.child >= 0; });
     const bool fast = weight_.far_exponent == 3 && weight_.near_exponent == 5;
     const Weight35 w35{weight_.beta};
@@ -608,7 +605,6 @@ void IdwTree::sum_over_tree(const Points& x, Points& out) const
             double c[3] = {0, 0, 0};
             const double rho = load_block(x, order, q, b, c);
             // An exception must not leave an OpenMP region: noted, thrown after it.
-            if (getenv("NO_LISTS")) { far.clear(); near.clear(); } else
             if (!interaction_lists(probes_, theta_, c, rho, b, far, near))
             {
                 outside_region = true;
@@ -622,12 +618,12 @@ void IdwTree::sum_over_tree(const Points& x, Points& out) const
             };
             const auto accumulate = [&](const auto& weight)
             {
-                if (!getenv("NO_FAR")) for (const Term& t : far)
+                for (const Term& t : far)
                 {
                     set_lanes(t.lanes);
                     add_far(nodes_[std::size_t(t.node)], weight, b);
                 }
-                if (!getenv("NO_NEAR")) for (const Term& t : near)
+                for (const Term& t : near)
                 {
                     set_lanes(t.lanes);
                     const Node& leaf = nodes_[std::size_t(t.node)];

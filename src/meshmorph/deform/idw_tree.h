@@ -12,10 +12,13 @@
 //! rho < theta |x - centroid| (decided per point, so that a point's value does not depend
 //! on the other points queried with it); theta = 0 sums every source directly (exact).
 //!
-//! Queries are sorted into compact blocks (the same median split as the sources); each
-//! block builds one interaction list (each term with the block's points it applies to) and
-//! then runs SIMD loops over its points, so the cost per point is a few hundred expansion
-//! and direct terms without per-point traversal.
+//! Queries are sorted into compact blocks of 32 (the same median split as the sources, cut
+//! at multiples of 32 so that the blocks are full); each block builds one interaction list
+//! (each term with the block's points it applies to) from a compact copy of the nodes'
+//! centroids and radii, and then runs SIMD loops over its points, so the cost per point is
+//! a few hundred expansion and direct terms without per-point traversal. A query equal to a
+//! source (a mesh morph evaluates its field at every constraint) takes that source's value
+//! by a hash look-up, as the sum would give it.
 #pragma once
 
 #include <cstdint>

@@ -49,7 +49,8 @@ public:
     //! about x overlaps (a superset of the points within `radius` of x), in the order of
     //! for_each_near. With cells much larger than the radius that is one cell nearly always,
     //! where for_each_near searches 27.
-    template <class F> void for_each_within(double x, double y, double z, double radius, F&& f) const
+    template <class F>
+    void for_each_within(double x, double y, double z, double radius, F&& f) const
     {
         const Key lo = key(x - radius, y - radius, z - radius);
         const Key hi = key(x + radius, y + radius, z + radius);

@@ -51,9 +51,9 @@ SteppedMorph fit_in_steps(const MorphOptions& options, const MorphCase& in, cons
     const DeformationMaker make = [&](const Points& points)
     { return make_deformation(settings, points, n_fit); };
     const Decomposition* parts = options.parallel ? &in.decomposition : nullptr;
-    SteppedMorph stepped = morph_in_steps(mesh, cf, c, in.step_settings, make, needs_fit(settings),
-                                          [&before] { return before.invalid(); }, parts,
-                                          in_place);
+    SteppedMorph stepped = morph_in_steps(
+        mesh, cf, c, in.step_settings, make, needs_fit(settings),
+        [&before] { return before.invalid(); }, parts, in_place);
     result.steps = stepped.steps;
     for (const StepRecord& s : stepped.steps)
     {

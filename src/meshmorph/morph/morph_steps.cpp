@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "meshmorph/core/exceptions.h"
@@ -124,7 +124,7 @@ public:
     }
 
 private:
-    const PolyMesh* mesh_;         //!< the topology, with the original points but in place
+    const PolyMesh* mesh_;        //!< the topology, with the original points but in place
     PolyMesh* working_ = nullptr; //!< in place: the same mesh, to swap points in and out
     Points* aside_ = nullptr;     //!< in place: the original points
     const CompactList& cell_faces_;
@@ -241,8 +241,8 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         copy.emplace(mesh);
     PolyMesh& current = in_place != nullptr ? *in_place : *copy;
     const Points& x0 = aside ? *aside : mesh.points; // the unmorphed points
-    OriginalState original = aside ? OriginalState(current, *aside, cell_faces)
-                                   : OriginalState(mesh, cell_faces);
+    OriginalState original =
+        aside ? OriginalState(current, *aside, cell_faces) : OriginalState(mesh, cell_faces);
     Points other;
     const bool is_auto = settings.steps == 0 && fit;
     const int fixed_steps = (settings.steps > 0 && fit) ? settings.steps : 1;
