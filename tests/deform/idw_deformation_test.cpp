@@ -192,8 +192,12 @@ TEST(IdwDeformation, a_point_on_a_handle_and_one_within_round_off_of_it_take_the
         const Points off = displacements(idw, nudged);
         EXPECT_EQ(on, off) << "theta " << s.theta;
         for (Eigen::Index i = 0; i < 20; ++i)
+        {
             if (i != 5 && i != 7)
+            {
                 EXPECT_EQ(on.row(i), b.values.row(i)) << i;
+            }
+        }
         EXPECT_TRUE(on.row(5) == b.values.row(5) || on.row(5) == b.values.row(7)) << on.row(5);
     }
 }
