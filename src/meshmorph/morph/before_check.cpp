@@ -6,6 +6,7 @@
 #include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/morph/distributed_case.h"
 #include "meshmorph/morph/morph_log.h"
+#include "meshmorph/quality/check_mesh.h"
 
 namespace meshmorph::morph
 {
@@ -15,20 +16,19 @@ BeforeCheck::BeforeCheck(const PolyMesh& mesh, const CompactList& cell_faces,
                          const std::filesystem::path& mesh_dir)
     : mesh_dir_(mesh_dir)
 {
-    const auto check = [&mesh, &cell_faces, settings, &decomposition]
-    {
-        return check_morph_mesh(mesh, cell_faces, compute_geometry(mesh, cell_faces), settings,
-                                decomposition);
-    };
     if (decomposition.is_distributed())
     {
         const Stopwatch clock;
-        report_ = check();
+        report_ = check_morph_mesh(mesh, cell_faces, compute_geometry(mesh, cell_faces), settings,
+                                   decomposition);
         waited_ = clock.seconds();
         warn_if_broken(*report_, mesh_dir_);
+        return;
     }
-    else
-        running_ = std::async(std::launch::async, check);
+    // A serial check: only the mesh and its cell faces are kept (by reference).
+    running_ = std::async(
+        std::launch::async, [&mesh, &cell_faces, settings]
+        { return check_mesh(mesh, cell_faces, compute_geometry(mesh, cell_faces), settings); });
 }
 
 BeforeCheck::~BeforeCheck()

@@ -25,8 +25,9 @@ namespace meshmorph::morph
 class BeforeCheck
 {
 public:
-    //! Starts the check of `mesh` (kept by reference, as are the others, until report()),
-    //! whose points are in `mesh_dir` (named by the warning when the mesh fails checks).
+    //! Starts the check of `mesh`, whose points are in `mesh_dir` (named by the warning when
+    //! the mesh fails checks). `mesh` and `cell_faces` are kept by reference until the
+    //! check has ended (report(), or the destructor); the others are not kept.
     BeforeCheck(const PolyMesh& mesh, const CompactList& cell_faces,
                 const CheckMeshSettings& settings, const Decomposition& decomposition,
                 const std::filesystem::path& mesh_dir);
