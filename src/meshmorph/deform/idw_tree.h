@@ -12,8 +12,10 @@
 //! rho < theta |x - centroid| (decided per point, so that a point's value does not depend
 //! on the other points queried with it); theta = 0 sums every source directly (exact).
 //!
-//! Queries are sorted into compact blocks of 32 (the same median split as the sources, cut
-//! at multiples of 32 so that the blocks are full); each block builds one interaction list
+//! The source tree cuts each node in the middle of its box's longest side (so that leaves do
+//! not span the gaps between parts of a surface). Queries are sorted into compact blocks of
+//! 32 (median cuts at multiples of 32, so that the blocks are full); each block builds one
+//! interaction list
 //! (each term with the block's points it applies to) from a compact copy of the nodes'
 //! centroids and radii, and then runs SIMD loops over its points, so the cost per point is
 //! a few hundred expansion and direct terms without per-point traversal. A query equal to a

@@ -82,7 +82,7 @@ std::vector<ControlDisplacement> read_control_displacements(const io::FoamEntry&
     return out;
 }
 
-//! `idw { exponents (3 5); alpha 0.2; theta 0.25; }`
+//! `idw { exponents (3 5); alpha 0.2; theta 0.2; }`
 IdwSettings read_idw_settings(const io::FoamDictionary& d)
 {
     d.check_keywords({"exponents", "alpha", "theta"}, "idw");
