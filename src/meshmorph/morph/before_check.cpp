@@ -2,6 +2,7 @@
 // The check before a morph on a thread of its own (serial runs) or in place (-parallel).
 #include "meshmorph/morph/before_check.h"
 
+#include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/stopwatch.h"
 #include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/morph/distributed_case.h"
@@ -27,8 +28,15 @@ BeforeCheck::BeforeCheck(const PolyMesh& mesh, const CompactList& cell_faces,
     }
     // A serial check: only the mesh and its cell faces are kept (by reference).
     running_ = std::async(
-        std::launch::async, [&mesh, &cell_faces, settings]
-        { return check_mesh(mesh, cell_faces, compute_geometry(mesh, cell_faces), settings); });
+        std::launch::async,
+        [&mesh, &cell_faces, settings]
+        {
+            // check_mesh's own test, before the geometry reads the cells.
+            if (cell_faces.size() != mesh.n_cells)
+                throw InvalidInput("cell_faces has " + std::to_string(cell_faces.size()) +
+                                   " cells, the mesh " + std::to_string(mesh.n_cells));
+            return check_mesh(mesh, cell_faces, compute_geometry(mesh, cell_faces), settings);
+        });
 }
 
 BeforeCheck::~BeforeCheck()
