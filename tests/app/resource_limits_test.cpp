@@ -8,6 +8,7 @@
 
 #include "fault_case.h"
 #include "meshmorph/app/exit_status.h"
+#include "meshmorph/core/sanitizers.h"
 #include "meshmorph/io/write_poly_mesh.h"
 
 namespace fs = std::filesystem;
@@ -19,22 +20,10 @@ namespace
 
 constexpr std::size_t gigabyte = std::size_t(1) << 30;
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool address_sanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool address_sanitizer = true;
-#else
-constexpr bool address_sanitizer = false;
-#endif
-#else
-constexpr bool address_sanitizer = false;
-#endif
-
 //! AddressSanitizer reserves terabytes of address space for its shadow memory, so an
 //! address-space limit (ulimit -v) stops a sanitized application before it starts.
 #define SKIP_UNDER_ADDRESS_SANITIZER()                                                             \
-    if (address_sanitizer)                                                                         \
+    if (address_sanitized)                                                                         \
     GTEST_SKIP() << "address-space limits cannot apply under AddressSanitizer (its shadow "        \
                     "memory reserves terabytes); run in the plain build"
 

@@ -2,6 +2,8 @@
 // Huge pages and heap thresholds for the applications (see the header for why).
 #include "meshmorph/app/process_memory.h"
 
+#include "meshmorph/core/sanitizers.h"
+
 #include <cstdlib>
 #include <fstream>
 #include <string>
@@ -16,19 +18,6 @@ namespace meshmorph::app
 
 namespace
 {
-
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool sanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) ||                         \
-    __has_feature(memory_sanitizer)
-constexpr bool sanitized = true;
-#else
-constexpr bool sanitized = false;
-#endif
-#else
-constexpr bool sanitized = false;
-#endif
 
 std::string environment(const char* name)
 {

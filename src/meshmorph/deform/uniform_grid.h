@@ -36,13 +36,7 @@ public:
         for (std::int64_t dz = -1; dz <= 1; ++dz)
             for (std::int64_t dy = -1; dy <= 1; ++dy)
                 for (std::int64_t dx = -1; dx <= 1; ++dx)
-                {
-                    const Key k{c[0] + dx, c[1] + dy, c[2] + dz};
-                    auto it = std::lower_bound(entries_.begin(), entries_.end(),
-                                               Entry{k, std::int64_t(-1)});
-                    for (; it != entries_.end() && it->first == k; ++it)
-                        f(static_cast<Eigen::Index>(it->second));
-                }
+                    for_each_in_cell({c[0] + dx, c[1] + dy, c[2] + dz}, f);
     }
 
     //! Calls f(index) for every point in the cells that the box of half-width `radius`
@@ -57,18 +51,20 @@ public:
         for (std::int64_t kz = lo[2]; kz <= hi[2]; ++kz)
             for (std::int64_t ky = lo[1]; ky <= hi[1]; ++ky)
                 for (std::int64_t kx = lo[0]; kx <= hi[0]; ++kx)
-                {
-                    const Key k{kx, ky, kz};
-                    auto it = std::lower_bound(entries_.begin(), entries_.end(),
-                                               Entry{k, std::int64_t(-1)});
-                    for (; it != entries_.end() && it->first == k; ++it)
-                        f(static_cast<Eigen::Index>(it->second));
-                }
+                    for_each_in_cell({kx, ky, kz}, f);
     }
 
 private:
     using Key = std::array<std::int64_t, 3>;
     using Entry = std::pair<Key, std::int64_t>;
+
+    //! Calls f(index) for the points of cell k, by index.
+    template <class F> void for_each_in_cell(const Key& k, F& f) const
+    {
+        auto it = std::lower_bound(entries_.begin(), entries_.end(), Entry{k, std::int64_t(-1)});
+        for (; it != entries_.end() && it->first == k; ++it)
+            f(static_cast<Eigen::Index>(it->second));
+    }
     Key key(double x, double y, double z) const
     {
         return {static_cast<std::int64_t>(std::floor(x / cell_)),

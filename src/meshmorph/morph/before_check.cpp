@@ -2,7 +2,6 @@
 // The check before a morph on a thread of its own (serial runs) or in place (-parallel).
 #include "meshmorph/morph/before_check.h"
 
-#include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/stopwatch.h"
 #include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/morph/distributed_case.h"
@@ -31,10 +30,7 @@ BeforeCheck::BeforeCheck(const PolyMesh& mesh, const CompactList& cell_faces,
         std::launch::async,
         [&mesh, &cell_faces, settings]
         {
-            // check_mesh's own test, before the geometry reads the cells.
-            if (cell_faces.size() != mesh.n_cells)
-                throw InvalidInput("cell_faces has " + std::to_string(cell_faces.size()) +
-                                   " cells, the mesh " + std::to_string(mesh.n_cells));
+            require_cell_faces_of(mesh, cell_faces); // before the geometry reads the cells
             return check_mesh(mesh, cell_faces, compute_geometry(mesh, cell_faces), settings);
         });
 }

@@ -279,9 +279,7 @@ QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
                          const ProcessorFaces* processors)
 {
     validate(mesh);
-    if (cell_faces.size() != mesh.n_cells)
-        throw InvalidInput("cell_faces has " + std::to_string(cell_faces.size()) +
-                           " cells, the mesh " + std::to_string(mesh.n_cells));
+    require_cell_faces_of(mesh, cell_faces);
     QualityReport report;
     const CompactList pf = settings.all_topology ? point_faces(mesh) : CompactList{};
     const std::vector<CellShape> shapes =
@@ -299,6 +297,13 @@ QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
     summarise_checks(report);
     report.text = report_text(report, settings);
     return report;
+}
+
+void require_cell_faces_of(const PolyMesh& mesh, const CompactList& cell_faces)
+{
+    if (cell_faces.size() != mesh.n_cells)
+        throw InvalidInput("cell_faces has " + std::to_string(cell_faces.size()) +
+                           " cells, the mesh " + std::to_string(mesh.n_cells));
 }
 
 QualityReport check_mesh(const PolyMesh& mesh, const CheckMeshSettings& settings)

@@ -35,6 +35,9 @@ namespace meshmorph
 QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
                          const MeshGeometry& geometry, const CheckMeshSettings& settings,
                          const ProcessorFaces* processors = nullptr);
+//! \throw InvalidInput unless cell_faces has one entry per cell of mesh (check_mesh's own
+//! test, for callers that compute the geometry from cell_faces first).
+void require_cell_faces_of(const PolyMesh& mesh, const CompactList& cell_faces);
 //! Convenience overload computing cell_faces and the geometry.
 QualityReport check_mesh(const PolyMesh& mesh, const CheckMeshSettings& settings);
 
