@@ -202,6 +202,28 @@ TEST(IdwDeformation, a_point_on_a_handle_and_one_within_round_off_of_it_take_the
     }
 }
 
+TEST(IdwDeformation, points_very_near_a_handle_take_its_value_in_single_precision_too)
+{
+    // The single-precision kernels take a distance as at least 1e-8 of the handles' extent
+    // (so that r^-5 stays finite). A point nearer than that, or a little farther, must still
+    // take its handle's value: the handle's weight outweighs the others' by many orders.
+    const BodyInBox b = body_in_box();
+    IdwDeformation idw; // default: tree, single-precision sums
+    idw.fit(b.handles, b.values);
+    const double extent = std::sqrt(3.0); // the box's diagonal: the normalising length
+    const double max_value = test::max_norm(b.values);
+    for (const double offset : {1e-13, 1e-11, 1e-9, 1e-7})
+    {
+        Points near = b.handles.topRows(10);
+        near.col(0).array() += offset * extent;
+        const Points got = displacements(idw, near);
+        ASSERT_TRUE(got.allFinite()) << offset;
+        // At 1e-7 the next handle (spacing ~1e-2) weighs ~1e-25 of this one; what remains is
+        // the value's own rounding to single precision (6e-8 of it; 1e-6 leaves room).
+        EXPECT_LE((got - b.values.topRows(10)).cwiseAbs().maxCoeff(), 1e-6 * max_value) << offset;
+    }
+}
+
 TEST(IdwDeformation, the_general_exponent_path_agrees_with_the_direct_sum)
 {
     const BodyInBox b = body_in_box();

@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Tree-accelerated IDW sums (see the header): median-split trees over sources and queries,
-// moments per source node, one interaction list per query block, SIMD kernels over the
-// block's points. Built with -fno-math-errno so that sqrt vectorises.
+// Tree-accelerated IDW sums (see the header): the source tree with moments per node, one
+// interaction list per query block, the kernels of idw_kernels.h over the block's points.
+// Built with -fno-math-errno so that sqrt vectorises.
 #include "meshmorph/deform/idw_tree.h"
+
+#include "meshmorph/deform/idw_kernels.h"
+#include "meshmorph/deform/idw_split.h"
 
 #include <algorithm>
 #include <array>
@@ -14,240 +17,15 @@
 #include <numeric>
 #include <stdexcept>
 
-#if defined(__AVX512F__)
-#include <immintrin.h>
-#endif
-
 namespace meshmorph::detail
 {
+
+using namespace idw;
 
 namespace
 {
 
 constexpr Index source_leaf = 16;
-constexpr int block_size = 32;
-
-//! A node of a split tree: a contiguous range of the permutation; children at child and
-//! child + 1 (-1: leaf).
-struct SplitNode
-{
-    Index begin, end, child;
-};
-
-//! How split_tree() cuts a node along the longest side of its bounding box.
-enum class SplitRule
-{
-    //! Sources: in the middle of the side (sliding to the median when that leaves a side
-    //! empty, and below depth 96, which bounds the depth for the traversal's stacks). The
-    //! cut follows the gaps between parts of a surface, so that a leaf does not span one:
-    //! on the motorBike's 57k boundary points the median cut made 10% of the leaves 18 times
-    //! wider than their point spacing (the midpoint cut: 11 times), and their direct sums
-    //! reach that much further. For the same largest error (6e-4) the median tree needed
-    //! theta 0.25 against 0.2 here, and 1.33x the time.
-    sources,
-    //! Query blocks: at the median, rounded to a multiple of the leaf size so that every
-    //! leaf but the last is full (query blocks then fill their SIMD lanes: with halves,
-    //! blocks held 21 points on average).
-    full_blocks,
-};
-
-//! Splits the points (rows of p) recursively until at most leaf_size remain. order becomes
-//! the permutation that makes every node a contiguous range. Node 0 is the root; a node's
-//! children follow it (breadth first).
-std::vector<SplitNode> split_tree(const Points& p, std::vector<Index>& order, Index leaf_size,
-                                  SplitRule rule)
-{
-    constexpr int deepest_midpoint = 96;
-    order.resize(static_cast<std::size_t>(p.rows()));
-    std::iota(order.begin(), order.end(), Index{0});
-    std::vector<SplitNode> nodes{{0, static_cast<Index>(p.rows()), -1}};
-    std::vector<int> depth{0};
-    for (std::size_t k = 0; k < nodes.size(); ++k)
-    {
-        const SplitNode node = nodes[k];
-        if (node.end - node.begin <= leaf_size)
-            continue;
-        Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity());
-        Vector3 hi = -lo;
-        for (Index i = node.begin; i < node.end; ++i)
-        {
-            lo = lo.cwiseMin(p.row(order[std::size_t(i)]).transpose());
-            hi = hi.cwiseMax(p.row(order[std::size_t(i)]).transpose());
-        }
-        int axis = 0;
-        (hi - lo).maxCoeff(&axis);
-        const auto first = order.begin() + node.begin, last = order.begin() + node.end;
-        Index split = -1;
-        if (rule == SplitRule::sources && depth[k] < deepest_midpoint)
-        {
-            const double cut = 0.5 * (lo[axis] + hi[axis]);
-            split = static_cast<Index>(
-                std::stable_partition(first, last, [&](Index a) { return p(a, axis) < cut; }) -
-                order.begin());
-            if (split == node.begin || split == node.end)
-                split = -1;
-        }
-        if (split < 0)
-        {
-            const Index n = node.end - node.begin;
-            const Index half =
-                rule == SplitRule::full_blocks ? leaf_size * ((n / leaf_size + 1) / 2) : n / 2;
-            std::nth_element(first, first + half, last,
-                             [&](Index a, Index b) {
-                                 return p(a, axis) < p(b, axis) ||
-                                        (p(a, axis) == p(b, axis) && a < b);
-                             });
-            split = node.begin + half;
-        }
-        nodes[k].child = static_cast<Index>(nodes.size());
-        nodes.push_back({node.begin, split, -1});
-        nodes.push_back({split, node.end, -1});
-        depth.push_back(depth[k] + 1);
-        depth.push_back(depth[k] + 1);
-    }
-    return nodes;
-}
-
-//! r^-a and beta r^-b from 1/r: a fixed (3, 5) fast path and a general one.
-struct Weight35
-{
-    double beta;
-    static constexpr double a = 3.0, b = 5.0;
-    void operator()(double inv_r, double& pa, double& pb) const
-    {
-        const double inv_r2 = inv_r * inv_r;
-        pa = inv_r2 * inv_r;
-        pb = beta * pa * inv_r2;
-    }
-};
-struct WeightGeneral
-{
-    double beta;
-    int ia, ib;
-    double a, b;
-    void operator()(double inv_r, double& pa, double& pb) const
-    {
-        pa = 1.0;
-        for (int k = 0; k < ia; ++k)
-            pa *= inv_r;
-        pb = beta * pa;
-        for (int k = ia; k < ib; ++k)
-            pb *= inv_r;
-    }
-};
-
-//! out[i] = 1 / sqrt(in[i]) for a whole block. With AVX-512: the 14-bit estimate refined by
-//! two Newton steps (56 bits, at least double precision up to a few ulp: these are weights),
-//! about three times faster than sqrt and a division; in = 0 gives NaN (a coincident source,
-//! whose value replaces the sum). Elsewhere the plain expression, which GCC vectorises.
-inline void inverse_sqrt(const double* in, double* out)
-{
-#if defined(__AVX512F__)
-    const __m512d half = _mm512_set1_pd(0.5), three_halves = _mm512_set1_pd(1.5);
-    for (int i = 0; i < block_size; i += 8)
-    {
-        const __m512d x = _mm512_load_pd(in + i);
-        __m512d y = _mm512_rsqrt14_pd(x);
-        const __m512d hx = _mm512_mul_pd(half, x);
-        for (int k = 0; k < 2; ++k)
-            y = _mm512_mul_pd(y, _mm512_fnmadd_pd(hx, _mm512_mul_pd(y, y), three_halves));
-        _mm512_store_pd(out + i, y);
-    }
-#else
-    for (int i = 0; i < block_size; ++i)
-        out[i] = 1.0 / std::sqrt(in[i]);
-#endif
-}
-
-//! One query block in structure-of-arrays form with its accumulators.
-struct Block
-{
-    int n = 0;
-    alignas(64) double x[block_size], y[block_size], z[block_size];
-    alignas(64) double nx[block_size], ny[block_size], nz[block_size], den[block_size];
-    alignas(64) double hit[block_size];  //!< 1 + source index of a coincident source, or 0
-    alignas(64) double lane[block_size]; //!< 1 for the lanes a term applies to, else 0
-    alignas(64) double r2[block_size], inv_r[block_size]; //!< scratch of the kernels
-
-    void clear_sums()
-    {
-        for (int i = 0; i < block_size; ++i)
-            nx[i] = ny[i] = nz[i] = den[i] = hit[i] = 0.0;
-    }
-};
-
-//! Adds the second-order expansion of a far node to the block's points in b.lane.
-//! With f the weight, R = x - centroid, r = |R|, delta = s - centroid (sum delta = 0):
-//!     sum f(|R - delta|) v ~ f sum v - f'/r R.(sum delta v)
-//!                            + 1/2 (f'' - f'/r) R^T (sum delta delta^T v) R / r^2
-//!                            + 1/2 f'/r tr(sum delta delta^T v),
-//! written in R rather than in R / r so that no per-term normalisation is needed.
-template <class W> void add_far(const IdwTree::Node& node, const W& weight, Block& b)
-{
-    const double count = node.count;
-    for (int i = 0; i < block_size; ++i)
-    {
-        const double rx = b.x[i] - node.cx, ry = b.y[i] - node.cy, rz = b.z[i] - node.cz;
-        b.r2[i] = rx * rx + ry * ry + rz * rz;
-    }
-    inverse_sqrt(b.r2, b.inv_r);
-    const auto& first = node.first;
-    for (int i = 0; i < block_size; ++i)
-    {
-        const double rx = b.x[i] - node.cx, ry = b.y[i] - node.cy, rz = b.z[i] - node.cz;
-        const double inv_r = b.inv_r[i], inv_r2 = inv_r * inv_r;
-        double pa, pb;
-        weight(inv_r, pa, pb);
-        const double w0 = pa + pb;
-        const double d1_r = -(weight.a * pa + weight.b * pb) * inv_r2; // f'/r
-        const double d2 =
-            (weight.a * (weight.a + 1.0) * pa + weight.b * (weight.b + 1.0) * pb) * inv_r2; // f''
-        const double quad = 0.5 * (d2 - d1_r) * inv_r2;
-        const double trace = 0.5 * d1_r;
-        const double xx = rx * rx, yy = ry * ry, zz = rz * rz;
-        const double xy = 2.0 * rx * ry, xz = 2.0 * rx * rz, yz = 2.0 * ry * rz;
-        const auto second_order = [&](const double* m, double tr)
-        {
-            return quad * (xx * m[0] + yy * m[1] + zz * m[2] + xy * m[3] + xz * m[4] + yz * m[5]) +
-                   trace * tr;
-        };
-        const double on = b.lane[i]; // x + 0 * t == x: lanes off keep their sums exactly
-        b.den[i] += on * (count * w0 + second_order(node.second, node.trace[0]));
-        b.nx[i] += on * (w0 * node.sv[0] -
-                         d1_r * (rx * first[0][0] + ry * first[1][0] + rz * first[2][0]) +
-                         second_order(node.second_v[0], node.trace[1]));
-        b.ny[i] += on * (w0 * node.sv[1] -
-                         d1_r * (rx * first[0][1] + ry * first[1][1] + rz * first[2][1]) +
-                         second_order(node.second_v[1], node.trace[2]));
-        b.nz[i] += on * (w0 * node.sv[2] -
-                         d1_r * (rx * first[0][2] + ry * first[1][2] + rz * first[2][2]) +
-                         second_order(node.second_v[2], node.trace[3]));
-    }
-}
-
-//! Adds one source directly to the block's points in b.lane (and notes coincidences).
-template <class W>
-void add_source(double sx, double sy, double sz, double vx, double vy, double vz, double tag,
-                const W& weight, Block& b)
-{
-    for (int i = 0; i < block_size; ++i)
-    {
-        const double dx = b.x[i] - sx, dy = b.y[i] - sy, dz = b.z[i] - sz;
-        b.r2[i] = dx * dx + dy * dy + dz * dz;
-    }
-    inverse_sqrt(b.r2, b.inv_r);
-    for (int i = 0; i < block_size; ++i)
-    {
-        double pa, pb;
-        weight(b.inv_r[i], pa, pb);
-        const double w = b.lane[i] * (pa + pb);
-        b.hit[i] = b.lane[i] > 0.0 && b.r2[i] <= idw_coincident2 ? tag : b.hit[i];
-        b.nx[i] += w * vx;
-        b.ny[i] += w * vy;
-        b.nz[i] += w * vz;
-        b.den[i] += w;
-    }
-}
 
 } // namespace
 
@@ -255,8 +33,7 @@ IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& w
     : weight_(weight), theta_(theta)
 {
     std::vector<Index> order;
-    const std::vector<SplitNode> split =
-        split_tree(sources, order, source_leaf, SplitRule::sources);
+    const std::vector<SplitNode> split = split_sources(sources, order, source_leaf);
     const std::size_t m = order.size();
     for (std::vector<double>* a : {&sx_, &sy_, &sz_, &vx_, &vy_, &vz_})
         a->resize(m);
@@ -269,6 +46,9 @@ IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& w
         vy_[i] = values(order[i], 1);
         vz_[i] = values(order[i], 2);
     }
+    for (int k = 0; k < 3; ++k)
+        mid_[k] = 0.5 * (values.col(k).minCoeff() + values.col(k).maxCoeff());
+    shift_values();
     nodes_.resize(split.size());
 #pragma omp parallel for schedule(dynamic, 64) if (split.size() > 256)
     for (std::size_t k = 0; k < split.size(); ++k)
@@ -282,14 +62,55 @@ IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& w
     index_lone_sources();
 }
 
+void IdwTree::shift_values()
+{
+    const std::size_t m = vx_.size();
+    for (std::vector<double>* a : {&ux_, &uy_, &uz_})
+        a->resize(m);
+    for (std::size_t j = 0; j < m; ++j)
+    {
+        ux_[j] = vx_[j] - mid_[0];
+        uy_[j] = vy_[j] - mid_[1];
+        uz_[j] = vz_[j] - mid_[2];
+    }
+}
+
 void IdwTree::index_probes()
 {
     probes_.resize(nodes_.size());
+    moments_f_.resize(nodes_.size());
     for (std::size_t k = 0; k < nodes_.size(); ++k)
     {
         const Node& n = nodes_[k];
         probes_[k] = {n.cx, n.cy, n.cz, n.radius, n.child, n.moments_only};
+        FarMoments& m = moments_f_[k];
+        m.count = float(n.count);
+        for (int a = 0; a < 3; ++a)
+        {
+            m.sv[a] = float(n.sv[a]);
+            for (int k2 = 0; k2 < 3; ++k2)
+                m.first[a][k2] = float(n.first[a][k2]);
+            for (int q = 0; q < 6; ++q)
+                m.second_v[a][q] = float(n.second_v[a][q]);
+        }
+        for (int q = 0; q < 6; ++q)
+            m.second[q] = float(n.second[q]);
+        for (int q = 0; q < 4; ++q)
+            m.trace[q] = float(n.trace[q]);
     }
+    const std::size_t n_sources = sx_.size();
+    for (std::vector<float>* a : {&ox_, &oy_, &oz_, &fvx_, &fvy_, &fvz_})
+        a->resize(n_sources);
+    for (const Node& n : nodes_)
+        for (std::size_t j = std::size_t(n.begin); n.child < 0 && j < std::size_t(n.end); ++j)
+        {
+            ox_[j] = float(sx_[j] - n.cx);
+            oy_[j] = float(sy_[j] - n.cy);
+            oz_[j] = float(sz_[j] - n.cz);
+            fvx_[j] = float(ux_[j]);
+            fvy_[j] = float(uy_[j]);
+            fvz_[j] = float(uz_[j]);
+        }
 }
 
 namespace
@@ -362,7 +183,7 @@ void IdwTree::compute_moments(Node& node) const
     for (std::size_t j = b; j < e; ++j)
     {
         const double d[3] = {sx_[j] - node.cx, sy_[j] - node.cy, sz_[j] - node.cz};
-        const double v[3] = {vx_[j], vy_[j], vz_[j]};
+        const double v[3] = {ux_[j], uy_[j], uz_[j]};
         const double dd[6] = {d[0] * d[0], d[1] * d[1], d[2] * d[2],
                               d[0] * d[1], d[0] * d[2], d[1] * d[2]};
         r2 = std::max(r2, dd[0] + dd[1] + dd[2]);
@@ -400,8 +221,8 @@ struct Term
 std::uint32_t far_lanes(const IdwTree::Probe& node, double theta, const Block& b,
                         std::uint32_t active)
 {
-    std::uint32_t far = 0;
     const double limit = node.radius * node.radius;
+    std::uint32_t far = 0;
     for (int i = 0; i < b.n; ++i)
     {
         const double dx = b.x[i] - node.cx, dy = b.y[i] - node.cy, dz = b.z[i] - node.cz;
@@ -524,6 +345,7 @@ void IdwTree::write_essential(FieldWriter& out, const Vector3& lo, const Vector3
     out.put_vector(kept);
     for (const std::vector<double>& s : sources)
         out.put_vector(s);
+    out.put_vector(std::vector<double>(mid_, mid_ + 3));
 }
 
 IdwTree IdwTree::read_essential(FieldReader& in, const IdwWeight& weight, double theta)
@@ -533,6 +355,10 @@ IdwTree IdwTree::read_essential(FieldReader& in, const IdwWeight& weight, double
     for (std::vector<double>* a :
          {&tree.sx_, &tree.sy_, &tree.sz_, &tree.vx_, &tree.vy_, &tree.vz_})
         *a = in.get_vector<double>();
+    const std::vector<double> mid = in.get_vector<double>();
+    if (mid.size() != 3)
+        throw IoError("fitted field: an IDW tree without its values' midrange");
+    std::copy(mid.begin(), mid.end(), tree.mid_);
     const Index n_nodes = static_cast<Index>(tree.nodes_.size());
     const Index m = static_cast<Index>(tree.sx_.size());
     if (n_nodes == 0)
@@ -544,6 +370,7 @@ IdwTree IdwTree::read_essential(FieldReader& in, const IdwWeight& weight, double
         if (node.begin < 0 || node.end < node.begin || node.end > m ||
             (node.child >= 0 && node.child + 1 >= n_nodes))
             throw IoError("fitted field: an IDW tree node out of range");
+    tree.shift_values();
     tree.index_probes();
     tree.index_lone_sources();
     return tree;
@@ -593,6 +420,7 @@ void IdwTree::weighted_mean(const Points& x, Points& out) const
     for (std::int64_t i = 0; i < n; ++i)
         hit[std::size_t(i)] = lone_source_at(x(i, 0), x(i, 1), x(i, 2));
     std::vector<Index> rows;
+    rows.reserve(std::size_t(n));
     for (std::int64_t i = 0; i < n; ++i)
     {
         const Index j = hit[std::size_t(i)];
@@ -601,37 +429,32 @@ void IdwTree::weighted_mean(const Points& x, Points& out) const
         else
             out.row(i) << vx_[std::size_t(j)], vy_[std::size_t(j)], vz_[std::size_t(j)];
     }
-    if (rows.size() == std::size_t(n))
-    {
-        sum_over_tree(x, out);
-        return;
-    }
-    Points xs(static_cast<Eigen::Index>(rows.size()), 3), sums;
-    for (std::size_t k = 0; k < rows.size(); ++k)
-        xs.row(Eigen::Index(k)) = x.row(rows[k]);
-    sum_over_tree(xs, sums);
-    for (std::size_t k = 0; k < rows.size(); ++k)
-        out.row(rows[k]) = sums.row(Eigen::Index(k));
+    sum_over_tree(x, rows, out);
 }
 
-void IdwTree::sum_over_tree(const Points& x, Points& out) const
+void IdwTree::sum_over_tree(const Points& x, std::vector<Index> order, Points& out) const
 {
-    out.resize(x.rows(), 3);
-    if (x.rows() == 0)
+    if (order.empty())
         return;
-    std::vector<Index> order;
-    std::vector<SplitNode> blocks = split_tree(x, order, block_size, SplitRule::full_blocks);
-    std::erase_if(blocks, [](const SplitNode& b) { return b.child >= 0; });
-    const bool fast = weight_.far_exponent == 3 && weight_.near_exponent == 5;
+    const std::vector<SplitNode> blocks = query_blocks(x, order, block_size);
+    const bool default_weight = weight_.far_exponent == 3 && weight_.near_exponent == 5;
+    // The single-precision kernels exist for the default weight; theta = 0, the exact
+    // reference of the tests and benchmarks, sums in double.
+    const bool single = default_weight && theta_ > 0.0;
     const Weight35 w35{weight_.beta};
     const WeightGeneral wg{weight_.beta, weight_.far_exponent, weight_.near_exponent,
                            double(weight_.far_exponent), double(weight_.near_exponent)};
     const std::int64_t n_blocks = static_cast<std::int64_t>(blocks.size());
+    const SourceArrays sources{sx_.data(), sy_.data(), sz_.data(),
+                               ux_.data(), uy_.data(), uz_.data()};
+    const SourcesSingle sources_f{ox_.data(),  oy_.data(),  oz_.data(),
+                                  fvx_.data(), fvy_.data(), fvz_.data()};
     std::atomic<bool> outside_region{false};
 #pragma omp parallel if (n_blocks > 8)
     {
         std::vector<Term> far, near;
         Block b;
+        FarSums fs;
 #pragma omp for schedule(dynamic, 16)
         for (std::int64_t k = 0; k < n_blocks; ++k)
         {
@@ -645,31 +468,49 @@ void IdwTree::sum_over_tree(const Points& x, Points& out) const
                 continue;
             }
             b.clear_sums();
-            const auto set_lanes = [&](std::uint32_t lanes)
+            const auto add_far_sums = [&]
             {
                 for (int i = 0; i < block_size; ++i)
-                    b.lane[i] = double((lanes >> i) & 1u);
-            };
-            const auto accumulate = [&](const auto& weight)
-            {
-                for (const Term& t : far)
                 {
-                    set_lanes(t.lanes);
-                    add_far(nodes_[std::size_t(t.node)], weight, b);
+                    b.nx[i] += double(fs.nx[i]);
+                    b.ny[i] += double(fs.ny[i]);
+                    b.nz[i] += double(fs.nz[i]);
+                    b.den[i] += double(fs.den[i]);
                 }
+                fs.clear();
+            };
+            // Single precision: summed in float and added to the double sums once, so that
+            // a point's far terms round the same whichever block it is in.
+            const auto add_single = [&]
+            {
+                fs.clear();
+                for (const Term& t : far)
+                    add_far_single(probes_[std::size_t(t.node)], moments_f_[std::size_t(t.node)],
+                                   float(weight_.beta), t.lanes, b, fs);
+                add_far_sums();
                 for (const Term& t : near)
                 {
-                    set_lanes(t.lanes);
                     const Node& leaf = nodes_[std::size_t(t.node)];
-                    for (Index j = leaf.begin; j < leaf.end; ++j)
-                        add_source(sx_[j], sy_[j], sz_[j], vx_[j], vy_[j], vz_[j],
-                                   static_cast<double>(j + 1), weight, b);
+                    add_leaf_single(probes_[std::size_t(t.node)], sources_f, leaf.begin, leaf.end,
+                                    float(weight_.beta), t.lanes, b);
                 }
             };
-            if (fast)
-                accumulate(w35);
+            const auto add_double = [&](const auto& weight)
+            {
+                for (const Term& t : far)
+                    add_far(nodes_[std::size_t(t.node)], weight, b.set_lanes(t.lanes), b);
+                for (const Term& t : near)
+                {
+                    const Node& leaf = nodes_[std::size_t(t.node)];
+                    add_leaf(sources, leaf.begin, leaf.end, weight, b.set_lanes(t.lanes), b);
+                }
+            };
+            if (single)
+                add_single();
+            else if (default_weight)
+                add_double(w35);
             else
-                accumulate(wg);
+                add_double(wg);
             for (int i = 0; i < b.n; ++i)
             {
                 const Index p = order[std::size_t(q.begin + i)];
@@ -679,7 +520,8 @@ void IdwTree::sum_over_tree(const Points& x, Points& out) const
                     out.row(p) << vx_[j], vy_[j], vz_[j];
                 }
                 else
-                    out.row(p) << b.nx[i] / b.den[i], b.ny[i] / b.den[i], b.nz[i] / b.den[i];
+                    out.row(p) << mid_[0] + b.nx[i] / b.den[i], mid_[1] + b.ny[i] / b.den[i],
+                        mid_[2] + b.nz[i] / b.den[i];
             }
         }
     }

@@ -13,6 +13,7 @@ set(MESHMORPH_DEFORM_SOURCES
     meshmorph/deform/jump_detection.cpp
     meshmorph/deform/greedy_rbf_deformation.cpp
     meshmorph/deform/handle_basis.cpp
+    meshmorph/deform/idw_split.cpp
     meshmorph/deform/idw_tree.cpp
     meshmorph/deform/idw_deformation.cpp
     meshmorph/deform/corrected_deformation.cpp
