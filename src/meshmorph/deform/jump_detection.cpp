@@ -116,30 +116,33 @@ std::vector<char> jump_points(const Points& x, const Eigen::MatrixXd& values, do
     // Cells of reach / 2: every partner within reach lies in the 5 x 5 x 5 block around.
     const std::vector<Cell> cells = sorted_cells(x, values, 0.5 * reach, order);
     const double slope2 = slope * slope, reach2 = reach * reach;
-    const auto find = [&](const CellKey& key) -> const Cell*
+    // The cells of one (x, y) column are consecutive in key order: one search per column.
+    const auto column = [&](std::int64_t kx, std::int64_t ky, std::int64_t z_lo)
     {
-        const auto it = std::lower_bound(cells.begin(), cells.end(), key,
-                                         [](const Cell& c, const CellKey& k) { return c.key < k; });
-        return it != cells.end() && it->key == key ? &*it : nullptr;
+        return std::lower_bound(cells.begin(), cells.end(), CellKey{kx, ky, z_lo},
+                                [](const Cell& c, const CellKey& k) { return c.key < k; });
     };
     Index flagged = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(+ : flagged)
     for (std::size_t ca = 0; ca < cells.size(); ++ca)
     {
         const Cell& a = cells[ca];
-        for (std::int64_t dz = -2; dz <= 2; ++dz)
+        for (std::int64_t dx = -2; dx <= 2; ++dx)
             for (std::int64_t dy = -2; dy <= 2; ++dy)
-                for (std::int64_t dx = -2; dx <= 2; ++dx)
+                for (auto b = column(a.key[0] + dx, a.key[1] + dy, a.key[2] - 2);
+                     b != cells.end() && b->key[0] == a.key[0] + dx && b->key[1] == a.key[1] + dy &&
+                     b->key[2] <= a.key[2] + 2;
+                     ++b)
                 {
-                    const Cell* b = find({a.key[0] + dx, a.key[1] + dy, a.key[2] + dz});
-                    if (b == nullptr)
-                        continue;
                     const double gap = box_gap(a, *b);
                     const double most =
                         (a.value_mid - b->value_mid).norm() + a.value_radius + b->value_radius;
                     // With a margin far above round-off: a pair the (coarsened) test could
                     // flag is never skipped here, whatever the processor's rounding.
-                    if (gap > reach * (1 + 1e-6) || most < slope * gap * (1 - 1e-6))
+                    // most == 0: every value of both cells is the same (a rigid part's
+                    // points), so no pair differs at all; the test below would let through
+                    // the pairs of a cell with itself (gap 0).
+                    if (gap > reach * (1 + 1e-6) || most < slope * gap * (1 - 1e-6) || most == 0.0)
                         continue; // no pair of these cells can jump
                     for (std::size_t k = a.begin; k < a.end; ++k)
                     {

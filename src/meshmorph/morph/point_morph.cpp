@@ -44,12 +44,14 @@ void remove_empty_normal(Points& d, const Constraints& c)
         c.empty_planes->remove_normal(d);
 }
 
-//! Evaluate in chunks so long evaluations report progress.
+//! Evaluate in chunks so long evaluations report progress. A chunk of 2^18 points takes
+//! about 0.3 s on two cores (the motorBike's 406k points: two chunks); smaller chunks cost
+//! more than the progress is worth, since each one sorts its points into blocks anew.
 void evaluate_with_progress(const SpaceDeformation& deformation, const Points& x, Points& out,
                             const std::string& task)
 {
     out.resize(x.rows(), 3);
-    const Eigen::Index chunk = 1 << 16;
+    const Eigen::Index chunk = 1 << 18;
     ProgressScope progress(task, x.rows());
     for (Eigen::Index begin = 0; begin < x.rows(); begin += chunk)
     {
