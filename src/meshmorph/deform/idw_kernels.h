@@ -167,19 +167,19 @@ constexpr float far_floor2 = 1e-16f;
 //! 16 floats as one GCC vector (one AVX-512 register, or four SSE ones).
 using f16 = float __attribute__((vector_size(64)));
 
-//! 1 / sqrt of 16 floats: with AVX-512 the 14-bit estimate and one Newton step (about
-//! 1 ulp), elsewhere the plain expression.
-inline f16 inverse_sqrt16(f16 x)
+//! 1 / sqrt of 16 floats, distances below the floor raised to it: with AVX-512 the 14-bit
+//! estimate and one Newton step (about 1 ulp), elsewhere the plain expression. By
+//! reference: a 64-byte vector passed by value would change the ABI without AVX-512.
+inline void floored_inverse_sqrt16(const f16& r2, f16& out)
 {
+    const f16 x = r2 > far_floor2 ? r2 : far_floor2;
 #if defined(__AVX512F__)
     const f16 y =
         reinterpret_cast<f16>(_mm512_maskz_rsqrt14_ps(0xffff, reinterpret_cast<__m512>(x)));
-    return y * (1.5f - 0.5f * x * y * y);
+    out = y * (1.5f - 0.5f * x * y * y);
 #else
-    f16 y;
     for (int i = 0; i < 16; ++i)
-        y[i] = 1.0f / std::sqrt(x[i]);
-    return y;
+        out[i] = 1.0f / std::sqrt(x[i]);
 #endif
 }
 
@@ -217,7 +217,8 @@ inline void add_far_single(const IdwTree::Probe& node, const IdwTree::FarMoments
             rz[i] = float(b.z[o + i] - node.cz);
         }
         const f16 r2 = rx * rx + ry * ry + rz * rz;
-        const f16 inv_r = inverse_sqrt16(r2 > far_floor2 ? r2 : far_floor2);
+        f16 inv_r;
+        floored_inverse_sqrt16(r2, inv_r);
         for (int i = 0; i < half; ++i)
         {
             const float ir = inv_r[i], ir2 = ir * ir;
@@ -284,7 +285,8 @@ inline void add_leaf_single(const IdwTree::Probe& leaf, const SourcesSingle& s, 
             const f16 dx = px - s.ox[j], dy = py - s.oy[j], dz = pz - s.oz[j];
             const f16 r2 = dx * dx + dy * dy + dz * dz;
             hit = (on > 0.0f) & (r2 == 0.0f) ? float(j - begin + 1) : hit;
-            const f16 inv_r = inverse_sqrt16(r2 > far_floor2 ? r2 : far_floor2);
+            f16 inv_r;
+        floored_inverse_sqrt16(r2, inv_r);
             const f16 ir2 = inv_r * inv_r;
             const f16 pa = ir2 * inv_r;
             const f16 w = on * (pa + beta * pa * ir2);
