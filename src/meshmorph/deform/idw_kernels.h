@@ -13,7 +13,7 @@
 #include <immintrin.h>
 #endif
 
-#include "meshmorph/deform/idw_tree.h"
+#include "meshmorph/deform/idw_node.h"
 
 namespace meshmorph::detail::idw
 {
@@ -107,7 +107,7 @@ struct Block
 //! written in R rather than in R / r so that no per-term normalisation is needed. A chunk
 //! without a lane of the term is skipped: its sums would only gain zeros.
 template <class W>
-inline void add_far(const IdwTree::Node& node, const W& weight, unsigned chunks, Block& b)
+inline void add_far(const IdwNode& node, const W& weight, unsigned chunks, Block& b)
 {
     const double count = node.count;
     const auto& first = node.first;
@@ -200,7 +200,7 @@ struct FarSums
     }
 };
 
-inline void add_far_single(const IdwTree::Probe& node, const IdwTree::FarMoments& m, float beta,
+inline void add_far_single(const IdwProbe& node, const IdwFarMoments& m, float beta,
                            std::uint32_t lanes, const Block& b, FarSums& f)
 {
     constexpr int half = 16;
@@ -261,8 +261,8 @@ struct SourcesSingle
 //! so that its difference from a source is exact to float precision; the leaf's sums are
 //! added to the double ones. A point at distance 0 from a source (in float: equal within
 //! rounding) notes the hit, whose value replaces the sum.
-inline void add_leaf_single(const IdwTree::Probe& leaf, const SourcesSingle& s, Index begin,
-                            Index end, float beta, std::uint32_t lanes, Block& b)
+inline void add_leaf_single(const IdwProbe& leaf, const SourcesSingle& s, Index begin, Index end,
+                            float beta, std::uint32_t lanes, Block& b)
 {
     // GCC vector types: the sums of a half block stay in registers over the leaf's sources.
     constexpr int half = 16;
@@ -286,7 +286,7 @@ inline void add_leaf_single(const IdwTree::Probe& leaf, const SourcesSingle& s, 
             const f16 r2 = dx * dx + dy * dy + dz * dz;
             hit = (on > 0.0f) & (r2 == 0.0f) ? float(j - begin + 1) : hit;
             f16 inv_r;
-        floored_inverse_sqrt16(r2, inv_r);
+            floored_inverse_sqrt16(r2, inv_r);
             const f16 ir2 = inv_r * inv_r;
             const f16 pa = ir2 * inv_r;
             const f16 w = on * (pa + beta * pa * ir2);

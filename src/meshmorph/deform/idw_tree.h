@@ -40,6 +40,7 @@
 
 #include "meshmorph/core/types.h"
 #include "meshmorph/deform/field_stream.h"
+#include "meshmorph/deform/idw_node.h"
 
 namespace meshmorph::detail
 {
@@ -100,40 +101,10 @@ public:
     //! decides which of their values the point takes).
     Index lone_source_at(double x, double y, double z) const;
 
-    //! The Node struct is public for the evaluation kernels in idw_tree.cpp.
-    struct Node
-    {
-        double cx = 0, cy = 0, cz = 0; //!< centroid
-        double radius = 0.0;           //!< about the centroid
-        Index begin = 0, end = 0;
-        Index child = -1; //!< first child (the second follows it); -1: leaf
-        // Moments about the centroid, delta = s - centroid.
-        double count = 0.0;
-        double sv[3] = {0, 0, 0};   //!< sum v
-        double first[3][3] = {};    //!< [a][k] = sum delta_a v_k
-        double second[6] = {};      //!< sum delta delta^T: xx yy zz xy xz yz
-        double second_v[3][6] = {}; //!< [k] = sum delta delta^T v_k (same layout)
-        double trace[4] = {};       //!< of second, second_v[0..2]
-        //! Written without its sources (write_essential): it must only ever be far.
-        bool moments_only = false;
-    };
-
-    //! What the traversal reads of a node, apart from its moments (48 bytes, so that the
-    //! nodes a query block visits stay in the cache).
-    struct Probe
-    {
-        double cx, cy, cz, radius;
-        Index child;
-        bool moments_only;
-    };
-
-    //! A node's moments in single precision, for the far-field kernel of the default
-    //! weight (3, 5): a far term's relative error is then ~1e-7, far below the expansion's
-    //! own (theta^3), at twice the SIMD width.
-    struct FarMoments
-    {
-        float count, sv[3], first[3][3], second[6], second_v[3][6], trace[4];
-    };
+    //! The records the evaluation kernels (idw_kernels.h) read: idw_node.h.
+    using Node = IdwNode;
+    using Probe = IdwProbe;
+    using FarMoments = IdwFarMoments;
 
 private:
     IdwTree(const IdwWeight& weight, double theta) : weight_(weight), theta_(theta) {}

@@ -269,6 +269,10 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         record.jump_constraints = m.report.jump_constraints;
         record.fit_seconds = m.fit_seconds;
         record.evaluate_seconds = m.evaluate_seconds;
+        // The fitted field is spent: its memory (the greedy fit's factor, the IDW tree: ~45 MB
+        // on the motorBike) goes to the check's geometry below, which would otherwise take
+        // fresh pages from the system (first touches cost ~2 ms per MB on a virtual machine).
+        deformation.reset();
         // The check before the morph may still read the mesh: in place, wait for it before
         // the mesh's points change.
         const InvalidCells before = invalid_before();
