@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
@@ -20,6 +21,14 @@ namespace meshmorph::detail::idw
 
 //! Points per query block: the bits of a term's lane mask.
 constexpr int block_size = 32;
+
+//! A term of a block's sum: a node (far: its expansion; near: a leaf's sources) and the
+//! block's lanes it applies to (bit i: point i).
+struct Term
+{
+    Index node;
+    std::uint32_t lanes;
+};
 
 //! r^-a and beta r^-b from 1/r: a fixed (3, 5) fast path and a general one.
 struct Weight35
@@ -158,11 +167,10 @@ inline void add_far(const IdwNode& node, const W& weight, unsigned chunks, Block
     }
 }
 
-//! Squared distance (normalised units) below which the single-precision far kernel takes
-//! a point to lie at that distance: r >= 1e-8 of the sources' extent keeps beta r^-5 and
-//! its sums within float range. Only a far node of radius 0 (a lone source) can be nearer
-//! than that to a point without coinciding with it.
-constexpr float far_floor2 = 1e-16f;
+//! Squared distance (normalised units) below which the single-precision kernels take a
+//! point to lie at that distance: r >= 1e-8 of the sources' extent keeps beta r^-5 and its
+//! sums within float range.
+constexpr float single_floor2 = 1e-16f;
 
 //! 16 floats as one GCC vector (one AVX-512 register, or four SSE ones).
 using f16 = float __attribute__((vector_size(64)));
@@ -172,7 +180,7 @@ using f16 = float __attribute__((vector_size(64)));
 //! reference: a 64-byte vector passed by value would change the ABI without AVX-512.
 inline void floored_inverse_sqrt16(const f16& r2, f16& out)
 {
-    const f16 x = r2 > far_floor2 ? r2 : far_floor2;
+    const f16 x = r2 > single_floor2 ? r2 : single_floor2;
 #if defined(__AVX512F__)
     const f16 y =
         reinterpret_cast<f16>(_mm512_maskz_rsqrt14_ps(0xffff, reinterpret_cast<__m512>(x)));
@@ -183,13 +191,7 @@ inline void floored_inverse_sqrt16(const f16& r2, f16& out)
 #endif
 }
 
-//! Far terms of the default weight w = r^-3 + beta r^-5 in single precision, summed per
-//! point into float accumulators that sum_over_tree() adds to the double ones. Per power p (P =
-//! r^-p or beta r^-p, n = R / r) the expansion of add_far() reads
-//!     P (S + p (n.F) / r + p (p + 2) / 2 (n^T M n) / r^2 - p / 2 tr(M) / r^2),
-//! with S, F, M the node's zeroth, first and second moments of a value; the moment terms
-//! are scaled by 1 / r before the powers multiply them, so that nothing overflows. The
-//! offset R = x - centroid is taken in double, so that it is exact to float precision.
+//! Per-point float accumulators of a block's far terms, added to its double sums once.
 struct FarSums
 {
     alignas(64) float nx[block_size], ny[block_size], nz[block_size], den[block_size];
@@ -198,8 +200,26 @@ struct FarSums
         for (int i = 0; i < block_size; ++i)
             nx[i] = ny[i] = nz[i] = den[i] = 0.0f;
     }
+    void add_to(Block& b) const
+    {
+        for (int i = 0; i < block_size; ++i)
+        {
+            b.nx[i] += double(nx[i]);
+            b.ny[i] += double(ny[i]);
+            b.nz[i] += double(nz[i]);
+            b.den[i] += double(den[i]);
+        }
+    }
 };
 
+//! Adds a far node's expansion for the default weight w = r^-3 + beta r^-5 in single
+//! precision to the block's points in `lanes`. Per power p (P = r^-p or beta r^-p,
+//! n = R / r) the expansion of add_far() reads
+//!     P (S + p (n.F) / r + p (p + 2) / 2 (n^T M n) / r^2 - p / 2 tr(M) / r^2),
+//! with S, F, M the node's zeroth, first and second moments of a value. The moment terms
+//! take their powers of 1 / r (each then bounded by the node's count and values) before P
+//! multiplies them, so that nothing overflows. The offset R = x - centroid is taken in
+//! double, so that it is exact to float precision.
 inline void add_far_single(const IdwProbe& node, const IdwFarMoments& m, float beta,
                            std::uint32_t lanes, const Block& b, FarSums& f)
 {
@@ -358,6 +378,45 @@ inline void add_leaf(const SourceArrays& s, Index begin, Index end, const W& wei
             b.nx[o + i] = nx[i], b.ny[o + i] = ny[i], b.nz[o + i] = nz[i];
             b.den[o + i] = den[i], b.hit[o + i] = hit[i];
         }
+    }
+}
+
+//! A block's interaction lists and the tree's nodes they name.
+struct BlockTerms
+{
+    const std::vector<Term>& far;
+    const std::vector<Term>& near;
+    const IdwNode* nodes;
+};
+
+//! Every term of a block in double precision (any weight).
+template <class W>
+inline void add_terms(const BlockTerms& t, const SourceArrays& sources, const W& weight, Block& b)
+{
+    for (const Term& term : t.far)
+        add_far(t.nodes[term.node], weight, b.set_lanes(term.lanes), b);
+    for (const Term& term : t.near)
+    {
+        const IdwNode& leaf = t.nodes[term.node];
+        add_leaf(sources, leaf.begin, leaf.end, weight, b.set_lanes(term.lanes), b);
+    }
+}
+
+//! Every term of a block in single precision (the default weight). The far terms are summed
+//! in float and added to the double sums once, so that a point's far terms round the same
+//! whichever block it is in.
+inline void add_terms_single(const BlockTerms& t, const IdwProbe* probes,
+                             const IdwFarMoments* moments, const SourcesSingle& sources, float beta,
+                             Block& b, FarSums& fs)
+{
+    fs.clear();
+    for (const Term& term : t.far)
+        add_far_single(probes[term.node], moments[term.node], beta, term.lanes, b, fs);
+    fs.add_to(b);
+    for (const Term& term : t.near)
+    {
+        const IdwNode& leaf = t.nodes[term.node];
+        add_leaf_single(probes[term.node], sources, leaf.begin, leaf.end, beta, term.lanes, b);
     }
 }
 

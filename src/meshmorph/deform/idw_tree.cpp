@@ -207,14 +207,6 @@ void IdwTree::compute_moments(Node& node) const
 namespace
 {
 
-//! A term of a block's sum: a node (far: its expansion; near: a leaf's sources) and the
-//! block's lanes it applies to (bit i: point i).
-struct Term
-{
-    Index node;
-    std::uint32_t lanes;
-};
-
 //! The lanes of the block's points for which `node` is far (radius < theta |x - centroid|,
 //! Barnes-Hut's test per point, so that each point's sum depends on the point alone and not
 //! on the block, nor on which points a rank holds).
@@ -468,49 +460,14 @@ void IdwTree::sum_over_tree(const Points& x, std::vector<Index> order, Points& o
                 continue;
             }
             b.clear_sums();
-            const auto add_far_sums = [&]
-            {
-                for (int i = 0; i < block_size; ++i)
-                {
-                    b.nx[i] += double(fs.nx[i]);
-                    b.ny[i] += double(fs.ny[i]);
-                    b.nz[i] += double(fs.nz[i]);
-                    b.den[i] += double(fs.den[i]);
-                }
-                fs.clear();
-            };
-            // Single precision: summed in float and added to the double sums once, so that
-            // a point's far terms round the same whichever block it is in.
-            const auto add_single = [&]
-            {
-                fs.clear();
-                for (const Term& t : far)
-                    add_far_single(probes_[std::size_t(t.node)], moments_f_[std::size_t(t.node)],
-                                   float(weight_.beta), t.lanes, b, fs);
-                add_far_sums();
-                for (const Term& t : near)
-                {
-                    const Node& leaf = nodes_[std::size_t(t.node)];
-                    add_leaf_single(probes_[std::size_t(t.node)], sources_f, leaf.begin, leaf.end,
-                                    float(weight_.beta), t.lanes, b);
-                }
-            };
-            const auto add_double = [&](const auto& weight)
-            {
-                for (const Term& t : far)
-                    add_far(nodes_[std::size_t(t.node)], weight, b.set_lanes(t.lanes), b);
-                for (const Term& t : near)
-                {
-                    const Node& leaf = nodes_[std::size_t(t.node)];
-                    add_leaf(sources, leaf.begin, leaf.end, weight, b.set_lanes(t.lanes), b);
-                }
-            };
+            const BlockTerms terms{far, near, nodes_.data()};
             if (single)
-                add_single();
+                add_terms_single(terms, probes_.data(), moments_f_.data(), sources_f,
+                                 float(weight_.beta), b, fs);
             else if (default_weight)
-                add_double(w35);
+                add_terms(terms, sources, w35, b);
             else
-                add_double(wg);
+                add_terms(terms, sources, wg, b);
             for (int i = 0; i < b.n; ++i)
             {
                 const Index p = order[std::size_t(q.begin + i)];
