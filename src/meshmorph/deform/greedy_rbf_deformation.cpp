@@ -19,6 +19,7 @@
 #include "meshmorph/deform/lapack.h"
 #include "meshmorph/deform/rbf_evaluator.h"
 #include "meshmorph/deform/rbf_setup.h"
+#include "meshmorph/deform/row_panel_factor.h"
 
 namespace meshmorph
 {
@@ -93,14 +94,7 @@ public:
         }
         Kon *= sign_;
         Knn *= sign_;
-        reserve(r0 + b);
-        const int ld = detail::lapack_int(L_.rows());
-        if (r0 > 0)
-        {
-            const int m = detail::lapack_int(r0), n = detail::lapack_int(b);
-            const double one = 1.0;
-            dtrsm_("L", "L", "N", "N", &m, &n, &one, L_.data(), &ld, Kon.data(), &m);
-        }
+        factor_.forward(Kon);
         // The Schur complement S = Knn - Kon^T Kon (lower triangle, what dpotrf reads) by
         // BLAS, which runs on one thread here: Eigen's product splits its blocks by the
         // number of OpenMP threads, and the last bits of S, then the centres chosen from
@@ -121,8 +115,7 @@ public:
             keep = info - 1;
             rejected = cand[std::size_t(keep)];
         }
-        L_.block(r0, 0, keep, r0) = Kon.leftCols(keep).transpose();
-        L_.block(r0, r0, keep, keep) = S.topLeftCorner(keep, keep).triangularView<Eigen::Lower>();
+        factor_.append(Kon.leftCols(keep).transpose(), S.topLeftCorner(keep, keep));
         Lam_.conservativeResize(p, r0 + keep);
         AU_.conservativeResize(p, r0 + keep);
         Lam_.rightCols(keep) = Lam_n.leftCols(keep);
@@ -147,15 +140,8 @@ public:
         if (p > 0)
             Y -= Lam_.transpose() * HU;
         Y *= sign_;
-        if (r_ > 0)
-        {
-            const int n = detail::lapack_int(r_), ld = detail::lapack_int(L_.rows()),
-                      nrhs = detail::lapack_int(nc);
-            int info = 0;
-            dpotrs_("L", &n, &nrhs, L_.data(), &ld, Y.data(), &n, &info);
-            if (info != 0)
-                throw SolverError("greedy RBF: dpotrs failed");
-        }
+        factor_.forward(Y);
+        factor_.backward(Y);
         W.resize(p + r_, nc);
         W.bottomRows(r_) = Y;
         if (p > 0)
@@ -178,6 +164,7 @@ public:
         sel_.resize(std::size_t(r));
         Lam_.conservativeResize(Lam_.rows(), r);
         AU_.conservativeResize(AU_.rows(), r);
+        factor_.truncate(r);
         r_ = r;
     }
 
@@ -185,7 +172,7 @@ public:
     {
         if (r_ == 0)
             return 1.0;
-        const Eigen::VectorXd d = L_.diagonal().head(r_).cwiseAbs();
+        const Eigen::VectorXd d = factor_.diagonal().cwiseAbs();
         const double ratio = d.maxCoeff() / d.minCoeff();
         return ratio * ratio;
     }
@@ -195,26 +182,13 @@ private:
     {
         return model_.kernel.value((X_.row(i) - X_.row(j)).squaredNorm());
     }
-    void reserve(Eigen::Index n)
-    {
-        if (n <= L_.rows())
-            return;
-        const Eigen::Index cap = std::max<Eigen::Index>(n, 2 * L_.rows());
-        // Only the lower triangle of the leading r x r block is ever read (LAPACK's "L"), so
-        // only that is copied, and the rest is left untouched (not zeroed: at 2000 centres a
-        // zeroed capacity of 4000^2 is 128 MB of page faults for nothing).
-        Eigen::MatrixXd L(cap, cap);
-        L.topLeftCorner(r_, r_).triangularView<Eigen::Lower>() =
-            L_.topLeftCorner(r_, r_).triangularView<Eigen::Lower>();
-        L_.swap(L);
-    }
-
     const detail::RbfModel& model_;
     double sign_;
     const Points& X_;
     const Eigen::MatrixXd& P_;
     std::vector<Eigen::Index> U_;
-    Eigen::MatrixXd PU_, AUU_, Lam_, AU_, L_;
+    Eigen::MatrixXd PU_, AUU_, Lam_, AU_;
+    detail::RowPanelFactor factor_; //!< of the selected centres' null-space system
     Eigen::FullPivLU<Eigen::MatrixXd> luT_, lu_;
     std::vector<Eigen::Index> sel_;
     Eigen::Index r_ = 0;

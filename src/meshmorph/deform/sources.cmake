@@ -11,6 +11,7 @@ set(MESHMORPH_DEFORM_SOURCES
     meshmorph/deform/ffd_deformation.cpp
     meshmorph/deform/dmffd_deformation.cpp
     meshmorph/deform/jump_detection.cpp
+    meshmorph/deform/row_panel_factor.cpp
     meshmorph/deform/greedy_rbf_deformation.cpp
     meshmorph/deform/handle_basis.cpp
     meshmorph/deform/idw_split.cpp
