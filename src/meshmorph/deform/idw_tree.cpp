@@ -59,6 +59,7 @@ IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& w
         compute_moments(nodes_[k]);
     }
     index_probes();
+    index_single_sources();
     index_lone_sources();
 }
 
@@ -98,11 +99,18 @@ void IdwTree::index_probes()
         for (int q = 0; q < 4; ++q)
             m.trace[q] = float(n.trace[q]);
     }
+}
+
+void IdwTree::index_single_sources()
+{
     const std::size_t n_sources = sx_.size();
     for (std::vector<float>* a : {&ox_, &oy_, &oz_, &fvx_, &fvy_, &fvz_})
         a->resize(n_sources);
     for (const Node& n : nodes_)
-        for (std::size_t j = std::size_t(n.begin); n.child < 0 && j < std::size_t(n.end); ++j)
+    {
+        if (n.child >= 0)
+            continue; // an inner node's sources are its leaves'
+        for (std::size_t j = std::size_t(n.begin); j < std::size_t(n.end); ++j)
         {
             ox_[j] = float(sx_[j] - n.cx);
             oy_[j] = float(sy_[j] - n.cy);
@@ -111,6 +119,7 @@ void IdwTree::index_probes()
             fvy_[j] = float(uy_[j]);
             fvz_[j] = float(uz_[j]);
         }
+    }
 }
 
 namespace
@@ -364,6 +373,7 @@ IdwTree IdwTree::read_essential(FieldReader& in, const IdwWeight& weight, double
             throw IoError("fitted field: an IDW tree node out of range");
     tree.shift_values();
     tree.index_probes();
+    tree.index_single_sources();
     tree.index_lone_sources();
     return tree;
 }
@@ -421,7 +431,7 @@ void IdwTree::weighted_mean(const Points& x, Points& out) const
         else
             out.row(i) << vx_[std::size_t(j)], vy_[std::size_t(j)], vz_[std::size_t(j)];
     }
-    sum_over_tree(x, rows, out);
+    sum_over_tree(x, std::move(rows), out);
 }
 
 void IdwTree::sum_over_tree(const Points& x, std::vector<Index> order, Points& out) const

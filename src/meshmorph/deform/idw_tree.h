@@ -110,8 +110,10 @@ private:
     IdwTree(const IdwWeight& weight, double theta) : weight_(weight), theta_(theta) {}
     //! ux_, uy_, uz_ from the values and mid_.
     void shift_values();
-    //! The traversal's probes and the single-precision copies of the kernels.
+    //! The traversal's probes and the nodes' moments in single precision.
     void index_probes();
+    //! The sources relative to their leaf's centroid and their values, in single precision.
+    void index_single_sources();
     void build(Index node, std::vector<Index>& order, const Points& s, const Points& v);
     void compute_moments(Node& node) const;
     void index_lone_sources();
