@@ -9,6 +9,7 @@
 
 #include "helpers.h"
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/quality/check_mesh.h"
 #include "shape_meshes.h"
 
 #if MESHMORPH_TEST_WITH_VTK
@@ -162,6 +163,46 @@ TEST(ScaledJacobian, threaded_path_equals_per_cell_formula)
             p[i] = mesh.points.row(cell.points[i]).transpose();
         ASSERT_EQ(sj[c], hex_scaled_jacobian(p)) << "cell " << c; // bit-identical
     }
+}
+
+TEST(ScaledJacobian, a_check_after_the_points_moved_reuses_the_corners_and_matches_a_fresh_one)
+{
+    PolyMesh mesh = jittered_block(5, 0.2, 3);
+    const CompactList cf = cell_faces(mesh);
+    const QualityReport before = check_mesh(mesh, cf, compute_geometry(mesh, cf), {});
+    ASSERT_TRUE(before.jacobian_corners);
+    mesh.points = jittered_block(5, 0.45, 11).points; // the same cells, other points
+    CheckMeshSettings after_settings;
+    after_settings.unchanged_topology = &before;
+    const MeshGeometry g = compute_geometry(mesh, cf);
+    const QualityReport after = check_mesh(mesh, cf, g, after_settings);
+    const QualityReport fresh = check_mesh(mesh, cf, g, {});
+    EXPECT_EQ(after.jacobian_corners, before.jacobian_corners); // shared, not recomputed
+    ASSERT_EQ(after.cell_scaled_jacobian.size(), fresh.cell_scaled_jacobian.size());
+    for (Index c = 0; c < mesh.n_cells; ++c)
+        ASSERT_EQ(after.cell_scaled_jacobian[c], fresh.cell_scaled_jacobian[c]) << "cell " << c;
+    EXPECT_NE(fresh.min_scaled_jacobian, before.min_scaled_jacobian); // the points did move
+    EXPECT_EQ(after.min_scaled_jacobian, fresh.min_scaled_jacobian);
+}
+
+TEST(ScaledJacobian, corners_of_another_mesh_are_refused_or_not_reused)
+{
+    const PolyMesh small = jittered_block(3, 0.2, 5);
+    const PolyMesh large = jittered_block(4, 0.2, 5);
+    const CompactList cf_small = cell_faces(small);
+    const JacobianCorners corners =
+        jacobian_corners(small, cf_small, classify_cells(small, cf_small));
+    EXPECT_THROW(scaled_jacobian(large, corners), InvalidInput);
+    // A check "before" of another mesh: its corners are not taken, the values are right.
+    const QualityReport other = check_mesh(small, cf_small, compute_geometry(small, cf_small), {});
+    const CompactList cf = cell_faces(large);
+    CheckMeshSettings settings;
+    settings.unchanged_topology = &other;
+    const QualityReport r = check_mesh(large, cf, compute_geometry(large, cf), settings);
+    EXPECT_NE(r.jacobian_corners, other.jacobian_corners);
+    const Eigen::VectorXd expected = scaled_jacobian(large);
+    for (Index c = 0; c < large.n_cells; ++c)
+        ASSERT_EQ(r.cell_scaled_jacobian[c], expected[c]) << "cell " << c;
 }
 
 #if MESHMORPH_TEST_WITH_VTK

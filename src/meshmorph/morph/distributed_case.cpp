@@ -69,11 +69,17 @@ QualityReport distributed_check(const PolyMesh& mesh, const CompactList& cf,
 {
     const parallel::Communicator& comm = *d.comm;
     const ProcessorFaces processors = exchange_processor_faces(mesh, geometry, comm);
+    // A reduced report is not this rank's part: of a check before, only the scaled
+    // Jacobian's corners (this rank's cells, kept below) serve this one.
+    QualityReport corners_before;
+    if (settings.unchanged_topology != nullptr)
+        corners_before.jacobian_corners = settings.unchanged_topology->jacobian_corners;
     CheckMeshSettings local_settings = settings;
-    local_settings.unchanged_topology = nullptr; // a reduced report is not this rank's part
+    local_settings.unchanged_topology = &corners_before;
     const QualityReport local = check_mesh(mesh, cf, geometry, local_settings, &processors);
     QualityReport r = reduce_report(local, mesh, settings, processors,
                                     io::global_point_count(d.global_point, comm));
+    r.jacobian_corners = local.jacobian_corners;
     r.negative_volume_cells = Index(comm.sum(std::int64_t(local.negative_volume_cells)));
     r.incorrectly_oriented_face_pyramids =
         Index(comm.sum(std::int64_t(local.incorrectly_oriented_face_pyramids)));

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/mesh/coupled_patches.h"
@@ -184,6 +185,18 @@ bool can_reuse_topology(const CheckMeshSettings& s, const ProcessorFaces* proces
            before->n_faces == r.n_faces && before->n_points == r.n_points;
 }
 
+//! The scaled Jacobian's corners of the check `unchanged_topology` names, when it has them
+//! for this mesh's cells; else null.
+std::shared_ptr<const JacobianCorners> reusable_corners(const CheckMeshSettings& s,
+                                                        const PolyMesh& mesh)
+{
+    const QualityReport* before = s.unchanged_topology;
+    if (before == nullptr || !before->jacobian_corners ||
+        Index(before->jacobian_corners->types.size()) != mesh.n_cells)
+        return nullptr;
+    return before->jacobian_corners;
+}
+
 //! The domain's bounding box; in a -parallel run, of every rank's points.
 void bounding_box(const PolyMesh& mesh, const parallel::Communicator* comm, QualityReport& r)
 {
@@ -286,7 +299,13 @@ QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
         mesh_stats(mesh, cell_faces, pf, settings.all_topology, report);
     // The paper's measure (not a checkMesh check): minimum over cells where it is defined.
     if (settings.scaled_jacobian)
-        report.cell_scaled_jacobian = scaled_jacobian(mesh, cell_faces, shapes);
+    {
+        report.jacobian_corners = reusable_corners(settings, mesh);
+        if (!report.jacobian_corners)
+            report.jacobian_corners =
+                std::make_shared<const JacobianCorners>(jacobian_corners(mesh, cell_faces, shapes));
+        report.cell_scaled_jacobian = scaled_jacobian(mesh, *report.jacobian_corners);
+    }
     report.min_scaled_jacobian = min_finite(report.cell_scaled_jacobian);
     if (!settings.no_topology && can_reuse_topology(settings, processors, report))
         reuse_topology(*settings.unchanged_topology, mesh, cell_faces, geometry, report);

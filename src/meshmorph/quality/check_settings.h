@@ -47,7 +47,9 @@ struct CheckMeshSettings
     std::optional<MeshQualitySettings> mesh_quality;
     //! The report of a check of the same mesh before its points moved (a morph changes no
     //! face, cell or zone): its topology checks and tables are taken over instead of being
-    //! recomputed. Serial checks without all_topology only; ignored otherwise.
+    //! recomputed. Serial checks without all_topology only; ignored otherwise. Its scaled
+    //! Jacobian's corners (QualityReport::jacobian_corners) are reused in any check of as many
+    //! cells (a -parallel morph keeps each rank's own in the reduced report).
     const QualityReport* unchanged_topology = nullptr;
 };
 

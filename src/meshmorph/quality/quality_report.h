@@ -6,6 +6,7 @@
 #pragma once
 
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -22,6 +23,8 @@
 
 namespace meshmorph
 {
+
+struct JacobianCorners;
 
 //! Everything check_mesh() found: the mesh statistics, the topology tables, every check's
 //! result in report order, and per-cell fields for VTK output.
@@ -94,6 +97,9 @@ struct QualityReport
     Eigen::VectorXd cell_non_orthogonality, cell_skewness, cell_aspect_ratio, cell_determinant;
     //! Per-cell scaled Jacobian (nCells), when computed; min_scaled_jacobian is its minimum.
     Eigen::VectorXd cell_scaled_jacobian;
+    //! The cells' corners it was computed from (topology): a later check of the same mesh
+    //! with moved points (CheckMeshSettings::unchanged_topology) reuses them.
+    std::shared_ptr<const JacobianCorners> jacobian_corners;
 };
 
 //! \brief From r.checks: the failed checks, the offender sets and the headline numbers.

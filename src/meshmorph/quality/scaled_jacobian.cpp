@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 #include "meshmorph/core/exceptions.h"
 
@@ -99,65 +100,86 @@ double pyramid_scaled_jacobian(const std::array<Vector3, 5>& p)
     return result * std::sqrt(2.0);
 }
 
-Eigen::VectorXd scaled_jacobian(const PolyMesh& mesh, const CompactList& cell_faces,
-                                const std::vector<CellShape>& shapes)
+namespace
+{
+
+//! The value of one cell from its corners (VTK order); NaN for a polyhedron.
+double cell_scaled_jacobian(const PolyMesh& mesh, VtkCellType type,
+                            const std::array<Index, 8>& corner)
+{
+    const auto corners = [&]<std::size_t N>(std::integral_constant<std::size_t, N>)
+    {
+        std::array<Vector3, N> p;
+        for (std::size_t i = 0; i < N; ++i)
+            p[i] = mesh.points.row(corner[i]).transpose();
+        return p;
+    };
+    switch (type)
+    {
+    case VtkCellType::hexahedron:
+        return hex_scaled_jacobian(corners(std::integral_constant<std::size_t, 8>{}));
+    case VtkCellType::tetra:
+        return tet_scaled_jacobian(corners(std::integral_constant<std::size_t, 4>{}));
+    case VtkCellType::wedge:
+        return prism_scaled_jacobian(corners(std::integral_constant<std::size_t, 6>{}));
+    case VtkCellType::pyramid:
+        return pyramid_scaled_jacobian(corners(std::integral_constant<std::size_t, 5>{}));
+    default:
+        return std::numeric_limits<double>::quiet_NaN();
+    }
+}
+
+} // namespace
+
+JacobianCorners jacobian_corners(const PolyMesh& mesh, const CompactList& cell_faces,
+                                 const std::vector<CellShape>& shapes)
 {
     if (static_cast<Index>(shapes.size()) != cell_faces.size())
         throw InvalidInput("scaled_jacobian: " + std::to_string(shapes.size()) + " shapes for " +
                            std::to_string(cell_faces.size()) + " cells");
     const Index n_cells = cell_faces.size();
-    Eigen::VectorXd result(n_cells);
-    const auto point = [&](Index label) -> Vector3 { return mesh.points.row(label).transpose(); };
-    // Each thread reuses its own buffers; every cell is independent, so results do not depend
-    // on the thread count. Small meshes stay serial (a parallel region costs more).
+    JacobianCorners out;
+    out.types.resize(std::size_t(n_cells));
+    out.points.resize(std::size_t(n_cells));
+    // Each thread reuses its own buffers; every cell is independent. Small meshes stay
+    // serial (a parallel region costs more).
 #pragma omp parallel if (n_cells > 20000)
     {
         VtkCell cell;
 #pragma omp for schedule(static)
         for (Index c = 0; c < n_cells; ++c)
         {
-            cell.type = vtk_cell(mesh, cell_faces, c, shapes[c], cell.points, cell.face_stream);
-            switch (cell.type)
-            {
-            case VtkCellType::hexahedron:
-            {
-                std::array<Vector3, 8> p;
-                for (int i = 0; i < 8; ++i)
-                    p[i] = point(cell.points[i]);
-                result[c] = hex_scaled_jacobian(p);
-                break;
-            }
-            case VtkCellType::tetra:
-            {
-                std::array<Vector3, 4> p;
-                for (int i = 0; i < 4; ++i)
-                    p[i] = point(cell.points[i]);
-                result[c] = tet_scaled_jacobian(p);
-                break;
-            }
-            case VtkCellType::wedge:
-            {
-                std::array<Vector3, 6> p;
-                for (int i = 0; i < 6; ++i)
-                    p[i] = point(cell.points[i]);
-                result[c] = prism_scaled_jacobian(p);
-                break;
-            }
-            case VtkCellType::pyramid:
-            {
-                std::array<Vector3, 5> p;
-                for (int i = 0; i < 5; ++i)
-                    p[i] = point(cell.points[i]);
-                result[c] = pyramid_scaled_jacobian(p);
-                break;
-            }
-            default:
-                result[c] = std::numeric_limits<double>::quiet_NaN();
-                break;
-            }
+            const VtkCellType type =
+                vtk_cell(mesh, cell_faces, c, shapes[c], cell.points, cell.face_stream);
+            std::array<Index, 8>& corner = out.points[std::size_t(c)];
+            corner.fill(-1);
+            if (type != VtkCellType::polyhedron)
+                std::copy(cell.points.begin(), cell.points.end(), corner.begin());
+            out.types[std::size_t(c)] = type;
         }
     }
+    return out;
+}
+
+Eigen::VectorXd scaled_jacobian(const PolyMesh& mesh, const JacobianCorners& corners)
+{
+    const Index n_cells = Index(corners.types.size());
+    if (corners.points.size() != corners.types.size() || n_cells != mesh.n_cells)
+        throw InvalidInput("scaled_jacobian: corners of " + std::to_string(n_cells) +
+                           " cells for a mesh of " + std::to_string(mesh.n_cells));
+    Eigen::VectorXd result(n_cells);
+    // Every cell is independent: the result does not depend on the thread count.
+#pragma omp parallel for schedule(static) if (n_cells > 20000)
+    for (Index c = 0; c < n_cells; ++c)
+        result[c] = cell_scaled_jacobian(mesh, corners.types[std::size_t(c)],
+                                         corners.points[std::size_t(c)]);
     return result;
+}
+
+Eigen::VectorXd scaled_jacobian(const PolyMesh& mesh, const CompactList& cell_faces,
+                                const std::vector<CellShape>& shapes)
+{
+    return scaled_jacobian(mesh, jacobian_corners(mesh, cell_faces, shapes));
 }
 
 Eigen::VectorXd scaled_jacobian(const PolyMesh& mesh)

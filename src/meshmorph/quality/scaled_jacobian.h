@@ -40,6 +40,25 @@ double prism_scaled_jacobian(const std::array<Vector3, 6>& p);
 //! \brief Scaled Jacobian of a pyramid, vertices in VTK_PYRAMID order (apex last).
 double pyramid_scaled_jacobian(const std::array<Vector3, 5>& p);
 
+//! \brief The corners the scaled Jacobian reads: per cell its VTK type and up to 8 point
+//! labels in VTK order (unused slots -1). Topology only, and the costly part (matching each
+//! cell's faces to a model cell): computed once, it serves every later position of the same
+//! mesh's points, such as morphMesh's check after a morph.
+struct JacobianCorners
+{
+    std::vector<VtkCellType> types;           //!< nCells; polyhedron: no value (NaN)
+    std::vector<std::array<Index, 8>> points; //!< nCells
+};
+
+//! \brief The cells' corners (see JacobianCorners).
+//! \throw InvalidInput if shapes and cell_faces differ in size.
+JacobianCorners jacobian_corners(const PolyMesh& mesh, const CompactList& cell_faces,
+                                 const std::vector<CellShape>& shapes);
+
+//! \brief Scaled Jacobian of every cell from its corners at the mesh's current points.
+//! \throw InvalidInput if the corners are not of mesh's cells (sizes differ).
+Eigen::VectorXd scaled_jacobian(const PolyMesh& mesh, const JacobianCorners& corners);
+
 //! \brief Scaled Jacobian of every cell.
 //!
 //! Cells whose topology is a hexahedron, tetrahedron, prism or pyramid (core/cell_shapes.h
