@@ -5,6 +5,10 @@
 
 #include <Eigen/Cholesky>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace meshmorph::detail
 {
 namespace
@@ -73,6 +77,28 @@ TEST(RowPanelFactor, truncated_it_is_the_factor_of_the_leading_block)
         f.append(L.block(r, 0, 40 - r, r), L.block(r, r, 40 - r, 40 - r));
         EXPECT_EQ(f.diagonal(), L.diagonal()) << r;
     }
+}
+
+TEST(RowPanelFactor, many_columns_are_solved_in_blocks_with_bits_independent_of_threads)
+{
+    // 300 x 200: blocks of forward_block columns, run on OpenMP's threads when there are
+    // several; the greedy fit's centres follow these bits, so the thread count must not.
+    const Eigen::Index n = 300, m = 3 * RowPanelFactor::forward_block + 8;
+    const Eigen::MatrixXd A = spd(n);
+    const Eigen::MatrixXd L = A.llt().matrixL();
+    const RowPanelFactor f = in_panels(L, {100, 150, 50});
+    const Eigen::MatrixXd B = Eigen::MatrixXd::Random(n, m);
+    Eigen::MatrixXd X = B;
+    f.forward(X);
+    EXPECT_LE((L * X - B).cwiseAbs().maxCoeff(), 1e-12 * (L.cwiseAbs() * X.cwiseAbs()).maxCoeff());
+#ifdef _OPENMP
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    Eigen::MatrixXd X1 = B;
+    f.forward(X1);
+    omp_set_num_threads(threads);
+    EXPECT_TRUE(X1 == X) << "differs from one thread by " << (X1 - X).cwiseAbs().maxCoeff();
+#endif
 }
 
 TEST(RowPanelFactor, blocks_of_the_wrong_size_are_a_logic_error)

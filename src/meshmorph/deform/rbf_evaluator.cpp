@@ -140,6 +140,17 @@ double KernelParams::value(double r2) const
     return v;
 }
 
+void KernelParams::values_in_place(double* r2, std::size_t n) const
+{
+    with_kernel(*this,
+                [&](const auto& phi)
+                {
+#pragma omp simd
+                    for (std::size_t i = 0; i < n; ++i)
+                        r2[i] = phi(r2[i]);
+                });
+}
+
 std::vector<std::array<int, 3>> monomials(int degree)
 {
     std::vector<std::array<int, 3>> out;

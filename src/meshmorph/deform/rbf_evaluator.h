@@ -30,6 +30,8 @@ struct KernelParams
     double eps = 1.0;              //!< shape parameter (normalised units)
     double support = 1.0;          //!< Wendland support radius (normalised units)
     double value(double r2) const; //!< phi as a function of r^2 (scalar reference)
+    //! r2[i] := phi as a function of r2[i] for i < n: value() element by element, vectorised.
+    void values_in_place(double* r2, std::size_t n) const;
 };
 
 //! d(x) = sum_j w_j phi(|x^ - c^_j|) + sum_k q_k pi_k(R^T x^), x^ = (x - centre) / scale.

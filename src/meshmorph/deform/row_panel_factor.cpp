@@ -3,6 +3,7 @@
 // and one dtrsm with its diagonal block each (blocked substitution, BLAS level 3).
 #include "meshmorph/deform/row_panel_factor.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "meshmorph/deform/lapack.h"
@@ -48,22 +49,40 @@ void RowPanelFactor::forward(Eigen::MatrixXd& X) const
 {
     if (X.rows() != size_)
         throw std::logic_error("RowPanelFactor::forward: wrong number of rows");
-    const int m = lapack_int(X.cols()), ldx = lapack_int(X.rows());
+    // Columns are independent: blocks of a fixed width, on OpenMP's threads, each block by
+    // single-threaded BLAS. The blocks do not depend on the thread count, so neither do
+    // the bits.
+    const Eigen::Index n = X.cols();
+    (void)lapack_int(n); // dimensions checked here: nothing throws in the parallel loop
+    (void)lapack_int(X.rows());
+    const Eigen::Index blocks = (n + forward_block - 1) / forward_block;
+#pragma omp parallel for schedule(dynamic) if (blocks > 1 && size_ * n > 100000)
+    for (Eigen::Index k = 0; k < blocks; ++k)
+    {
+        const Eigen::Index first = k * forward_block;
+        forward_columns(X.data() + first * X.rows(), std::min(forward_block, n - first));
+    }
+}
+
+void RowPanelFactor::forward_columns(double* x, Eigen::Index columns) const
+{
+    const int m = lapack_int(columns), ldx = lapack_int(size_);
     const double one = 1.0, minus_one = -1.0;
+    if (m == 0)
+        return;
     for (const Panel& p : panels_)
     {
         const int b = lapack_int(p.rows), ld = lapack_int(p.entries.rows());
-        double* xp = X.data() + p.first;
-        if (p.first > 0 && m > 0)
+        double* xp = x + p.first;
+        if (p.first > 0)
         {
             // X_p -= L_p,left X_0..first
             const int k = lapack_int(p.first);
-            dgemm_("N", "N", &b, &m, &k, &minus_one, p.entries.data(), &ld, X.data(), &ldx, &one,
-                   xp, &ldx);
+            dgemm_("N", "N", &b, &m, &k, &minus_one, p.entries.data(), &ld, x, &ldx, &one, xp,
+                   &ldx);
         }
-        if (m > 0)
-            dtrsm_("L", "L", "N", "N", &b, &m, &one, p.entries.data() + p.first * p.entries.rows(),
-                   &ld, xp, &ldx);
+        dtrsm_("L", "L", "N", "N", &b, &m, &one, p.entries.data() + p.first * p.entries.rows(), &ld,
+               xp, &ldx);
     }
 }
 

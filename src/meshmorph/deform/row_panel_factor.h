@@ -29,7 +29,8 @@ public:
     //! Keeps the leading r x r block, the factor of the leading r x r block of L L^T.
     void truncate(Eigen::Index r);
 
-    //! X := L^-1 X (forward substitution; X has size() rows).
+    //! X := L^-1 X (forward substitution; X has size() rows). Blocks of forward_block
+    //! columns run on OpenMP's threads.
     void forward(Eigen::MatrixXd& X) const;
     //! X := L^-T X (back substitution; X has size() rows).
     void backward(Eigen::MatrixXd& X) const;
@@ -37,7 +38,13 @@ public:
     //! L's diagonal.
     Eigen::VectorXd diagonal() const;
 
+    //! Columns per block of forward().
+    static constexpr Eigen::Index forward_block = 64;
+
 private:
+    //! forward() on `columns` columns at x (leading dimension size()).
+    void forward_columns(double* x, Eigen::Index columns) const;
+
     struct Panel
     {
         Eigen::Index first = 0;  //!< its first row of L
