@@ -456,20 +456,29 @@ std::vector<RankedCandidate> farthest_first(const std::vector<Eigen::Index>& gro
 void spread_batch(const std::vector<RankedCandidate>& ranked, const Points& X, Eigen::Index b,
                   double spread, std::vector<Eigen::Index>& kept)
 {
+    // The kept points as structure of arrays: a candidate's distance to the nearest one is
+    // one vectorised pass. Some kept point is closer than the limit exactly when the nearest
+    // is (coarsened() is monotone).
+    std::vector<double> kx, ky, kz;
+    for (Eigen::Index k : kept)
+        kx.push_back(X(k, 0)), ky.push_back(X(k, 1)), kz.push_back(X(k, 2));
     for (const RankedCandidate& c : ranked)
     {
         if (Eigen::Index(kept.size()) >= b)
             break;
-        const double limit2 = spread * spread * c.to_centre2;
-        bool crowded = false;
-        for (Eigen::Index k : kept)
-            if (coarsened_less((X.row(c.index) - X.row(k)).squaredNorm(), limit2))
-            {
-                crowded = true;
-                break;
-            }
-        if (!crowded)
-            kept.push_back(c.index);
+        const double x = X(c.index, 0), y = X(c.index, 1), z = X(c.index, 2);
+        double nearest2 = std::numeric_limits<double>::infinity();
+        const std::size_t n = kx.size();
+#pragma omp simd reduction(min : nearest2)
+        for (std::size_t k = 0; k < n; ++k)
+        {
+            const double dx = x - kx[k], dy = y - ky[k], dz = z - kz[k];
+            nearest2 = std::min(nearest2, dx * dx + dy * dy + dz * dz);
+        }
+        if (coarsened_less(nearest2, spread * spread * c.to_centre2))
+            continue; // crowded
+        kept.push_back(c.index);
+        kx.push_back(x), ky.push_back(y), kz.push_back(z);
     }
 }
 
