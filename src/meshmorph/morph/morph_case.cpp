@@ -4,6 +4,8 @@
 // input error is raised in the first two stages, before anything is written.
 #include "meshmorph/morph/morph_case.h"
 
+#include <utility>
+
 #include "meshmorph/core/log.h"
 #include "meshmorph/core/number_format.h"
 #include "meshmorph/core/stopwatch.h"
@@ -21,19 +23,20 @@ MorphResult morph_case(const MorphOptions& options)
     MorphCase in;
     read_morph_dict(options, in, result);
     read_morph_mesh(options, in, result);
-    resolve_constraints(options, in, result);
+    // The check before the morph reads only the mesh: in a serial run it starts now, on its
+    // own thread, beside the constraints (which leave the mesh as it is: `in` is const there).
+    const PolyMesh& mesh = in.foam.mesh;
+    CheckMeshSettings check_settings;
+    check_settings.scaled_jacobian = options.scaled_jacobian;
+    const CompactList cf = cell_faces(mesh); // the topology does not change: one for all checks
+    BeforeCheck before(mesh, cf, check_settings, in.decomposition, in.foam.points_dir);
+    resolve_constraints(options, std::as_const(in), result);
     result.output_instance = morph_output_instance(options, in);
     check_output_options(options);
     result.timings.read = stage.seconds();
     log::info() << "Read case and " << in.dict_path.string() << " in "
                 << format_seconds(result.timings.read) << " s";
     log_setup(result.constraints);
-
-    const PolyMesh& mesh = in.foam.mesh;
-    CheckMeshSettings check_settings;
-    check_settings.scaled_jacobian = options.scaled_jacobian;
-    const CompactList cf = cell_faces(mesh); // the topology does not change: one for all checks
-    BeforeCheck before(mesh, cf, check_settings, in.decomposition, in.foam.points_dir);
 
     std::optional<PolyMesh> moved;
     morph_resolved(options, in, cf, before, result, moved, &in.foam.mesh);
