@@ -709,9 +709,13 @@ void GreedyRbfDeformation::finish_report(const Eigen::Ref<const Points>& constra
                                     ? d.merged.displacements.rowwise().norm().maxCoeff()
                                     : 0.0;
         const double rel = 1.0 / std::max(max_disp, 1e-300);
+        // The tolerance applies to the constraints the global part fits (not the jumps).
+        const double fitted =
+            d.jump_constraints > 0 ? d.report.max_fitted_residual : d.report.max_residual;
         log::info() << "    greedy RBF: the budget of " << budget << " centres (maxCentres) "
-                    << "ends the refinement at max residual " << d.report.max_residual * rel
-                    << " (relative; tolerance " << d.settings.tolerance << ")";
+                    << "ends the refinement at max residual " << fitted * rel
+                    << " (relative, on the constraints it fits; tolerance " << d.settings.tolerance
+                    << "; a larger maxCentres refines further)";
     }
 }
 
