@@ -10,6 +10,21 @@
 
 namespace meshmorph::morph
 {
+namespace
+{
+
+//! The report without its per-cell fields (a morph prints and judges the summary; the
+//! check after has its own fields): ~40 bytes a cell the rest of the morph can reuse.
+QualityReport without_cell_fields(QualityReport r)
+{
+    for (Eigen::VectorXd* field :
+         {&r.cell_non_orthogonality, &r.cell_skewness, &r.cell_aspect_ratio, &r.cell_determinant,
+          &r.cell_scaled_jacobian})
+        *field = Eigen::VectorXd();
+    return r;
+}
+
+} // namespace
 
 BeforeCheck::BeforeCheck(const PolyMesh& mesh, const CompactList& cell_faces,
                          const CheckMeshSettings& settings, const Decomposition& decomposition,
@@ -19,8 +34,8 @@ BeforeCheck::BeforeCheck(const PolyMesh& mesh, const CompactList& cell_faces,
     if (decomposition.is_distributed())
     {
         const Stopwatch clock;
-        report_ = check_morph_mesh(mesh, cell_faces, compute_geometry(mesh, cell_faces), settings,
-                                   decomposition);
+        report_ = without_cell_fields(check_morph_mesh(
+            mesh, cell_faces, compute_geometry(mesh, cell_faces), settings, decomposition));
         waited_ = clock.seconds();
         warn_if_broken(*report_, mesh_dir_);
         return;
@@ -31,7 +46,8 @@ BeforeCheck::BeforeCheck(const PolyMesh& mesh, const CompactList& cell_faces,
         [&mesh, &cell_faces, settings]
         {
             require_cell_faces_of(mesh, cell_faces); // before the geometry reads the cells
-            return check_mesh(mesh, cell_faces, compute_geometry(mesh, cell_faces), settings);
+            return without_cell_fields(
+                check_mesh(mesh, cell_faces, compute_geometry(mesh, cell_faces), settings));
         });
 }
 
@@ -51,6 +67,14 @@ const QualityReport& BeforeCheck::report()
         warn_if_broken(*report_, mesh_dir_);
     }
     return *report_;
+}
+
+QualityReport BeforeCheck::take_report()
+{
+    (void)report();
+    QualityReport out = std::move(*report_);
+    report_.reset();
+    return out;
 }
 
 InvalidCells BeforeCheck::invalid()

@@ -6,7 +6,8 @@
 //! first step has been evaluated. In a serial run the check therefore runs on a thread of
 //! its own from the start; in a -parallel run it runs in place, because its reductions are
 //! collective operations that must keep their order on every rank. Either way the report is
-//! the same (the checks do not depend on the thread count).
+//! the same (the checks do not depend on the thread count). A morph reads its summary and
+//! its topology, not its per-cell fields, which are dropped as soon as the check ends.
 #pragma once
 
 #include <filesystem>
@@ -41,6 +42,8 @@ public:
     //! The report, once it is there; the first call warns if the mesh fails checks (not for
     //! a check already done). \throw what the check threw.
     const QualityReport& report();
+    //! The report, moved out (report() must not be called after this). \throw as report().
+    QualityReport take_report();
     //! The invalid counts of the report (what a step may not make worse).
     InvalidCells invalid();
     //! Seconds the caller has waited in report() so far.

@@ -225,7 +225,7 @@ void morph_resolved(const MorphOptions& options, const MorphCase& in, const Comp
                     PolyMesh* spent)
 {
     SteppedMorph stepped = fit_in_steps(options, in, cf, before, result, spent);
-    result.before = before.report();
+    result.before = before.take_report();
     result.timings.check += before.waited_seconds();
     const Stopwatch stage;
     warn_if_partly_valid(stepped, in.step_settings);
