@@ -410,32 +410,46 @@ std::vector<std::vector<Eigen::Index>> octaves(const std::vector<Eigen::Index>& 
     return groups;
 }
 
+//! Points as structure of arrays, so that the distance to the nearest one vectorises.
+struct PointSet
+{
+    std::vector<double> x, y, z;
+    void add(const Points& X, Eigen::Index k)
+    {
+        x.push_back(X(k, 0));
+        y.push_back(X(k, 1));
+        z.push_back(X(k, 2));
+    }
+    //! Squared distance from X's point k to the nearest point of the set (infinity if none).
+    double nearest2(const Points& X, Eigen::Index k) const
+    {
+        const double px = X(k, 0), py = X(k, 1), pz = X(k, 2);
+        double d2 = std::numeric_limits<double>::infinity();
+        const std::size_t n = x.size();
+#pragma omp simd reduction(min : d2)
+        for (std::size_t j = 0; j < n; ++j)
+        {
+            const double dx = px - x[j], dy = py - y[j], dz = pz - z[j];
+            d2 = std::min(d2, dx * dx + dy * dy + dz * dz);
+        }
+        return d2;
+    }
+};
+
 //! One octave's candidates by decreasing distance to the nearest centre (coarsened: the
 //! distances come from the coordinates alone, so every processor orders them alike), then
 //! by index.
 std::vector<RankedCandidate> farthest_first(const std::vector<Eigen::Index>& group, const Points& X,
                                             const std::vector<Eigen::Index>& centres)
 {
-    // The centres as structure of arrays, so that the nearest-centre loop vectorises.
-    const std::size_t nc = centres.size();
-    std::vector<double> cx(nc), cy(nc), cz(nc);
-    for (std::size_t c = 0; c < nc; ++c)
-    {
-        cx[c] = X(centres[c], 0);
-        cy[c] = X(centres[c], 1);
-        cz[c] = X(centres[c], 2);
-    }
+    PointSet c;
+    for (Eigen::Index j : centres)
+        c.add(X, j);
     std::vector<RankedCandidate> ranked(group.size());
-#pragma omp parallel for schedule(static) if (group.size() * nc > 100000)
+#pragma omp parallel for schedule(static) if (group.size() * centres.size() > 100000)
     for (std::size_t k = 0; k < group.size(); ++k)
     {
-        const double x = X(group[k], 0), y = X(group[k], 1), z = X(group[k], 2);
-        double d2 = std::numeric_limits<double>::infinity();
-        for (std::size_t c = 0; c < nc; ++c)
-        {
-            const double dx = x - cx[c], dy = y - cy[c], dz = z - cz[c];
-            d2 = std::min(d2, dx * dx + dy * dy + dz * dz);
-        }
+        const double d2 = c.nearest2(X, group[k]);
         ranked[k] = {group[k], d2, coarsened(d2)};
     }
     std::sort(ranked.begin(), ranked.end(),
@@ -456,29 +470,19 @@ std::vector<RankedCandidate> farthest_first(const std::vector<Eigen::Index>& gro
 void spread_batch(const std::vector<RankedCandidate>& ranked, const Points& X, Eigen::Index b,
                   double spread, std::vector<Eigen::Index>& kept)
 {
-    // The kept points as structure of arrays: a candidate's distance to the nearest one is
-    // one vectorised pass. Some kept point is closer than the limit exactly when the nearest
-    // is (coarsened() is monotone).
-    std::vector<double> kx, ky, kz;
+    // Some kept point is closer than the limit exactly when the nearest one is (coarsened()
+    // is monotone).
+    PointSet near;
     for (Eigen::Index k : kept)
-        kx.push_back(X(k, 0)), ky.push_back(X(k, 1)), kz.push_back(X(k, 2));
+        near.add(X, k);
     for (const RankedCandidate& c : ranked)
     {
         if (Eigen::Index(kept.size()) >= b)
             break;
-        const double x = X(c.index, 0), y = X(c.index, 1), z = X(c.index, 2);
-        double nearest2 = std::numeric_limits<double>::infinity();
-        const std::size_t n = kx.size();
-#pragma omp simd reduction(min : nearest2)
-        for (std::size_t k = 0; k < n; ++k)
-        {
-            const double dx = x - kx[k], dy = y - ky[k], dz = z - kz[k];
-            nearest2 = std::min(nearest2, dx * dx + dy * dy + dz * dz);
-        }
-        if (coarsened_less(nearest2, spread * spread * c.to_centre2))
+        if (coarsened_less(near.nearest2(X, c.index), spread * spread * c.to_centre2))
             continue; // crowded
         kept.push_back(c.index);
-        kx.push_back(x), ky.push_back(y), kz.push_back(z);
+        near.add(X, c.index);
     }
 }
 

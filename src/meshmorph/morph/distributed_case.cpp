@@ -69,14 +69,10 @@ QualityReport distributed_check(const PolyMesh& mesh, const CompactList& cf,
 {
     const parallel::Communicator& comm = *d.comm;
     const ProcessorFaces processors = exchange_processor_faces(mesh, geometry, comm);
-    // A reduced report is not this rank's part: of a check before, only the scaled
-    // Jacobian's corners (this rank's cells, kept below) serve this one.
-    QualityReport corners_before;
-    if (settings.unchanged_topology != nullptr)
-        corners_before.jacobian_corners = settings.unchanged_topology->jacobian_corners;
-    CheckMeshSettings local_settings = settings;
-    local_settings.unchanged_topology = &corners_before;
-    const QualityReport local = check_mesh(mesh, cf, geometry, local_settings, &processors);
+    // Of a check before (a reduced report), check_mesh takes only the scaled Jacobian's
+    // corners, which are this rank's (kept below): its topology part is not reused with
+    // processor faces.
+    const QualityReport local = check_mesh(mesh, cf, geometry, settings, &processors);
     QualityReport r = reduce_report(local, mesh, settings, processors,
                                     io::global_point_count(d.global_point, comm));
     r.jacobian_corners = local.jacobian_corners;

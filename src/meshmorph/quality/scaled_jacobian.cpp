@@ -30,6 +30,32 @@ double normalized_det(const Vector3& a, const Vector3& b, const Vector3& c)
     return a.dot(b.cross(c)) / std::sqrt(la * lb * lc);
 }
 
+//! The value of one cell from its corners (VTK order); NaN for a polyhedron.
+double cell_scaled_jacobian(const PolyMesh& mesh, VtkCellType type,
+                            const std::array<Index, 8>& corner)
+{
+    const auto corners = [&]<std::size_t N>(std::integral_constant<std::size_t, N>)
+    {
+        std::array<Vector3, N> p;
+        for (std::size_t i = 0; i < N; ++i)
+            p[i] = mesh.points.row(corner[i]).transpose();
+        return p;
+    };
+    switch (type)
+    {
+    case VtkCellType::hexahedron:
+        return hex_scaled_jacobian(corners(std::integral_constant<std::size_t, 8>{}));
+    case VtkCellType::tetra:
+        return tet_scaled_jacobian(corners(std::integral_constant<std::size_t, 4>{}));
+    case VtkCellType::wedge:
+        return prism_scaled_jacobian(corners(std::integral_constant<std::size_t, 6>{}));
+    case VtkCellType::pyramid:
+        return pyramid_scaled_jacobian(corners(std::integral_constant<std::size_t, 5>{}));
+    default:
+        return std::numeric_limits<double>::quiet_NaN();
+    }
+}
+
 } // namespace
 
 double hex_scaled_jacobian(const std::array<Vector3, 8>& p)
@@ -99,37 +125,6 @@ double pyramid_scaled_jacobian(const std::array<Vector3, 5>& p)
     }
     return result * std::sqrt(2.0);
 }
-
-namespace
-{
-
-//! The value of one cell from its corners (VTK order); NaN for a polyhedron.
-double cell_scaled_jacobian(const PolyMesh& mesh, VtkCellType type,
-                            const std::array<Index, 8>& corner)
-{
-    const auto corners = [&]<std::size_t N>(std::integral_constant<std::size_t, N>)
-    {
-        std::array<Vector3, N> p;
-        for (std::size_t i = 0; i < N; ++i)
-            p[i] = mesh.points.row(corner[i]).transpose();
-        return p;
-    };
-    switch (type)
-    {
-    case VtkCellType::hexahedron:
-        return hex_scaled_jacobian(corners(std::integral_constant<std::size_t, 8>{}));
-    case VtkCellType::tetra:
-        return tet_scaled_jacobian(corners(std::integral_constant<std::size_t, 4>{}));
-    case VtkCellType::wedge:
-        return prism_scaled_jacobian(corners(std::integral_constant<std::size_t, 6>{}));
-    case VtkCellType::pyramid:
-        return pyramid_scaled_jacobian(corners(std::integral_constant<std::size_t, 5>{}));
-    default:
-        return std::numeric_limits<double>::quiet_NaN();
-    }
-}
-
-} // namespace
 
 JacobianCorners jacobian_corners(const PolyMesh& mesh, const CompactList& cell_faces,
                                  const std::vector<CellShape>& shapes)
