@@ -262,6 +262,51 @@ TEST(GreedyRbfDeformation, spread_batches_reach_the_tolerance_with_the_contact_l
         EXPECT_NEAR((got.row(c) - d.row(c)).norm(), 0.0, 1e-9 * lift);
 }
 
+//! values_at_handles() is the field at every constraint bit for bit, as evaluate() gives it
+//! (what CorrectedDeformation subtracts from the prescriptions instead of evaluating again).
+void expect_values_at_handles_as_evaluated(const GreedyRbfDeformation& greedy, const Points& x)
+{
+    const Points* kept = greedy.values_at_handles();
+    ASSERT_NE(kept, nullptr);
+    ASSERT_EQ(kept->rows(), x.rows());
+    Points got(x.rows(), 3);
+    greedy.evaluate(x, got);
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+        for (int k = 0; k < 3; ++k)
+            ASSERT_EQ((*kept)(i, k), got(i, k)) << "constraint " << i << ", component " << k;
+}
+
+TEST(GreedyRbfDeformation, keeps_its_values_at_the_constraints_with_the_bits_of_an_evaluation)
+{
+    // A converged fit whose constraints include a merged duplicate (the same point a
+    // hair away, with the same displacement): its value is evaluated, the others are the
+    // last round's.
+    Points x = test::sphere_points(2000, Vector3(0.5, 0.5, 0.5), 0.5);
+    x.conservativeResize(x.rows() + 1, 3);
+    x.row(x.rows() - 1) = x.row(7) + Eigen::RowVector3d(1e-15, 0.0, 0.0);
+    const Points d = test::smooth_field(x);
+    GreedyRbfDeformation smooth{GreedySettings{}};
+    EXPECT_EQ(smooth.values_at_handles(), nullptr); // not fitted yet
+    smooth.fit(x, d);
+    ASSERT_TRUE(smooth.converged());
+    ASSERT_EQ(smooth.report().num_merged_duplicates, 1);
+    expect_values_at_handles_as_evaluated(smooth, x);
+
+    // A refinement truncated to its best round: the last round's values are not the kept
+    // model's, so every constraint is evaluated.
+    const BallOnFloor data(3000);
+    GreedySettings s;
+    s.tolerance = 1e-6;
+    s.rms_tolerance = 1e-6;
+    s.max_centres = 3000;
+    s.spread = 0.0;
+    s.jump_slope = 0.0;
+    GreedyRbfDeformation truncated(s);
+    truncated.fit(data.x, data.d);
+    ASSERT_TRUE(truncated.stopped_growing());
+    expect_values_at_handles_as_evaluated(truncated, data.x);
+}
+
 TEST(GreedyRbfDeformation, rejects_negative_spread_or_jump_slope)
 {
     GreedySettings s;

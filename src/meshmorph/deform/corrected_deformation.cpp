@@ -58,8 +58,13 @@ void CorrectedDeformation::fit(const Eigen::Ref<const Points>& handles,
         global_->fit(handles, displacements);
     }
     Points residual(handles.rows(), 3);
-    global_->evaluate(handles, residual);
-    residual = displacements - residual;
+    if (const Points* at = global_->values_at_handles(); at && at->rows() == handles.rows())
+        residual = displacements - *at;
+    else
+    {
+        global_->evaluate(handles, residual);
+        residual = displacements - residual;
+    }
     correction_.fit(handles, residual);
     report_ = global_->report();
     report_.method += "+idw";

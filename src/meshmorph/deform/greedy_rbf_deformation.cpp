@@ -240,6 +240,11 @@ struct GreedyRbfDeformation::Impl
     std::vector<Index> centre_indices;
     std::vector<double> history;
     std::vector<double> rms_history;
+    //! The model at the kept handles (their physical points) after the last round; empty
+    //! when the model changed after it (a truncated refinement).
+    Points round_values;
+    //! The model at every constraint of the last fit (values_at_handles()).
+    Points values_at_handles;
     // Kept after fit for handle_basis(); system refers to model, merged.centres and P.
     Index num_inputs = 0;
     detail::MergedHandles merged;
@@ -601,7 +606,8 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
     const Eigen::Index N = Xphys.rows(), p = d.P.cols();
     const double max_disp = H.rows() > 0 ? H.rowwise().norm().maxCoeff() : 0.0;
     const double rel = 1.0 / std::max(max_disp, 1e-300);
-    Points got(N, 3);
+    Points& got = d.round_values;
+    got.resize(N, 3);
     Eigen::Index iterations = 0;
     double best_rms = std::numeric_limits<double>::infinity();
     Eigen::Index best_size = 0;
@@ -637,6 +643,7 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
             // (CorrectedDeformation) takes up the rest.
             system.truncate(best_size);
             set_model(H);
+            got.resize(0, 3); // the values of a model no longer kept
             d.stopped_growing = true;
             d.history.pop_back(); // the histories end with the model kept
             d.rms_history.pop_back();
@@ -683,6 +690,42 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
     }
 }
 
+//! The model at every constraint. A constraint that is the point of its kept handle takes
+//! the last round's value there (the evaluation of the same point by the same model, bit
+//! for bit); the others (merged duplicates, or all after a truncated refinement) are
+//! evaluated. This spares the morph an evaluation at every constraint (1e8 kernel values
+//! on the motorBike).
+Points GreedyRbfDeformation::values_at_constraints(const Impl& d,
+                                                   const Eigen::Ref<const Points>& constraints)
+{
+    const Eigen::Index m = constraints.rows();
+    Points values(m, 3);
+    std::vector<Eigen::Index> rest;
+    const bool have_round = d.round_values.rows() == Eigen::Index(d.merged.first.size());
+    for (Eigen::Index c = 0; c < m; ++c)
+    {
+        const Index kept = d.merged.representative[std::size_t(c)];
+        if (have_round && d.merged.first[std::size_t(kept)] == c)
+            values.row(c) = d.round_values.row(kept);
+        else
+            rest.push_back(c);
+    }
+    if (rest.empty())
+        return values;
+    Points at(Eigen::Index(rest.size()), 3), got(Eigen::Index(rest.size()), 3);
+    for (std::size_t k = 0; k < rest.size(); ++k)
+        at.row(Eigen::Index(k)) = constraints.row(rest[k]);
+    d.model.evaluate(at, got);
+    for (std::size_t k = 0; k < rest.size(); ++k)
+        values.row(rest[k]) = got.row(Eigen::Index(k));
+    return values;
+}
+
+const Points* GreedyRbfDeformation::values_at_handles() const
+{
+    return impl_->fitted ? &impl_->values_at_handles : nullptr;
+}
+
 void GreedyRbfDeformation::finish_report(const Eigen::Ref<const Points>& constraints,
                                          const Eigen::Ref<const Points>& displacements,
                                          Index iterations, Eigen::Index budget)
@@ -703,7 +746,9 @@ void GreedyRbfDeformation::finish_report(const Eigen::Ref<const Points>& constra
     d.report.polynomial_terms = Index(p);
     d.report.iterations = iterations;
     d.report.condition_estimate = system.condition_lower_bound();
-    detail::residual_report(*this, constraints, displacements, d.report);
+    d.values_at_handles = values_at_constraints(d, constraints);
+    d.round_values.resize(0, 3);
+    detail::residual_report(d.values_at_handles, displacements, d.report);
     d.report.jump_constraints = d.jump_constraints;
     if (d.jump_constraints > 0 && !d.history.empty())
         d.report.max_fitted_residual = d.history.back(); // the kept round's, over the others

@@ -89,6 +89,8 @@ public:
     const FitReport& report() const override;
     bool is_fitted() const override;
     void write_field(FieldWriter& out) const override;
+    //! The field at every constraint of the last fit (the residual report's values).
+    const Points* values_at_handles() const override;
     //! True when both tolerances were met (false when the budget stopped the refinement).
     bool converged() const;
     //! Indices (into the constraints given to fit) of the selected centres.
@@ -116,6 +118,7 @@ private:
     void set_model(const Eigen::MatrixXd& H);
     Eigen::Index refine(const Points& Xphys, const Eigen::MatrixXd& H, Eigen::Index budget,
                         detail::CentreMarks& marks, const Stopwatch& clock);
+    static Points values_at_constraints(const Impl& d, const Eigen::Ref<const Points>& constraints);
     void finish_report(const Eigen::Ref<const Points>& constraints,
                        const Eigen::Ref<const Points>& displacements, Index iterations,
                        Eigen::Index budget);

@@ -110,13 +110,11 @@ void check_evaluate_arguments(bool is_fitted, const Eigen::Ref<const Points>& po
                            std::to_string(points.rows()) + " points");
 }
 
-void residual_report(const SpaceDeformation& d, const Eigen::Ref<const Points>& handles,
+void residual_report(const Eigen::Ref<const Points>& got,
                      const Eigen::Ref<const Points>& displacements, FitReport& report)
 {
-    Points got(handles.rows(), 3);
-    d.evaluate(handles, got);
     double max_r = 0.0, sum_r2 = 0.0, max_d = 0.0;
-    for (Eigen::Index i = 0; i < handles.rows(); ++i)
+    for (Eigen::Index i = 0; i < got.rows(); ++i)
     {
         const double r = (got.row(i) - displacements.row(i)).norm();
         max_r = std::max(max_r, r);
@@ -125,8 +123,16 @@ void residual_report(const SpaceDeformation& d, const Eigen::Ref<const Points>& 
     }
     report.max_residual = max_r;
     report.max_fitted_residual = max_r;
-    report.rms_residual = handles.rows() > 0 ? std::sqrt(sum_r2 / double(handles.rows())) : 0.0;
+    report.rms_residual = got.rows() > 0 ? std::sqrt(sum_r2 / double(got.rows())) : 0.0;
     report.max_displacement = max_d;
+}
+
+void residual_report(const SpaceDeformation& d, const Eigen::Ref<const Points>& handles,
+                     const Eigen::Ref<const Points>& displacements, FitReport& report)
+{
+    Points got(handles.rows(), 3);
+    d.evaluate(handles, got);
+    residual_report(got, displacements, report);
 }
 
 } // namespace detail

@@ -60,6 +60,10 @@ public:
     //! \brief Append what evaluate() needs to `out` (FieldKind first; read back by
     //! read_field() of field_io.h). \throw InvalidInput for a kind that cannot be written.
     virtual void write_field(FieldWriter& out) const;
+    //! d at the handles of the last fit() (m x 3, bit for bit what evaluate() gives there)
+    //! when the method kept them from its own residual report, else nullptr. A caller that
+    //! needs them (CorrectedDeformation) then does not evaluate d at every handle again.
+    virtual const Points* values_at_handles() const { return nullptr; }
 };
 
 //! \brief d(x) for every row of points (n x 3), returned by value.
@@ -78,7 +82,11 @@ void check_fit_arguments(const Eigen::Ref<const Points>& handles,
 //! Common evaluate() argument checks.
 void check_evaluate_arguments(bool is_fitted, const Eigen::Ref<const Points>& points,
                               const Eigen::Ref<Points>& out, const char* method);
-//! Fills max/rms residual and max displacement of report from d(handles) - displacements.
+//! Fills max/rms residual and max displacement of report from got - displacements, got
+//! being the field's values at the handles.
+void residual_report(const Eigen::Ref<const Points>& got,
+                     const Eigen::Ref<const Points>& displacements, FitReport& report);
+//! As above with got = d(handles).
 void residual_report(const SpaceDeformation& d, const Eigen::Ref<const Points>& handles,
                      const Eigen::Ref<const Points>& displacements, FitReport& report);
 } // namespace detail
