@@ -1,30 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// VTK XML export through VTK's writers, serialised to memory and then written atomically.
+// VTK XML export: the mesh as plain arrays (vtk_export.h), serialised by the VTK module and
+// then written atomically.
 #include "meshmorph/io/vtk_writer.h"
 
 #include <algorithm>
 #include <set>
 #include <string_view>
 
-#include <vtkCellArray.h>
-#include <vtkCellData.h>
-#include <vtkDoubleArray.h>
-#include <vtkFieldData.h>
-#include <vtkIdTypeArray.h>
-#include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkPoints.h>
-#include <vtkPolyData.h>
-#include <vtkSmartPointer.h>
-#include <vtkStringArray.h>
-#include <vtkUnsignedCharArray.h>
-#include <vtkUnstructuredGrid.h>
-#include <vtkXMLPolyDataWriter.h>
-#include <vtkXMLUnstructuredGridWriter.h>
-
 #include "meshmorph/core/cell_shapes.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/io/foam_file.h"
+#include "meshmorph/io/vtk_export.h"
+#include "meshmorph/io/vtk_module_loader.h"
 
 namespace meshmorph::io
 {
@@ -54,72 +41,35 @@ void check_fields(const std::filesystem::path& path, const std::vector<VtkField>
     }
 }
 
-// A copy of the field into a VTK array; `rows` selects rows (nullptr: all).
-vtkSmartPointer<vtkDoubleArray> to_vtk(const VtkField& f, const std::vector<Index>* rows = nullptr)
+//! The field as a VTK array description; `rows` selects rows (nullptr: all, no copy),
+//! gathered into `gathered` (which must outlive the description).
+VtkDoubles doubles(const VtkField& f, const std::vector<Index>* rows, std::vector<double>& gathered)
 {
-    vtkNew<vtkDoubleArray> array;
-    array->SetName(f.name.c_str());
-    const int k = static_cast<int>(f.values.cols());
-    array->SetNumberOfComponents(k);
-    const vtkIdType n = rows ? static_cast<vtkIdType>(rows->size()) : f.values.rows();
-    array->SetNumberOfTuples(n);
-    double* out = array->GetPointer(0);
+    VtkDoubles a{f.name, static_cast<int>(f.values.cols()), f.values.rows(), f.values.data()};
     if (rows == nullptr)
-        std::copy(f.values.data(), f.values.data() + f.values.size(), out);
-    else
-        for (vtkIdType i = 0; i < n; ++i)
-            for (int j = 0; j < k; ++j)
-                out[i * k + j] = f.values((*rows)[i], j);
-    return array;
+        return a;
+    const int k = a.components;
+    gathered.resize(rows->size() * std::size_t(k));
+    for (std::size_t i = 0; i < rows->size(); ++i)
+        for (int j = 0; j < k; ++j)
+            gathered[i * std::size_t(k) + std::size_t(j)] = f.values((*rows)[i], j);
+    a.tuples = static_cast<std::int64_t>(rows->size());
+    a.values = gathered.data();
+    return a;
 }
 
-vtkSmartPointer<vtkIdTypeArray> id_array(const std::vector<Index>& values,
-                                         const char* name = nullptr)
+std::vector<std::int64_t> ids(const std::vector<Index>& values)
 {
-    vtkNew<vtkIdTypeArray> array;
-    if (name)
-        array->SetName(name);
-    array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
-    std::copy(values.begin(), values.end(), array->GetPointer(0));
-    return array;
+    return {values.begin(), values.end()};
 }
 
-vtkSmartPointer<vtkPoints> to_vtk_points(const Points& points,
-                                         const std::vector<Index>* rows = nullptr)
+//! The data set's bytes from the VTK module. \throw IoError naming the path.
+std::string serialise(const VtkExport& data, const std::filesystem::path& path)
 {
-    vtkNew<vtkDoubleArray> xyz;
-    xyz->SetNumberOfComponents(3);
-    const vtkIdType n = rows ? static_cast<vtkIdType>(rows->size()) : points.rows();
-    xyz->SetNumberOfTuples(n);
-    double* out = xyz->GetPointer(0);
-    if (rows == nullptr)
-        std::copy(points.data(), points.data() + points.size(), out);
-    else
-        for (vtkIdType i = 0; i < n; ++i)
-            for (int j = 0; j < 3; ++j)
-                out[3 * i + j] = points((*rows)[i], j);
-    vtkNew<vtkPoints> result;
-    result->SetData(xyz);
-    return result;
-}
-
-// Binary appended, zlib-compressed, 64-bit headers: compact, and what ParaView writes.
-// zlib level 1: on motorBike (353k cells) 1.5x faster than VTK's default level 5 for a file
-// 2 % larger (mesh coordinates compress poorly at any level).
-template <class Writer>
-std::string serialise(Writer* writer, vtkDataObject* data, const std::filesystem::path& path)
-{
-    writer->SetInputData(data);
-    writer->SetDataModeToAppended();
-    writer->EncodeAppendedDataOff();
-    writer->SetCompressorTypeToZLib();
-    writer->SetCompressionLevel(1);
-    writer->SetHeaderTypeToUInt64();
-    writer->SetIdTypeToInt64();
-    writer->WriteToOutputStringOn();
-    if (writer->Write() != 1)
-        throw IoError(path.string() + ": VTK failed to serialise the data set");
-    return writer->GetOutputString();
+    std::string out, error;
+    if (!vtk_serialiser()(data, out, error))
+        throw IoError(path.string() + ": " + error);
+    return out;
 }
 
 } // namespace
@@ -141,40 +91,33 @@ void write_vtu(const std::filesystem::path& path, const PolyMesh& mesh,
     const VtkCells cells = vtk_cells(mesh, cf, classify_cells(mesh, cf));
     const Index n_cells = mesh.n_cells;
 
-    vtkNew<vtkUnsignedCharArray> types;
-    types->SetNumberOfTuples(n_cells);
+    VtkExport data;
+    data.kind = VtkExport::Kind::unstructured_grid;
+    data.n_points = mesh.n_points();
+    data.points = mesh.points.data();
+    data.cell_types.resize(static_cast<std::size_t>(n_cells));
     for (Index c = 0; c < n_cells; ++c)
-        types->SetValue(c, static_cast<unsigned char>(cells.types[c]));
-
-    vtkNew<vtkCellArray> connectivity;
-    connectivity->SetData(id_array(cells.points.offsets), id_array(cells.points.values));
-
-    vtkSmartPointer<vtkIdTypeArray> face_locations;
-    vtkSmartPointer<vtkIdTypeArray> faces;
+        data.cell_types[std::size_t(c)] = static_cast<unsigned char>(cells.types[c]);
+    data.offsets = ids(cells.points.offsets);
+    data.connectivity = ids(cells.points.values);
     if (!cells.face_streams.values.empty())
     {
-        std::vector<Index> locations(static_cast<std::size_t>(n_cells), -1);
+        data.face_locations.assign(static_cast<std::size_t>(n_cells), -1);
         for (Index c = 0; c < n_cells; ++c)
             if (cells.face_streams.item_size(c) > 0)
-                locations[c] = cells.face_streams.offsets[c];
-        face_locations = id_array(locations);
-        faces = id_array(cells.face_streams.values);
+                data.face_locations[std::size_t(c)] = cells.face_streams.offsets[c];
+        data.faces = ids(cells.face_streams.values);
     }
-
-    vtkNew<vtkUnstructuredGrid> grid;
-    grid->SetPoints(to_vtk_points(mesh.points));
-    grid->SetCells(types, connectivity, face_locations, faces);
+    std::vector<double> unused;
     for (const VtkField& f : point_data)
-        grid->GetPointData()->AddArray(to_vtk(f));
-    std::vector<Index> ids(static_cast<std::size_t>(n_cells));
+        data.point_data.push_back(doubles(f, nullptr, unused));
+    VtkIds cell_ids{"cellID", std::vector<std::int64_t>(static_cast<std::size_t>(n_cells))};
     for (Index c = 0; c < n_cells; ++c)
-        ids[c] = c;
-    grid->GetCellData()->AddArray(id_array(ids, "cellID"));
+        cell_ids.values[std::size_t(c)] = c;
+    data.cell_ids.push_back(std::move(cell_ids));
     for (const VtkField& f : cell_data)
-        grid->GetCellData()->AddArray(to_vtk(f));
-
-    vtkNew<vtkXMLUnstructuredGridWriter> writer;
-    write_file_atomic(path, serialise(writer.Get(), grid, path));
+        data.cell_data.push_back(doubles(f, nullptr, unused));
+    write_file_atomic(path, serialise(data, path));
 }
 
 void write_vtp_patches(const std::filesystem::path& path, const PolyMesh& mesh,
@@ -234,26 +177,27 @@ void write_vtp_patches(const std::filesystem::path& path, const PolyMesh& mesh,
         }
     }
 
-    vtkNew<vtkCellArray> polys;
-    polys->SetData(id_array(offsets), id_array(conn));
-    vtkNew<vtkPolyData> poly;
-    poly->SetPoints(to_vtk_points(mesh.points, &point_ids));
-    poly->SetPolys(polys);
-    poly->GetPointData()->AddArray(id_array(point_ids, "pointID"));
-    for (const VtkField& f : point_data)
-        poly->GetPointData()->AddArray(to_vtk(f, &point_ids));
-    poly->GetCellData()->AddArray(id_array(patch_ids, "patchID"));
-    poly->GetCellData()->AddArray(id_array(face_ids, "faceID"));
+    Points xyz(static_cast<Eigen::Index>(point_ids.size()), 3);
+    for (std::size_t i = 0; i < point_ids.size(); ++i)
+        xyz.row(Eigen::Index(i)) = mesh.points.row(point_ids[i]);
+    VtkExport data;
+    data.kind = VtkExport::Kind::poly_data;
+    data.n_points = xyz.rows();
+    data.points = xyz.data();
+    data.offsets = ids(offsets);
+    data.connectivity = ids(conn);
+    data.point_ids.push_back({"pointID", ids(point_ids)});
+    std::vector<std::vector<double>> gathered(point_data.size());
+    for (std::size_t k = 0; k < point_data.size(); ++k)
+        data.point_data.push_back(doubles(point_data[k], &point_ids, gathered[k]));
+    data.cell_ids.push_back({"patchID", ids(patch_ids)});
+    data.cell_ids.push_back({"faceID", ids(face_ids)});
+    std::vector<double> unused;
     for (const VtkField& f : face_data)
-        poly->GetCellData()->AddArray(to_vtk(f));
-    vtkNew<vtkStringArray> names;
-    names->SetName("PatchNames");
+        data.cell_data.push_back(doubles(f, nullptr, unused));
     for (const Patch& patch : mesh.patches)
-        names->InsertNextValue(patch.name);
-    poly->GetFieldData()->AddArray(names);
-
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    write_file_atomic(path, serialise(writer.Get(), poly, path));
+        data.field_strings.push_back(patch.name);
+    write_file_atomic(path, serialise(data, path));
 }
 
 } // namespace meshmorph::io
