@@ -243,6 +243,36 @@ TEST(CheckMesh, results_do_not_depend_on_thread_count)
     EXPECT_FALSE(many.text.empty());
 }
 
+TEST(CheckMesh, without_cell_fields_the_summary_is_the_same)
+{
+    // A distorted block with an inverted cell: every summary line has something to say.
+    PolyMesh mesh =
+        test::make_block_mesh(6, 5, 4,
+                              [](double u, double v, double w) {
+                                  return Vector3(u + 0.2 * std::sin(3 * v) * w, v + 0.1 * u * u,
+                                                 w + 0.1 * std::cos(4 * u));
+                              });
+    mesh.points.row(40) += Eigen::RowVector3d(0.4, 0.3, 0.3);
+    for (const bool all_geometry : {false, true})
+    {
+        CheckMeshSettings settings;
+        settings.all_geometry = all_geometry;
+        settings.write_precision = 17;
+        const QualityReport with = check_mesh(mesh, settings);
+        settings.cell_fields = false;
+        const QualityReport without = check_mesh(mesh, settings);
+        EXPECT_EQ(without.text, with.text) << "allGeometry " << all_geometry;
+        EXPECT_EQ(without.failed_checks, with.failed_checks);
+        EXPECT_EQ(without.min_scaled_jacobian, with.min_scaled_jacobian);
+        EXPECT_EQ(with.cell_non_orthogonality.size(), mesh.n_cells);
+        EXPECT_EQ(with.cell_determinant.size(), mesh.n_cells);
+        EXPECT_EQ(without.cell_non_orthogonality.size(), 0);
+        EXPECT_EQ(without.cell_skewness.size(), 0);
+        // -allGeometry checks the determinant, so it is computed either way.
+        EXPECT_EQ(without.cell_determinant.size(), all_geometry ? mesh.n_cells : 0);
+    }
+}
+
 TEST(CheckMesh, rejects_out_of_range_vertex_labels)
 {
     PolyMesh mesh = test::make_box_mesh(1, 1, 1);

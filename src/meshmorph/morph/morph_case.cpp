@@ -27,6 +27,7 @@ MorphResult morph_case(const MorphOptions& options)
     const PolyMesh& mesh = in.foam.mesh;
     CheckMeshSettings check_settings;
     check_settings.scaled_jacobian = options.scaled_jacobian;
+    check_settings.cell_fields = false;      // the report before keeps its summary only
     const CompactList cf = cell_faces(mesh); // the topology does not change: one for all checks
     const auto start_check = [&](std::optional<BeforeCheck>& c)
     { c.emplace(mesh, cf, check_settings, in.decomposition, in.foam.points_dir); };

@@ -275,9 +275,13 @@ void run_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
     const Eigen::VectorXd skewness = face_skewness(mesh, g, coupled);
     checks.push_back(check_face_skewness(skewness, coupled.master));
     checks.push_back(check_coupled_points(coupled_point_match(mesh, g, cyclics, processors)));
-    r.cell_non_orthogonality = cell_non_orthogonality(cell_faces, ortho);
-    r.cell_skewness = cell_skewness(cell_faces, skewness);
-    r.cell_determinant = cell_determinant(mesh, cell_faces, g, dirs, mag_area, coupled);
+    if (settings.cell_fields)
+    {
+        r.cell_non_orthogonality = cell_non_orthogonality(cell_faces, ortho);
+        r.cell_skewness = cell_skewness(cell_faces, skewness);
+    }
+    if (settings.cell_fields || settings.all_geometry)
+        r.cell_determinant = cell_determinant(mesh, cell_faces, g, dirs, mag_area, coupled);
     if (settings.all_geometry)
         run_all_geometry_checks(mesh, cell_faces, g, mag_area, coupled, r);
     if (settings.mesh_quality)

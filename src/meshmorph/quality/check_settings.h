@@ -43,6 +43,11 @@ struct CheckMeshSettings
     std::string time_name = "constant";
     //! Compute the per-cell scaled Jacobian (not a checkMesh check; for JSON/VTK/morph).
     bool scaled_jacobian = true;
+    //! Keep the per-cell fields of the face metrics (QualityReport::cell_non_orthogonality,
+    //! cell_skewness, cell_determinant: what a VTK file shows). A morph that writes no VTK
+    //! reads only the summary: without them its checks skip the determinant of every cell
+    //! (as costly as the skewness), unless all_geometry checks it. The summary is the same.
+    bool cell_fields = true;
     //! -meshQuality: the criteria from system/meshQualityDict.
     std::optional<MeshQualitySettings> mesh_quality;
     //! The report of a check of the same mesh before its points moved (a morph changes no
