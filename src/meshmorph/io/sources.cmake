@@ -51,7 +51,8 @@ if(MESHMORPH_WITH_VTK)
     install(TARGETS meshmorph_vtk LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/meshmorph)
     target_compile_definitions(meshmorph_io PRIVATE
         MESHMORPH_VTK_MODULE_BUILD_PATH="$<TARGET_FILE:meshmorph_vtk>"
-        MESHMORPH_VTK_MODULE_INSTALL_PATH="${CMAKE_INSTALL_FULL_LIBDIR}/meshmorph/$<TARGET_FILE_NAME:meshmorph_vtk>")
+        MESHMORPH_VTK_MODULE_INSTALL_PATH="${CMAKE_INSTALL_FULL_LIBDIR}/meshmorph/$<TARGET_FILE_NAME:meshmorph_vtk>"
+        MESHMORPH_VTK_MODULE_INSTALL_SUBPATH="${CMAKE_INSTALL_LIBDIR}/meshmorph/$<TARGET_FILE_NAME:meshmorph_vtk>")
     # Whatever links the writer can load the module.
     add_dependencies(meshmorph_io meshmorph_vtk)
 endif()

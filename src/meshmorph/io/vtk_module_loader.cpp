@@ -6,6 +6,8 @@
 
 #include <filesystem>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include "meshmorph/core/exceptions.h"
 
@@ -35,18 +37,31 @@ VtkSerialise load_from(const std::string& path, std::string& why)
     return reinterpret_cast<VtkSerialise>(entry);
 }
 
+//! Where the module may be: the build tree (a build is run from there), beside an installed
+//! executable (<prefix>/bin/../lib/meshmorph, wherever the prefix was moved or installed
+//! to), the configured installation.
+std::vector<std::filesystem::path> module_candidates()
+{
+    std::vector<std::filesystem::path> paths{MESHMORPH_VTK_MODULE_BUILD_PATH};
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec)
+        paths.push_back(exe.parent_path().parent_path() / MESHMORPH_VTK_MODULE_INSTALL_SUBPATH);
+    paths.emplace_back(MESHMORPH_VTK_MODULE_INSTALL_PATH);
+    return paths;
+}
+
 VtkSerialise load()
 {
     std::string why;
-    // The build tree first (a build is run from there), then the installation.
-    for (const char* path : {MESHMORPH_VTK_MODULE_BUILD_PATH, MESHMORPH_VTK_MODULE_INSTALL_PATH})
+    for (const std::filesystem::path& path : module_candidates())
         if (std::filesystem::exists(path))
         {
-            if (VtkSerialise f = load_from(path, why))
+            if (VtkSerialise f = load_from(path.string(), why))
                 return f;
         }
         else
-            why += std::string("\n    ") + path + ": no such file";
+            why += "\n    " + path.string() + ": no such file";
     throw IoError("VTK output needs meshmorph's VTK module, which did not load:" + why +
                   "\n(build the target meshmorph_vtk, or install the project)");
 }
