@@ -56,6 +56,19 @@ TEST(RbfDeformation, interpolates_handles_for_every_kernel)
     }
 }
 
+TEST(RbfDeformation, keeps_its_values_at_the_handles_with_the_bits_of_an_evaluation)
+{
+    const Points x = test::random_points(300);
+    RbfDeformation rbf;
+    EXPECT_EQ(rbf.values_at_handles(), nullptr); // not fitted yet
+    rbf.fit(x, test::smooth_field(x));
+    ASSERT_NE(rbf.values_at_handles(), nullptr);
+    EXPECT_TRUE(rbf.values_at_handles()->cwiseEqual(displacements(rbf, x)).all());
+    // A refit (same handles, new displacements) keeps the new field's values.
+    rbf.refit(2.0 * test::smooth_field(x));
+    EXPECT_TRUE(rbf.values_at_handles()->cwiseEqual(displacements(rbf, x)).all());
+}
+
 TEST(RbfDeformation, interpolates_without_polynomial_for_definite_kernels)
 {
     const Points h = test::random_points(80);

@@ -240,9 +240,6 @@ struct GreedyRbfDeformation::Impl
     std::vector<Index> centre_indices;
     std::vector<double> history;
     std::vector<double> rms_history;
-    //! The model at the kept handles (their physical points) after the last round; empty
-    //! when the model changed after it (a truncated refinement).
-    Points round_values;
     //! The model at every constraint of the last fit (values_at_handles()).
     Points values_at_handles;
     // Kept after fit for handle_basis(); system refers to model, merged.centres and P.
@@ -592,13 +589,14 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
     const std::vector<Eigen::Index> initial = farthest_point_centres(X, H, U, n0, marks);
     d.system = std::make_unique<IncrementalSystem>(d.model, d.setup.sign, X, d.P, U);
     add_centres(*d.system, initial, marks);
-    const Eigen::Index iterations = refine(Xphys, H, budget, marks, clock);
-    finish_report(constraints, displacements, Index(iterations), budget);
+    Points round_values; // the model at the kept handles after the last round
+    const Eigen::Index iterations = refine(Xphys, H, budget, marks, clock, round_values);
+    finish_report(constraints, displacements, Index(iterations), budget, round_values);
 }
 
 Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::MatrixXd& H,
                                           Eigen::Index budget, CentreMarks& marks,
-                                          const Stopwatch& clock)
+                                          const Stopwatch& clock, Points& got)
 {
     Impl& d = *impl_;
     const GreedySettings& s = d.settings;
@@ -606,7 +604,6 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
     const Eigen::Index N = Xphys.rows(), p = d.P.cols();
     const double max_disp = H.rows() > 0 ? H.rowwise().norm().maxCoeff() : 0.0;
     const double rel = 1.0 / std::max(max_disp, 1e-300);
-    Points& got = d.round_values;
     got.resize(N, 3);
     Eigen::Index iterations = 0;
     double best_rms = std::numeric_limits<double>::infinity();
@@ -696,17 +693,18 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
 //! evaluated. This spares the morph an evaluation at every constraint (1e8 kernel values
 //! on the motorBike).
 Points GreedyRbfDeformation::values_at_constraints(const Impl& d,
-                                                   const Eigen::Ref<const Points>& constraints)
+                                                   const Eigen::Ref<const Points>& constraints,
+                                                   const Points& round_values)
 {
     const Eigen::Index m = constraints.rows();
     Points values(m, 3);
     std::vector<Eigen::Index> rest;
-    const bool have_round = d.round_values.rows() == Eigen::Index(d.merged.first.size());
+    const bool have_round = round_values.rows() == Eigen::Index(d.merged.first.size());
     for (Eigen::Index c = 0; c < m; ++c)
     {
         const Index kept = d.merged.representative[std::size_t(c)];
         if (have_round && d.merged.first[std::size_t(kept)] == c)
-            values.row(c) = d.round_values.row(kept);
+            values.row(c) = round_values.row(kept);
         else
             rest.push_back(c);
     }
@@ -728,7 +726,8 @@ const Points* GreedyRbfDeformation::values_at_handles() const
 
 void GreedyRbfDeformation::finish_report(const Eigen::Ref<const Points>& constraints,
                                          const Eigen::Ref<const Points>& displacements,
-                                         Index iterations, Eigen::Index budget)
+                                         Index iterations, Eigen::Index budget,
+                                         const Points& round_values)
 {
     Impl& d = *impl_;
     const IncrementalSystem& system = *d.system;
@@ -746,8 +745,7 @@ void GreedyRbfDeformation::finish_report(const Eigen::Ref<const Points>& constra
     d.report.polynomial_terms = Index(p);
     d.report.iterations = iterations;
     d.report.condition_estimate = system.condition_lower_bound();
-    d.values_at_handles = values_at_constraints(d, constraints);
-    d.round_values.resize(0, 3);
+    d.values_at_handles = values_at_constraints(d, constraints, round_values);
     detail::residual_report(d.values_at_handles, displacements, d.report);
     d.report.jump_constraints = d.jump_constraints;
     if (d.jump_constraints > 0 && !d.history.empty())

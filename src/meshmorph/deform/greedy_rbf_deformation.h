@@ -116,12 +116,15 @@ private:
     void prepare(const Eigen::Ref<const Points>& constraints,
                  const Eigen::Ref<const Points>& displacements);
     void set_model(const Eigen::MatrixXd& H);
+    //! Rounds until a criterion stops them; `round_values` ends as the kept model at the
+    //! kept handles (Xphys), or empty when the model changed after its last evaluation.
     Eigen::Index refine(const Points& Xphys, const Eigen::MatrixXd& H, Eigen::Index budget,
-                        detail::CentreMarks& marks, const Stopwatch& clock);
-    static Points values_at_constraints(const Impl& d, const Eigen::Ref<const Points>& constraints);
+                        detail::CentreMarks& marks, const Stopwatch& clock, Points& round_values);
+    static Points values_at_constraints(const Impl& d, const Eigen::Ref<const Points>& constraints,
+                                        const Points& round_values);
     void finish_report(const Eigen::Ref<const Points>& constraints,
                        const Eigen::Ref<const Points>& displacements, Index iterations,
-                       Eigen::Index budget);
+                       Eigen::Index budget, const Points& round_values);
     std::unique_ptr<Impl> impl_;
 };
 

@@ -31,7 +31,8 @@ struct RbfDeformation::Impl
     detail::RbfModel model;
     FitReport report;
     bool fitted = false;
-    Points handles; // as given to fit (for residual reports)
+    Points handles;           // as given to fit (for residual reports)
+    Points values_at_handles; // the field there (values_at_handles())
     detail::MergedHandles merged;
     Eigen::MatrixXd P; // m x p polynomial matrix at the centres
     // dense
@@ -304,7 +305,7 @@ void RbfDeformation::fit(const Eigen::Ref<const Points>& handles,
         log::warning() << "RBF (" << to_string(d.settings.kernel) << "): condition estimate "
                        << d.report.condition_estimate << " exceeds " << d.settings.condition_warning
                        << "; the interpolation may be inaccurate";
-    detail::residual_report(*this, handles, displacements, d.report);
+    report_residual(displacements);
 }
 
 void RbfDeformation::refit(const Eigen::Ref<const Points>& displacements)
@@ -330,7 +331,20 @@ void RbfDeformation::refit(const Eigen::Ref<const Points>& displacements)
                                " has a displacement different from its twin");
     d.merged.displacements = H;
     d.set_displacements(H);
-    detail::residual_report(*this, d.handles, displacements, d.report);
+    report_residual(displacements);
+}
+
+void RbfDeformation::report_residual(const Eigen::Ref<const Points>& displacements)
+{
+    Impl& d = *impl_;
+    d.values_at_handles.resize(d.handles.rows(), 3);
+    evaluate(d.handles, d.values_at_handles);
+    detail::residual_report(d.values_at_handles, displacements, d.report);
+}
+
+const Points* RbfDeformation::values_at_handles() const
+{
+    return impl_->fitted ? &impl_->values_at_handles : nullptr;
 }
 
 void RbfDeformation::write_field(FieldWriter& out) const

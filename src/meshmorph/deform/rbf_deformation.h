@@ -47,6 +47,8 @@ public:
     const FitReport& report() const override;
     bool is_fitted() const override;
     void write_field(FieldWriter& out) const override;
+    //! The field at every handle of the last fit or refit (the residual report's values).
+    const Points* values_at_handles() const override;
     const RbfSettings& settings() const;
 
     //! Centres after merging duplicates (physical coordinates, num_centres x 3).
@@ -57,6 +59,8 @@ public:
 
 private:
     struct Impl;
+    //! The field at the handles, kept, and the report's residuals from it.
+    void report_residual(const Eigen::Ref<const Points>& displacements);
     std::unique_ptr<Impl> impl_;
 };
 
