@@ -25,11 +25,15 @@ struct VtkDoubles
     const double* values = nullptr;
 };
 
-//! A named array of ids (VTK's vtkIdType, 64 bits).
+//! VTK's vtkIdType (64-bit ids, checked by the module), so that the module hands the
+//! arrays to VTK without copying them.
+using VtkId = long long;
+
+//! A named array of ids.
 struct VtkIds
 {
     std::string name;
-    std::vector<std::int64_t> values;
+    std::vector<VtkId> values;
 };
 
 struct VtkExport
@@ -42,13 +46,15 @@ struct VtkExport
     Kind kind = Kind::unstructured_grid;
     std::int64_t n_points = 0;
     const double* points = nullptr; //!< n_points x 3, row-major
+    //! Every array below, and those pointed to, must outlive the serialisation: the module
+    //! lends them to VTK instead of copying them.
     //! The cells (unstructured grid) or polygons (poly data): offsets (one more than cells)
     //! into connectivity.
-    std::vector<std::int64_t> offsets, connectivity;
+    std::vector<VtkId> offsets, connectivity;
     std::vector<unsigned char> cell_types; //!< unstructured grid: VTK cell type per cell
     //! Unstructured grid: per cell, the start of its face stream in `faces` or -1; empty
     //! when no cell is a polyhedron.
-    std::vector<std::int64_t> face_locations, faces;
+    std::vector<VtkId> face_locations, faces;
     std::vector<VtkIds> point_ids, cell_ids;
     std::vector<VtkDoubles> point_data, cell_data;
     std::vector<std::string> field_strings; //!< field data `PatchNames` (poly data), if any

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The VTK module (libmeshmorph_vtk.so): a VtkExport into VTK XML bytes through VTK's own
 // writers. Loaded by vtk_writer.cpp only when a run writes VTK (see vtk_export.h).
-#include <algorithm>
 #include <exception>
+#include <type_traits>
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -29,24 +29,29 @@ using meshmorph::io::VtkDoubles;
 using meshmorph::io::VtkExport;
 using meshmorph::io::VtkIds;
 
+static_assert(std::is_same_v<vtkIdType, meshmorph::io::VtkId>,
+              "meshmorph's VTK module needs VTK built with 64-bit ids");
+
+// The arrays are lent to VTK (SetArray with save = 1: VTK neither copies nor frees them);
+// the writers only read them, and VtkExport outlives the serialisation.
+
 vtkSmartPointer<vtkDoubleArray> to_vtk(const VtkDoubles& a)
 {
     vtkNew<vtkDoubleArray> array;
     array->SetName(a.name.c_str());
     array->SetNumberOfComponents(a.components);
-    array->SetNumberOfTuples(a.tuples);
-    std::copy(a.values, a.values + a.tuples * a.components, array->GetPointer(0));
+    array->SetArray(const_cast<double*>(a.values), a.tuples * a.components, 1);
     return array;
 }
 
-vtkSmartPointer<vtkIdTypeArray> to_vtk(const std::vector<std::int64_t>& values,
+vtkSmartPointer<vtkIdTypeArray> to_vtk(const std::vector<vtkIdType>& values,
                                        const char* name = nullptr)
 {
     vtkNew<vtkIdTypeArray> array;
     if (name)
         array->SetName(name);
-    array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
-    std::copy(values.begin(), values.end(), array->GetPointer(0));
+    array->SetArray(const_cast<vtkIdType*>(values.data()), static_cast<vtkIdType>(values.size()),
+                    1);
     return array;
 }
 
@@ -54,8 +59,7 @@ vtkSmartPointer<vtkPoints> to_vtk_points(const VtkExport& in)
 {
     vtkNew<vtkDoubleArray> xyz;
     xyz->SetNumberOfComponents(3);
-    xyz->SetNumberOfTuples(in.n_points);
-    std::copy(in.points, in.points + 3 * in.n_points, xyz->GetPointer(0));
+    xyz->SetArray(const_cast<double*>(in.points), 3 * in.n_points, 1);
     vtkNew<vtkPoints> result;
     result->SetData(xyz);
     return result;
@@ -76,8 +80,8 @@ void add_arrays(const VtkExport& in, vtkDataSet* data)
 vtkSmartPointer<vtkUnstructuredGrid> unstructured_grid(const VtkExport& in)
 {
     vtkNew<vtkUnsignedCharArray> types;
-    types->SetNumberOfTuples(static_cast<vtkIdType>(in.cell_types.size()));
-    std::copy(in.cell_types.begin(), in.cell_types.end(), types->GetPointer(0));
+    types->SetArray(const_cast<unsigned char*>(in.cell_types.data()),
+                    static_cast<vtkIdType>(in.cell_types.size()), 1);
     vtkNew<vtkCellArray> connectivity;
     connectivity->SetData(to_vtk(in.offsets), to_vtk(in.connectivity));
     vtkSmartPointer<vtkIdTypeArray> face_locations, faces;

@@ -41,24 +41,24 @@ void check_fields(const std::filesystem::path& path, const std::vector<VtkField>
     }
 }
 
-//! The field as a VTK array description; `rows` selects rows (nullptr: all, no copy),
-//! gathered into `gathered` (which must outlive the description).
-VtkDoubles doubles(const VtkField& f, const std::vector<Index>* rows, std::vector<double>& gathered)
+//! The field as an array description (no copy).
+VtkDoubles doubles(const VtkField& f)
 {
-    VtkDoubles a{f.name, static_cast<int>(f.values.cols()), f.values.rows(), f.values.data()};
-    if (rows == nullptr)
-        return a;
-    const int k = a.components;
-    gathered.resize(rows->size() * std::size_t(k));
-    for (std::size_t i = 0; i < rows->size(); ++i)
-        for (int j = 0; j < k; ++j)
-            gathered[i * std::size_t(k) + std::size_t(j)] = f.values((*rows)[i], j);
-    a.tuples = static_cast<std::int64_t>(rows->size());
-    a.values = gathered.data();
-    return a;
+    return {f.name, static_cast<int>(f.values.cols()), f.values.rows(), f.values.data()};
 }
 
-std::vector<std::int64_t> ids(const std::vector<Index>& values)
+//! The field's rows `rows`, gathered into `storage` (which must outlive the description).
+VtkDoubles gathered(const VtkField& f, const std::vector<Index>& rows, std::vector<double>& storage)
+{
+    const std::size_t k = static_cast<std::size_t>(f.values.cols());
+    storage.resize(rows.size() * k);
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        for (std::size_t j = 0; j < k; ++j)
+            storage[i * k + j] = f.values(rows[i], Eigen::Index(j));
+    return {f.name, static_cast<int>(k), static_cast<std::int64_t>(rows.size()), storage.data()};
+}
+
+std::vector<VtkId> ids(const std::vector<Index>& values)
 {
     return {values.begin(), values.end()};
 }
@@ -108,15 +108,14 @@ void write_vtu(const std::filesystem::path& path, const PolyMesh& mesh,
                 data.face_locations[std::size_t(c)] = cells.face_streams.offsets[c];
         data.faces = ids(cells.face_streams.values);
     }
-    std::vector<double> unused;
     for (const VtkField& f : point_data)
-        data.point_data.push_back(doubles(f, nullptr, unused));
-    VtkIds cell_ids{"cellID", std::vector<std::int64_t>(static_cast<std::size_t>(n_cells))};
+        data.point_data.push_back(doubles(f));
+    VtkIds cell_ids{"cellID", std::vector<VtkId>(static_cast<std::size_t>(n_cells))};
     for (Index c = 0; c < n_cells; ++c)
         cell_ids.values[std::size_t(c)] = c;
     data.cell_ids.push_back(std::move(cell_ids));
     for (const VtkField& f : cell_data)
-        data.cell_data.push_back(doubles(f, nullptr, unused));
+        data.cell_data.push_back(doubles(f));
     write_file_atomic(path, serialise(data, path));
 }
 
@@ -187,14 +186,13 @@ void write_vtp_patches(const std::filesystem::path& path, const PolyMesh& mesh,
     data.offsets = ids(offsets);
     data.connectivity = ids(conn);
     data.point_ids.push_back({"pointID", ids(point_ids)});
-    std::vector<std::vector<double>> gathered(point_data.size());
+    std::vector<std::vector<double>> storage(point_data.size());
     for (std::size_t k = 0; k < point_data.size(); ++k)
-        data.point_data.push_back(doubles(point_data[k], &point_ids, gathered[k]));
+        data.point_data.push_back(gathered(point_data[k], point_ids, storage[k]));
     data.cell_ids.push_back({"patchID", ids(patch_ids)});
     data.cell_ids.push_back({"faceID", ids(face_ids)});
-    std::vector<double> unused;
     for (const VtkField& f : face_data)
-        data.cell_data.push_back(doubles(f, nullptr, unused));
+        data.cell_data.push_back(doubles(f));
     for (const Patch& patch : mesh.patches)
         data.field_strings.push_back(patch.name);
     write_file_atomic(path, serialise(data, path));
