@@ -60,6 +60,18 @@ inline Points smooth_field(const Points& x)
     return d;
 }
 
+//! What a global fit leaves for its IDW correction: values within 1e-2 everywhere (a smooth
+//! field scaled down), except a few large ones (0.6 in z) on the points with z below
+//! `jump_below`, like the jumps under the motorBike's tyres.
+inline Points residual_like_field(const Points& x, double jump_below)
+{
+    Points r = smooth_field(x) * 0.1;
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+        if (x(i, 2) < jump_below)
+            r(i, 2) = -0.6;
+    return r;
+}
+
 inline double max_norm(const Points& d)
 {
     double m = 0.0;

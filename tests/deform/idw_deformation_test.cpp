@@ -9,6 +9,7 @@
 #include "deform_test_helpers.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/deform/idw_deformation.h"
+#include "meshmorph/deform/idw_tree.h"
 
 namespace meshmorph
 {
@@ -123,6 +124,40 @@ TEST(IdwDeformation, default_tree_keeps_its_documented_accuracy)
     const auto [max_err, rms_err] = tree_error(body_in_box(), IdwSettings{}.theta);
     EXPECT_LE(max_err, 2e-3);
     EXPECT_LE(rms_err, 5e-4);
+}
+
+TEST(IdwDeformation, quiet_nodes_expanded_from_nearer_keep_the_error_of_theta)
+{
+    // The residual a global fit leaves: small values (<= 1e-2) but for a few large ones on
+    // the body's bottom. Nodes of small values only are expanded at 1.75 theta (IdwTree);
+    // the error stays that of theta where the same ratio for every node would not.
+    BodyInBox b = body_in_box();
+    const Eigen::Index n_body = 3000; // body_in_box(): the sphere's points first
+    b.values = test::residual_like_field(b.handles, 0.32);
+    b.values.bottomRows(b.handles.rows() - n_body) =
+        test::smooth_field(b.handles.bottomRows(b.handles.rows() - n_body)) * 0.1;
+    const Index n_large = (b.handles.topRows(n_body).col(2).array() < 0.32).count();
+    ASSERT_GT(n_large, 20);
+    ASSERT_LT(n_large, b.handles.rows() / 20);
+    const auto error_of = [&](double theta, double quiet_band)
+    {
+        IdwDeformation exact(direct());
+        IdwSettings s;
+        s.theta = theta;
+        IdwDeformation tree(s);
+        exact.fit(b.handles, b.values);
+        tree.fit(b.handles, b.values, quiet_band);
+        const Eigen::VectorXd err =
+            (displacements(tree, b.queries) - displacements(exact, b.queries)).rowwise().norm();
+        return err.maxCoeff() / test::max_norm(b.values);
+    };
+    const double plain = error_of(0.2, 0.0);
+    const double quiet = error_of(0.2, 1e-2);
+    const double loose = error_of(0.2 * detail::quiet_theta_factor, 0.0);
+    EXPECT_LE(quiet, 2e-3); // the default's contract on this set-up
+    EXPECT_LE(quiet, 2.0 * plain);
+    EXPECT_GT(loose, 2.0 * quiet);
+    EXPECT_NE(quiet, plain); // the band made nodes quiet
 }
 
 TEST(IdwDeformation, a_points_value_does_not_depend_on_the_points_queried_with_it)

@@ -22,6 +22,22 @@ void detail::limit_to_ball(Eigen::Ref<Points> d, double radius)
     }
 }
 
+namespace
+{
+
+//! The residuals the correction's tree may treat as quiet (detail::IdwTree): those within
+//! the global part's largest residual on the constraints it fits (all but the jumps a greedy
+//! RBF leaves out, whose residuals are large and few), but at most 1/32 of the largest
+//! prescription: a quiet node's error per unit of value is ~11 times that of theta (4th
+//! power of 1.75), so values within 1/32 add less error than the default theta allows.
+double quiet_band(const FitReport& global, const Eigen::Ref<const Points>& displacements)
+{
+    const double largest = displacements.rowwise().norm().maxCoeff();
+    return std::min(global.max_fitted_residual, largest / 32.0);
+}
+
+} // namespace
+
 CorrectedDeformation::CorrectedDeformation(std::unique_ptr<SpaceDeformation> global,
                                            const IdwSettings& correction, bool limit)
     : global_(std::move(global)), correction_(correction), limit_(limit)
@@ -65,7 +81,7 @@ void CorrectedDeformation::fit(const Eigen::Ref<const Points>& handles,
         global_->evaluate(handles, residual);
         residual = displacements - residual;
     }
-    correction_.fit(handles, residual);
+    correction_.fit(handles, residual, quiet_band(global_->report(), displacements));
     report_ = global_->report();
     report_.method += "+idw";
     report_.max_displacement = displacements.rowwise().norm().maxCoeff();

@@ -126,8 +126,9 @@ std::unique_ptr<SpaceDeformation> read_idw(FieldReader& in)
     const IdwSettings settings = in.get<IdwSettings>();
     const Points handles = in.get_matrix<Points>();
     const Points values = in.get_matrix<Points>();
+    const double quiet_band = in.get<double>();
     auto idw = std::make_unique<IdwDeformation>(settings);
-    idw->fit(handles, values);
+    idw->fit(handles, values, quiet_band);
     return std::make_unique<WrappedField>(std::move(idw));
 }
 

@@ -25,13 +25,15 @@ struct IdwNode
     double trace[4] = {};       //!< of second, second_v[0..2]
     //! Written without its sources (write_essential): it must only ever be far.
     bool moments_only = false;
+    //! All its values are small: expanded from nearer (idw_tree.h, quiet nodes).
+    bool quiet = false;
 };
 
 //! What the traversal reads of a node, apart from its moments (48 bytes, so that the
 //! nodes a query block visits stay in the cache).
 struct IdwProbe
 {
-    double cx, cy, cz, radius;
+    double cx, cy, cz, radius; //!< radius: the node's opening radius
     Index child;
     bool moments_only;
 };

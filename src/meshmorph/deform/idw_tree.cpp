@@ -27,9 +27,16 @@ namespace
 
 constexpr Index source_leaf = 16;
 
+//! The radius the opening test compares with theta times the distance.
+double opening_radius(const IdwNode& node)
+{
+    return node.quiet ? node.radius / quiet_theta_factor : node.radius;
+}
+
 } // namespace
 
-IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& weight, double theta)
+IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& weight, double theta,
+                 double quiet_band)
     : weight_(weight), theta_(theta)
 {
     std::vector<Index> order;
@@ -58,9 +65,24 @@ IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& w
         nodes_[k].child = split[k].child;
         compute_moments(nodes_[k]);
     }
+    mark_quiet_nodes(quiet_band);
     index_probes();
     index_single_sources();
     index_lone_sources();
+}
+
+void IdwTree::mark_quiet_nodes(double quiet_band)
+{
+    if (!(quiet_band > 0.0))
+        return;
+    const double band2 = quiet_band * quiet_band;
+    std::vector<char> quiet(vx_.size());
+    for (std::size_t j = 0; j < quiet.size(); ++j)
+        quiet[j] = vx_[j] * vx_[j] + vy_[j] * vy_[j] + vz_[j] * vz_[j] <= band2;
+    for (Node& node : nodes_)
+        if (std::all_of(quiet.begin() + node.begin, quiet.begin() + node.end,
+                        [](char q) { return q != 0; }))
+            node.quiet = true;
 }
 
 void IdwTree::shift_values()
@@ -83,7 +105,7 @@ void IdwTree::index_probes()
     for (std::size_t k = 0; k < nodes_.size(); ++k)
     {
         const Node& n = nodes_[k];
-        probes_[k] = {n.cx, n.cy, n.cz, n.radius, n.child, n.moments_only};
+        probes_[k] = {n.cx, n.cy, n.cz, opening_radius(n), n.child, n.moments_only};
         FarMoments& m = moments_f_[k];
         m.count = float(n.count);
         for (int a = 0; a < 3; ++a)
@@ -316,7 +338,7 @@ void IdwTree::write_essential(FieldWriter& out, const Vector3& lo, const Vector3
         const double c[3] = {node.cx, node.cy, node.cz};
         // Far for every point of the box (with the margin of interaction_lists).
         const double gap = distance_to_box(c, lo, hi);
-        if (gap > 0.0 && node.radius < (1.0 - 1e-9) * theta_ * gap)
+        if (gap > 0.0 && opening_radius(node) < (1.0 - 1e-9) * theta_ * gap)
         {
             node.moments_only = true;
             node.child = -1;
