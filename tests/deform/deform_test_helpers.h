@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "meshmorph/core/types.h"
 
@@ -70,6 +71,15 @@ inline Points residual_like_field(const Points& x, double jump_below)
         if (x(i, 2) < jump_below)
             r(i, 2) = -0.6;
     return r;
+}
+
+//! Per row of residual_like_field(): 1 (quiet) for the small values, 0 for the large ones.
+inline std::vector<char> small_values(const Points& r)
+{
+    std::vector<char> quiet(std::size_t(r.rows()));
+    for (Eigen::Index i = 0; i < r.rows(); ++i)
+        quiet[std::size_t(i)] = r.row(i).norm() < 0.1;
+    return quiet;
 }
 
 inline double max_norm(const Points& d)

@@ -2,6 +2,8 @@
 // Properties of the greedy RBF refinement: meets its tolerance with far fewer centres than
 // constraints on a smooth field, and with every constraint as a centre equals the full fit
 // (which checks the incremental factorisation).
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #ifdef _OPENMP
@@ -11,6 +13,7 @@
 #include "deform_test_helpers.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
+#include "meshmorph/deform/corrected_deformation.h"
 #include "meshmorph/deform/greedy_rbf_deformation.h"
 
 namespace meshmorph
@@ -257,9 +260,21 @@ TEST(GreedyRbfDeformation, spread_batches_reach_the_tolerance_with_the_contact_l
     EXPECT_GT(jumps, 0);
     EXPECT_GE(spread.jump_constraints(), jumps);
     EXPECT_LT(spread.jump_constraints(), x.rows() / 10);
-    // Each kept centre is interpolated exactly; none is a jump constraint.
+    // Each kept centre is interpolated exactly (the polynomial's unisolvent points may lie on
+    // a jump; no other centre does).
+    const std::vector<char>* left_out = spread.handles_left_out();
+    ASSERT_NE(left_out, nullptr);
+    ASSERT_EQ(Eigen::Index(left_out->size()), x.rows());
+    EXPECT_EQ(std::count(left_out->begin(), left_out->end(), 1), spread.jump_constraints());
     for (Index c : spread.centre_indices())
         EXPECT_NEAR((got.row(c) - d.row(c)).norm(), 0.0, 1e-9 * lift);
+    // The correction's tree expands clusters of the others from nearer (IdwTree, quiet
+    // nodes): the corrected field is still exact at every constraint.
+    CorrectedDeformation corrected(std::make_unique<GreedyRbfDeformation>(s));
+    corrected.fit(x, d);
+    Points exact(x.rows(), 3);
+    corrected.evaluate(x, exact);
+    EXPECT_LE((exact - d).cwiseAbs().maxCoeff(), 1e-12 * lift);
 }
 
 //! values_at_handles() is the field at every constraint bit for bit, as evaluate() gives it

@@ -25,15 +25,23 @@ void detail::limit_to_ball(Eigen::Ref<Points> d, double radius)
 namespace
 {
 
-//! The residuals the correction's tree may treat as quiet (detail::IdwTree): those within
-//! the global part's largest residual on the constraints it fits (all but the jumps a greedy
-//! RBF leaves out, whose residuals are large and few), but at most 1/32 of the largest
+//! The handles whose residuals the correction's tree may treat as quiet (detail::IdwTree):
+//! all but those the global part left out (a greedy RBF's jumps, whose residuals are large
+//! and few). None when the global part fits the others to worse than 1/32 of the largest
 //! prescription: a quiet node's error per unit of value is ~11 times that of theta (4th
-//! power of 1.75), so values within 1/32 add less error than the default theta allows.
-double quiet_band(const FitReport& global, const Eigen::Ref<const Points>& displacements)
+//! power of 1.75), so only residuals within 1/32 keep the error theta allows.
+std::vector<char> quiet_handles(const SpaceDeformation& global,
+                                const Eigen::Ref<const Points>& displacements)
 {
     const double largest = displacements.rowwise().norm().maxCoeff();
-    return std::min(global.max_fitted_residual, largest / 32.0);
+    if (!(global.report().max_fitted_residual <= largest / 32.0))
+        return {};
+    std::vector<char> quiet(std::size_t(displacements.rows()), 1);
+    if (const std::vector<char>* left_out = global.handles_left_out();
+        left_out && left_out->size() == quiet.size())
+        for (std::size_t i = 0; i < quiet.size(); ++i)
+            quiet[i] = !(*left_out)[i];
+    return quiet;
 }
 
 } // namespace
@@ -81,7 +89,7 @@ void CorrectedDeformation::fit(const Eigen::Ref<const Points>& handles,
         global_->evaluate(handles, residual);
         residual = displacements - residual;
     }
-    correction_.fit(handles, residual, quiet_band(global_->report(), displacements));
+    correction_.fit(handles, residual, quiet_handles(*global_, displacements));
     report_ = global_->report();
     report_.method += "+idw";
     report_.max_displacement = displacements.rowwise().norm().maxCoeff();

@@ -126,9 +126,11 @@ std::unique_ptr<SpaceDeformation> read_idw(FieldReader& in)
     const IdwSettings settings = in.get<IdwSettings>();
     const Points handles = in.get_matrix<Points>();
     const Points values = in.get_matrix<Points>();
-    const double quiet_band = in.get<double>();
+    const std::vector<char> quiet = in.get_vector<char>();
+    if (!quiet.empty() && Index(quiet.size()) != Index(handles.rows()))
+        throw IoError("fitted field: IDW quiet flags for another number of handles");
     auto idw = std::make_unique<IdwDeformation>(settings);
-    idw->fit(handles, values, quiet_band);
+    idw->fit(handles, values, quiet);
     return std::make_unique<WrappedField>(std::move(idw));
 }
 

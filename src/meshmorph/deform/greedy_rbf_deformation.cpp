@@ -242,6 +242,8 @@ struct GreedyRbfDeformation::Impl
     std::vector<double> rms_history;
     //! The model at every constraint of the last fit (values_at_handles()).
     Points values_at_handles;
+    //! Per constraint of the last fit: on a jump (handles_left_out()).
+    std::vector<char> left_out;
     // Kept after fit for handle_basis(); system refers to model, merged.centres and P.
     Index num_inputs = 0;
     detail::MergedHandles merged;
@@ -591,6 +593,9 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
     add_centres(*d.system, initial, marks);
     Points round_values; // the model at the kept handles after the last round
     const Eigen::Index iterations = refine(Xphys, H, budget, marks, clock, round_values);
+    d.left_out.resize(std::size_t(d.num_inputs));
+    for (std::size_t i = 0; i < d.left_out.size(); ++i)
+        d.left_out[i] = marks.jump[std::size_t(d.merged.representative[i])];
     finish_report(constraints, displacements, Index(iterations), budget, round_values);
 }
 
@@ -717,6 +722,11 @@ Points GreedyRbfDeformation::values_at_constraints(const Impl& d,
     for (std::size_t k = 0; k < rest.size(); ++k)
         values.row(rest[k]) = got.row(Eigen::Index(k));
     return values;
+}
+
+const std::vector<char>* GreedyRbfDeformation::handles_left_out() const
+{
+    return impl_->fitted && impl_->jump_constraints > 0 ? &impl_->left_out : nullptr;
 }
 
 const Points* GreedyRbfDeformation::values_at_handles() const

@@ -91,6 +91,8 @@ public:
     void write_field(FieldWriter& out) const override;
     //! The field at every constraint of the last fit (the residual report's values).
     const Points* values_at_handles() const override;
+    //! The constraints on jumps (GreedySettings::jump_slope), never centres and not fitted.
+    const std::vector<char>* handles_left_out() const override;
     //! True when both tolerances were met (false when the budget stopped the refinement).
     bool converged() const;
     //! Indices (into the constraints given to fit) of the selected centres.

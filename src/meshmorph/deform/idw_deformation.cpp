@@ -20,7 +20,7 @@ struct IdwDeformation::Impl
     double scale = 1.0; //!< L: the handles' bounding-box diagonal
     std::optional<detail::IdwTree> tree;
     Points handles, displacements; //!< as fitted, for write_field()
-    double quiet_band = 0.0;       //!< as fitted (see fit())
+    std::vector<char> quiet;       //!< as fitted (see fit())
 };
 
 IdwDeformation::IdwDeformation(const IdwSettings& settings) : impl_(std::make_unique<Impl>())
@@ -41,11 +41,12 @@ IdwDeformation& IdwDeformation::operator=(IdwDeformation&&) noexcept = default;
 void IdwDeformation::fit(const Eigen::Ref<const Points>& handles,
                          const Eigen::Ref<const Points>& displacements)
 {
-    fit(handles, displacements, 0.0);
+    fit(handles, displacements, {});
 }
 
 void IdwDeformation::fit(const Eigen::Ref<const Points>& handles,
-                         const Eigen::Ref<const Points>& displacements, double quiet_band)
+                         const Eigen::Ref<const Points>& displacements,
+                         const std::vector<char>& quiet)
 {
     detail::check_fit_arguments(handles, displacements);
     Impl& d = *impl_;
@@ -61,10 +62,13 @@ void IdwDeformation::fit(const Eigen::Ref<const Points>& handles,
     const IdwSettings& s = d.settings;
     const detail::IdwWeight weight{s.far_exponent, s.near_exponent,
                                    std::pow(s.alpha, s.near_exponent)};
-    d.tree.emplace(normalised, Points(displacements), weight, s.theta, quiet_band);
+    if (!quiet.empty() && Index(quiet.size()) != Index(handles.rows()))
+        throw InvalidInput("IDW: " + std::to_string(quiet.size()) + " quiet flags for " +
+                           std::to_string(handles.rows()) + " handles");
+    d.tree.emplace(normalised, Points(displacements), weight, s.theta, quiet);
     d.handles = handles;
     d.displacements = displacements;
-    d.quiet_band = quiet_band;
+    d.quiet = quiet;
     d.report = FitReport{};
     d.report.method = "idw";
     d.report.solver = s.theta > 0.0 ? "tree (second-order far field)" : "direct sum";
@@ -98,7 +102,7 @@ void IdwDeformation::write_field(FieldWriter& out) const
     out.put(impl_->settings);
     out.put_matrix(impl_->handles);
     out.put_matrix(impl_->displacements);
-    out.put(impl_->quiet_band);
+    out.put_vector(impl_->quiet);
 }
 
 IdwDeformation IdwDeformation::read_local(FieldReader& in)

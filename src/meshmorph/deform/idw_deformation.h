@@ -52,11 +52,11 @@ public:
     //! coincide the value is one of theirs (which one is unspecified).
     void fit(const Eigen::Ref<const Points>& handles,
              const Eigen::Ref<const Points>& displacements) override;
-    //! As fit(), with the handles whose displacement has a norm <= quiet_band quiet: the
+    //! As fit(), with the handles flagged in `quiet` (one per handle, 1: quiet) quiet: the
     //! tree expands clusters of them from nearer (detail::IdwTree, quiet nodes). For the
-    //! residual of a global fit, whose values are small but for a few.
+    //! residual of a global fit, small but on the few handles the fit left out.
     void fit(const Eigen::Ref<const Points>& handles, const Eigen::Ref<const Points>& displacements,
-             double quiet_band);
+             const std::vector<char>& quiet);
     //! OpenMP over points; per point independent of the thread count.
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     const FitReport& report() const override;

@@ -36,7 +36,7 @@ double opening_radius(const IdwNode& node)
 } // namespace
 
 IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& weight, double theta,
-                 double quiet_band)
+                 const std::vector<char>& quiet)
     : weight_(weight), theta_(theta)
 {
     std::vector<Index> order;
@@ -65,24 +65,24 @@ IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& w
         nodes_[k].child = split[k].child;
         compute_moments(nodes_[k]);
     }
-    mark_quiet_nodes(quiet_band);
+    mark_quiet_nodes(quiet, order);
     index_probes();
     index_single_sources();
     index_lone_sources();
 }
 
-void IdwTree::mark_quiet_nodes(double quiet_band)
+void IdwTree::mark_quiet_nodes(const std::vector<char>& quiet, const std::vector<Index>& order)
 {
-    if (!(quiet_band > 0.0))
+    if (quiet.empty())
         return;
-    const double band2 = quiet_band * quiet_band;
-    std::vector<char> quiet(vx_.size());
-    for (std::size_t j = 0; j < quiet.size(); ++j)
-        quiet[j] = vx_[j] * vx_[j] + vy_[j] * vy_[j] + vz_[j] * vz_[j] <= band2;
+    if (quiet.size() != order.size())
+        throw std::invalid_argument("IdwTree: a quiet flag per source expected");
+    std::vector<char> in_tree_order(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+        in_tree_order[i] = quiet[std::size_t(order[i])];
     for (Node& node : nodes_)
-        if (std::all_of(quiet.begin() + node.begin, quiet.begin() + node.end,
-                        [](char q) { return q != 0; }))
-            node.quiet = true;
+        node.quiet = std::all_of(in_tree_order.begin() + node.begin,
+                                 in_tree_order.begin() + node.end, [](char q) { return q != 0; });
 }
 
 void IdwTree::shift_values()

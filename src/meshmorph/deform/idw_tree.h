@@ -38,14 +38,16 @@
 //! sum_j w_j |v_j - mean(x)| / D(x) over the node's sources. Where nearly every value is small
 //! and a few are large (the residual of a global fit: within the fit's tolerance except on
 //! the jumps it leaves out), a node of small values adds little error even expanded from
-//! nearer: a node whose values all have a norm <= `quiet_band` is expanded when its radius
-//! is below quiet_theta_factor x theta times the distance (1.75: 0.35 for the default 0.2).
-//! Nodes holding a large value keep theta. On the motorBike's IDW correction (5% lift: 497
-//! of 56756 values on jumps, up to 0.64 of the lift) the evaluate stage went from 0.74 s to
-//! 0.47 s, its error against the direct sum from 1.4e-4 to 2.5e-4 of the largest
-//! displacement; at a 13.5% lift from 0.73 s to 0.40 s, error 3.3e-4 before and after.
-//! Factor 1.5: 1.5e-4 and 3.1e-4; 2: 4.6e-4 and 7.1e-4, above the 6.6e-4 that theta 0.2
-//! gives IDW of the displacements. The same theta 0.3 for every node gave 6.2e-4 and 2.3e-3.
+//! nearer. The caller says which sources are quiet (the correction: all but the global
+//! fit's jumps, a choice made by the fit, not by comparing values here, so that it is the
+//! same in every build); a node of quiet sources only is expanded when its radius is below
+//! quiet_theta_factor x theta times the distance (1.75: 0.35 for the default 0.2), the
+//! others keep theta. On the motorBike's IDW correction (5% lift: 497 of 56756 values on
+//! jumps, up to 0.64 of the lift) the morph's evaluate stage went from 0.74 s to 0.46-0.50 s,
+//! its error against the direct sum from 1.4e-4 to 2.5e-4 of the largest displacement; at a
+//! 13.5% lift from 0.73 s to 0.40-0.41 s, error 3.3e-4 before and after. Factor 1.5: 1.5e-4 and
+//! 3.1e-4; 2: 4.6e-4 and 7.1e-4, above the 6.6e-4 that theta 0.2 gives IDW of the
+//! displacements. The same theta 0.3 for every node gave 6.2e-4 and 2.3e-3.
 #pragma once
 
 #include <cstdint>
@@ -93,10 +95,11 @@ inline constexpr double quiet_theta_factor = 1.75;
 class IdwTree
 {
 public:
-    //! Sources in normalised coordinates (m x 3, m >= 1) and their values (m x 3); nodes
-    //! whose values all have a norm <= quiet_band are quiet (see above; 0: none is).
+    //! Sources in normalised coordinates (m x 3, m >= 1) and their values (m x 3); a node
+    //! whose sources are all quiet (per source, 1: quiet) is a quiet node (see above); an
+    //! empty `quiet`: none is.
     IdwTree(const Points& sources, const Points& values, const IdwWeight& weight, double theta,
-            double quiet_band = 0.0);
+            const std::vector<char>& quiet = {});
 
     //! \brief The locally essential tree for queries in the box lo..hi (normalised units),
     //! the parallel Barnes-Hut idea: a node far for every point of the box (radius < theta
@@ -130,7 +133,7 @@ private:
     //! ux_, uy_, uz_ from the values and mid_.
     void shift_values();
     //! Opening radii of the quiet nodes (see the file's comment).
-    void mark_quiet_nodes(double quiet_band);
+    void mark_quiet_nodes(const std::vector<char>& quiet, const std::vector<Index>& order);
     //! The traversal's probes and the nodes' moments in single precision.
     void index_probes();
     //! The sources relative to their leaf's centroid and their values, in single precision.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "meshmorph/core/types.h"
 
@@ -64,6 +65,9 @@ public:
     //! when the method kept them from its own residual report, else nullptr. A caller that
     //! needs them (CorrectedDeformation) then does not evaluate d at every handle again.
     virtual const Points* values_at_handles() const { return nullptr; }
+    //! Per handle of the last fit(): 1 where the method left the handle to a local
+    //! correction (a greedy RBF's jumps), else 0; nullptr when it leaves none out.
+    virtual const std::vector<char>* handles_left_out() const { return nullptr; }
 };
 
 //! \brief d(x) for every row of points (n x 3), returned by value.
