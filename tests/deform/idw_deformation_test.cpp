@@ -287,6 +287,10 @@ TEST(IdwDeformation, invalid_settings_and_use_before_fit_are_errors)
     Points out(1, 3);
     EXPECT_THROW(idw.evaluate(Points::Zero(1, 3), out), InvalidInput);
     EXPECT_THROW(idw.fit(Points(0, 3), Points(0, 3)), InvalidInput);
+    // One quiet flag per handle, or none.
+    const Points h = test::random_points(5);
+    EXPECT_THROW(idw.fit(h, h, std::vector<char>(4, 1)), InvalidInput);
+    EXPECT_FALSE(idw.is_fitted());
 }
 
 } // namespace meshmorph

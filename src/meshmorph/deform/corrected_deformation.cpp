@@ -30,13 +30,11 @@ namespace
 //! and few). None when the global part fits the others to worse than 1/32 of the largest
 //! prescription: a quiet node's error per unit of value is ~11 times that of theta (4th
 //! power of 1.75), so only residuals within 1/32 keep the error theta allows.
-std::vector<char> quiet_handles(const SpaceDeformation& global,
-                                const Eigen::Ref<const Points>& displacements)
+std::vector<char> quiet_handles(const SpaceDeformation& global, Index handles, double largest)
 {
-    const double largest = displacements.rowwise().norm().maxCoeff();
     if (!(global.report().max_fitted_residual <= largest / 32.0))
         return {};
-    std::vector<char> quiet(std::size_t(displacements.rows()), 1);
+    std::vector<char> quiet(std::size_t(handles), 1);
     if (const std::vector<char>* left_out = global.handles_left_out();
         left_out && left_out->size() == quiet.size())
         for (std::size_t i = 0; i < quiet.size(); ++i)
@@ -89,10 +87,11 @@ void CorrectedDeformation::fit(const Eigen::Ref<const Points>& handles,
         global_->evaluate(handles, residual);
         residual = displacements - residual;
     }
-    correction_.fit(handles, residual, quiet_handles(*global_, displacements));
+    const double largest = displacements.rowwise().norm().maxCoeff();
+    correction_.fit(handles, residual, quiet_handles(*global_, handles.rows(), largest));
     report_ = global_->report();
     report_.method += "+idw";
-    report_.max_displacement = displacements.rowwise().norm().maxCoeff();
+    report_.max_displacement = largest;
     report_.max_residual = residual.rowwise().norm().maxCoeff();
     if (report_.jump_constraints == 0)
         report_.max_fitted_residual = report_.max_residual;

@@ -49,6 +49,9 @@ void IdwDeformation::fit(const Eigen::Ref<const Points>& handles,
                          const std::vector<char>& quiet)
 {
     detail::check_fit_arguments(handles, displacements);
+    if (!quiet.empty() && Index(quiet.size()) != Index(handles.rows()))
+        throw InvalidInput("IDW: " + std::to_string(quiet.size()) + " quiet flags for " +
+                           std::to_string(handles.rows()) + " handles");
     Impl& d = *impl_;
     d.tree.reset();
     const Vector3 lo = handles.colwise().minCoeff().transpose();
@@ -62,9 +65,6 @@ void IdwDeformation::fit(const Eigen::Ref<const Points>& handles,
     const IdwSettings& s = d.settings;
     const detail::IdwWeight weight{s.far_exponent, s.near_exponent,
                                    std::pow(s.alpha, s.near_exponent)};
-    if (!quiet.empty() && Index(quiet.size()) != Index(handles.rows()))
-        throw InvalidInput("IDW: " + std::to_string(quiet.size()) + " quiet flags for " +
-                           std::to_string(handles.rows()) + " handles");
     d.tree.emplace(normalised, Points(displacements), weight, s.theta, quiet);
     d.handles = handles;
     d.displacements = displacements;

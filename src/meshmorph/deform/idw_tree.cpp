@@ -74,9 +74,7 @@ IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& w
 void IdwTree::mark_quiet_nodes(const std::vector<char>& quiet, const std::vector<Index>& order)
 {
     if (quiet.empty())
-        return;
-    if (quiet.size() != order.size())
-        throw std::invalid_argument("IdwTree: a quiet flag per source expected");
+        return; // IdwDeformation::fit checked the size otherwise
     std::vector<char> in_tree_order(order.size());
     for (std::size_t i = 0; i < order.size(); ++i)
         in_tree_order[i] = quiet[std::size_t(order[i])];
