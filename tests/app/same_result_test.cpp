@@ -92,13 +92,13 @@ TEST(SameResult, greedy_rbf_with_idw_correction_writes_the_same_points_with_1_2_
 
 TEST(SameResult, the_points_do_not_depend_on_how_the_process_gets_its_memory)
 {
-    // By default morphMesh runs itself again with glibc's huge-page tunable
-    // (app/process_memory.h); MESHMORPH_HUGE_PAGES=0 keeps the first process. The arguments
+    // With MESHMORPH_HUGE_PAGES=1 morphMesh runs itself again with glibc's huge-page
+    // tunable (app/process_memory.h); by default it keeps the first process. The arguments
     // must survive the re-execution, and the points must not change.
     const fs::path source =
         test::venturi_case("same_memory", 0.3, "rbf { greedy { tolerance 1e-2; } }\n");
-    const Points plain = morph_with_threads(source, 2, "MESHMORPH_HUGE_PAGES=0");
-    const Points huge = morph_with_threads(source, 2);
+    const Points plain = morph_with_threads(source, 2);
+    const Points huge = morph_with_threads(source, 2, "MESHMORPH_HUGE_PAGES=1");
     ASSERT_GT(plain.rows(), 0);
     ASSERT_EQ(huge.rows(), plain.rows());
     EXPECT_EQ((huge - plain).cwiseAbs().maxCoeff(), 0.0);

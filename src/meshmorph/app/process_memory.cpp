@@ -48,7 +48,7 @@ void restart_with_huge_pages(char** argv)
 {
     const std::string tunables = environment("GLIBC_TUNABLES");
     if (!glibc_has_hugetlb_tunable || sanitized || argv == nullptr ||
-        environment("MESHMORPH_HUGE_PAGES") == "0" ||
+        environment("MESHMORPH_HUGE_PAGES") != "1" ||
         tunables.find("glibc.malloc.hugetlb") != std::string::npos || under_valgrind() ||
         !kernel_has_huge_pages())
         return;
