@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 
 #include <Eigen/LU>
@@ -400,16 +401,18 @@ struct RankedCandidate
 std::vector<std::vector<Eigen::Index>> octaves(const std::vector<Eigen::Index>& cand,
                                                const Eigen::VectorXd& err, double unit)
 {
-    std::vector<std::pair<int, Eigen::Index>> keyed(cand.size());
-    for (std::size_t k = 0; k < cand.size(); ++k)
-        keyed[k] = {-std::ilogb(err[cand[k]] / unit), cand[k]};
-    std::sort(keyed.begin(), keyed.end());
+    // Bucketed by octave (a handful per round) instead of sorting every candidate: the
+    // same groups, each in index order.
+    std::map<int, std::vector<Eigen::Index>> by_octave; // largest octave first: key -ilogb
+    for (Eigen::Index j : cand)
+        by_octave[-std::ilogb(err[j] / unit)].push_back(j);
     std::vector<std::vector<Eigen::Index>> groups;
-    for (std::size_t k = 0; k < keyed.size(); ++k)
+    groups.reserve(by_octave.size());
+    for (auto& [key, group] : by_octave)
     {
-        if (k == 0 || keyed[k].first != keyed[k - 1].first)
-            groups.emplace_back();
-        groups.back().push_back(keyed[k].second);
+        if (!std::is_sorted(group.begin(), group.end()))
+            std::sort(group.begin(), group.end());
+        groups.push_back(std::move(group));
     }
     return groups;
 }
@@ -440,22 +443,62 @@ struct PointSet
     }
 };
 
+//! Squared distance from each of X's points `queries` to the nearest of its points
+//! `centres` (infinity if there are none). Blocks of queries against one centre at a time,
+//! so that the loop over a block vectorises without a reduction; each query's minimum is
+//! taken over the centres in order, so the values do not depend on the threads.
+std::vector<double> nearest_distances2(const std::vector<Eigen::Index>& queries, const Points& X,
+                                       const std::vector<Eigen::Index>& centres)
+{
+    constexpr std::size_t block = 64;
+    const std::size_t n = queries.size(), m = centres.size();
+    std::vector<double> cx(m), cy(m), cz(m);
+    for (std::size_t j = 0; j < m; ++j)
+    {
+        cx[j] = X(centres[j], 0);
+        cy[j] = X(centres[j], 1);
+        cz[j] = X(centres[j], 2);
+    }
+    std::vector<double> d2(n, std::numeric_limits<double>::infinity());
+    const std::int64_t blocks = std::int64_t((n + block - 1) / block);
+#pragma omp parallel for schedule(static) if (n * m > 100000)
+    for (std::int64_t b = 0; b < blocks; ++b)
+    {
+        const std::size_t i0 = std::size_t(b) * block, count = std::min(block, n - i0);
+        alignas(64) double px[block], py[block], pz[block], best[block];
+        for (std::size_t i = 0; i < block; ++i)
+        {
+            const Eigen::Index q = queries[i0 + std::min(i, count - 1)];
+            px[i] = X(q, 0);
+            py[i] = X(q, 1);
+            pz[i] = X(q, 2);
+            best[i] = std::numeric_limits<double>::infinity();
+        }
+        for (std::size_t j = 0; j < m; ++j)
+        {
+            const double xj = cx[j], yj = cy[j], zj = cz[j];
+#pragma omp simd
+            for (std::size_t i = 0; i < block; ++i)
+            {
+                const double dx = px[i] - xj, dy = py[i] - yj, dz = pz[i] - zj;
+                best[i] = std::min(best[i], dx * dx + dy * dy + dz * dz);
+            }
+        }
+        std::copy(best, best + count, d2.begin() + std::ptrdiff_t(i0));
+    }
+    return d2;
+}
+
 //! One octave's candidates by decreasing distance to the nearest centre (coarsened: the
 //! distances come from the coordinates alone, so every processor orders them alike), then
 //! by index.
 std::vector<RankedCandidate> farthest_first(const std::vector<Eigen::Index>& group, const Points& X,
                                             const std::vector<Eigen::Index>& centres)
 {
-    PointSet c;
-    for (Eigen::Index j : centres)
-        c.add(X, j);
+    const std::vector<double> d2 = nearest_distances2(group, X, centres);
     std::vector<RankedCandidate> ranked(group.size());
-#pragma omp parallel for schedule(static) if (group.size() * centres.size() > 100000)
     for (std::size_t k = 0; k < group.size(); ++k)
-    {
-        const double d2 = c.nearest2(X, group[k]);
-        ranked[k] = {group[k], d2, coarsened(d2)};
-    }
+        ranked[k] = {group[k], d2[k], coarsened(d2[k])};
     std::sort(ranked.begin(), ranked.end(),
               [](const RankedCandidate& a, const RankedCandidate& b)
               {
