@@ -261,12 +261,25 @@ VariantResult DesignStudy::evaluate(const std::vector<double>& amplitudes, bool 
     r.combine_seconds = stage.seconds();
 
     stage.restart();
-    const MeshGeometry geometry = compute_geometry(moved, cell_faces_);
-    r.after = morph::check_morph_mesh(moved, cell_faces_, geometry, CheckMeshSettings{},
-                                      case_.decomposition);
+    r.after = check_variant(compute_geometry(moved, cell_faces_));
     r.check_seconds = stage.seconds();
     refuse(amplitudes, r, search_back_off);
     return r;
+}
+
+QualityReport DesignStudy::check_variant(const MeshGeometry& geometry)
+{
+    CheckMeshSettings settings;
+    settings.cell_fields = false;
+    settings.unchanged_topology = topology_ ? &*topology_ : nullptr;
+    QualityReport report = morph::check_morph_mesh(case_.foam.mesh, cell_faces_, geometry, settings,
+                                                   case_.decomposition);
+    if (!topology_)
+    {
+        topology_ = report;
+        topology_->cell_scaled_jacobian = Eigen::VectorXd(); // the corners are what is reused
+    }
+    return report;
 }
 
 bool DesignStudy::is_valid(const std::vector<double>& amplitudes)

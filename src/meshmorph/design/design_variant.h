@@ -94,10 +94,17 @@ private:
     bool refuse(const std::vector<double>& amplitudes, VariantResult& r, bool search_back_off);
     std::string back_off(const Points& moved, const std::vector<double>& a, Index invalid);
 
+    //! The check of the variant in the study's mesh. Without per-cell fields (a variant's
+    //! report is its summary), and with the topology part and the scaled Jacobian's corners
+    //! of the study's first check: a variant moves points only.
+    QualityReport check_variant(const MeshGeometry& geometry);
+
     morph::MorphOptions options_;
     std::optional<DesignBasisReader> reader_;
     DesignCase case_;
     CompactList cell_faces_;
+    //! The first variant's report, for its topology part and corners (check_variant).
+    std::optional<QualityReport> topology_;
     Points x0_; //!< the set-up's points (the study's mesh holds the last variant's)
     double read_seconds_ = 0.0;
 };
