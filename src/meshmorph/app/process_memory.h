@@ -11,8 +11,8 @@
 //! kernel's defrag setting `madvise` (Debian's default) a fault in a region marked for huge
 //! pages compacts memory on the spot when free memory is fragmented, which it is whenever
 //! another program ran before (a solver, moveMesh, a mesher). Measured on the motorBike
-//! morph (5% lift, 2 cores), each run right after a moveMesh of the same mesh: 1.32-1.37 s
-//! with huge pages (0.44-0.47 s system time), 1.16-1.22 s without (0.16 s); back to back
+//! morph (5% lift, 2 cores), each run right after a moveMesh of the same mesh: 1.28-1.37 s
+//! with huge pages (0.39-0.49 s system time), 1.16-1.22 s without (0.15-0.17 s); back to back
 //! with nothing in between: 1.17-1.19 s with, 1.18-1.22 s without. An optimiser's loop is
 //! the first case.
 #pragma once
