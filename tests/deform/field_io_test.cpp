@@ -3,6 +3,7 @@
 // deformation evaluates bit-identically after the round trip, as a -parallel run needs.
 #include "meshmorph/deform/field_io.h"
 
+#include <cstring>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include "meshmorph/deform/corrected_deformation.h"
 #include "meshmorph/deform/dmffd_deformation.h"
 #include "meshmorph/deform/ffd_deformation.h"
+#include "meshmorph/deform/field_stream.h"
 #include "meshmorph/deform/greedy_rbf_deformation.h"
 #include "meshmorph/deform/idw_deformation.h"
 #include "meshmorph/deform/rbf_deformation.h"
@@ -141,6 +143,39 @@ TEST(FieldIo, idw_with_quiet_nodes_written_for_a_region)
     const Points residual = test::residual_like_field(handles, 0.1);
     idw.fit(handles, residual, test::small_values(residual));
     expect_region_round_trip_of_fitted(idw);
+}
+
+TEST(FieldIo, idw_quiet_flags_for_another_number_of_handles_are_an_error)
+{
+    // The flags are the IDW block's last item (the fit report follows the block): a count,
+    // then one byte per handle. A file whose count does not match its handles is refused as
+    // a file error, not a usage one.
+    IdwDeformation idw;
+    const Points handles = region_handles();
+    const Points residual = test::residual_like_field(handles, 0.1);
+    idw.fit(handles, residual, test::small_values(residual));
+    const std::string bytes = write_field(idw);
+    FieldWriter block;
+    idw.write_field(block);
+    const std::string body = block.bytes(), report = bytes.substr(body.size());
+    ASSERT_EQ(bytes.substr(0, body.size()), body);
+    const std::size_t n = std::size_t(handles.rows()), at = body.size() - n - 8;
+    std::uint64_t count = 0;
+    std::memcpy(&count, body.data() + at, sizeof count);
+    ASSERT_EQ(count, n) << "the flags are no longer the block's last item";
+    const std::uint64_t fewer = n - 1;
+    std::string corrupt = body.substr(0, at);
+    corrupt.append(reinterpret_cast<const char*>(&fewer), sizeof fewer);
+    corrupt += body.substr(at + 8, n - 1) + report;
+    try
+    {
+        read_field(corrupt);
+        ADD_FAILURE() << "read a field with too few quiet flags";
+    }
+    catch (const IoError& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("quiet flags"), std::string::npos) << e.what();
+    }
 }
 
 TEST(FieldIo, greedy_rbf_correction_written_for_a_region)

@@ -35,10 +35,13 @@ std::vector<char> quiet_handles(const SpaceDeformation& global, Index handles, d
     if (!(global.report().max_fitted_residual <= largest / 32.0))
         return {};
     std::vector<char> quiet(std::size_t(handles), 1);
-    if (const std::vector<char>* left_out = global.handles_left_out();
-        left_out && left_out->size() == quiet.size())
-        for (std::size_t i = 0; i < quiet.size(); ++i)
-            quiet[i] = !(*left_out)[i];
+    const std::vector<char>* left_out = global.handles_left_out();
+    if (left_out == nullptr)
+        return quiet;
+    if (left_out->size() != quiet.size())
+        return {}; // not of these handles: no node is quiet (theta everywhere)
+    for (std::size_t i = 0; i < quiet.size(); ++i)
+        quiet[i] = !(*left_out)[i];
     return quiet;
 }
 

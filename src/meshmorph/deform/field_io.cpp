@@ -127,10 +127,15 @@ std::unique_ptr<SpaceDeformation> read_idw(FieldReader& in)
     const Points handles = in.get_matrix<Points>();
     const Points values = in.get_matrix<Points>();
     const std::vector<char> quiet = in.get_vector<char>();
-    if (!quiet.empty() && Index(quiet.size()) != Index(handles.rows()))
-        throw IoError("fitted field: IDW quiet flags for another number of handles");
     auto idw = std::make_unique<IdwDeformation>(settings);
-    idw->fit(handles, values, quiet);
+    try
+    {
+        idw->fit(handles, values, quiet); // checks the counts
+    }
+    catch (const InvalidInput& e)
+    {
+        throw IoError(std::string("fitted field: ") + e.what());
+    }
     return std::make_unique<WrappedField>(std::move(idw));
 }
 

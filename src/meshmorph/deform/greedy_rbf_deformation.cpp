@@ -443,22 +443,15 @@ struct PointSet
     }
 };
 
-//! Squared distance from each of X's points `queries` to the nearest of its points
-//! `centres` (infinity if there are none). Blocks of queries against one centre at a time,
-//! so that the loop over a block vectorises without a reduction; each query's minimum is
-//! taken over the centres in order, so the values do not depend on the threads.
+//! Squared distance from each of X's points `queries` to the nearest point of `set`
+//! (infinity if it is empty). Blocks of queries against one point of the set at a time, so
+//! that the loop over a block vectorises without a reduction; each query's minimum is taken
+//! over the set in order, so the values do not depend on the threads.
 std::vector<double> nearest_distances2(const std::vector<Eigen::Index>& queries, const Points& X,
-                                       const std::vector<Eigen::Index>& centres)
+                                       const PointSet& set)
 {
     constexpr std::size_t block = 64;
-    const std::size_t n = queries.size(), m = centres.size();
-    std::vector<double> cx(m), cy(m), cz(m);
-    for (std::size_t j = 0; j < m; ++j)
-    {
-        cx[j] = X(centres[j], 0);
-        cy[j] = X(centres[j], 1);
-        cz[j] = X(centres[j], 2);
-    }
+    const std::size_t n = queries.size(), m = set.x.size();
     std::vector<double> d2(n, std::numeric_limits<double>::infinity());
     const std::int64_t blocks = std::int64_t((n + block - 1) / block);
 #pragma omp parallel for schedule(static) if (n * m > 100000)
@@ -476,7 +469,7 @@ std::vector<double> nearest_distances2(const std::vector<Eigen::Index>& queries,
         }
         for (std::size_t j = 0; j < m; ++j)
         {
-            const double xj = cx[j], yj = cy[j], zj = cz[j];
+            const double xj = set.x[j], yj = set.y[j], zj = set.z[j];
 #pragma omp simd
             for (std::size_t i = 0; i < block; ++i)
             {
@@ -493,7 +486,7 @@ std::vector<double> nearest_distances2(const std::vector<Eigen::Index>& queries,
 //! distances come from the coordinates alone, so every processor orders them alike), then
 //! by index.
 std::vector<RankedCandidate> farthest_first(const std::vector<Eigen::Index>& group, const Points& X,
-                                            const std::vector<Eigen::Index>& centres)
+                                            const PointSet& centres)
 {
     const std::vector<double> d2 = nearest_distances2(group, X, centres);
     std::vector<RankedCandidate> ranked(group.size());
@@ -550,10 +543,13 @@ std::vector<Eigen::Index> spread_round(std::vector<Eigen::Index> cand, const Eig
         keep_largest_residuals(cand, err, 1);
         above = cand;
     }
+    PointSet centre_set; // once for the round's octaves
+    for (Eigen::Index j : centres)
+        centre_set.add(X, j);
     std::vector<Eigen::Index> kept;
     for (const std::vector<Eigen::Index>& group : octaves(above, err, unit))
     {
-        spread_batch(farthest_first(group, X, centres), X, b, spread, kept);
+        spread_batch(farthest_first(group, X, centre_set), X, b, spread, kept);
         if (Eigen::Index(kept.size()) >= b)
             break;
     }
