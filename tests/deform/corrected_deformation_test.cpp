@@ -122,4 +122,52 @@ TEST(CorrectedDeformation, a_limited_field_written_and_read_back_evaluates_alike
     EXPECT_EQ(write_field(*restored), bytes);
 }
 
+TEST(CorrectedDeformation, at_its_handles_it_gives_what_its_evaluation_gives_there)
+{
+    // The fitted field takes the global part's values at its handles from the fit; a field
+    // read back (what every -parallel rank evaluates) has no such values and sums at every
+    // point. Both must agree bit for bit, at handles and other points queried together and
+    // in any order, or -parallel would not equal serial.
+    const Points x = test::sphere_points(2000, Vector3(0.5, 0.5, 0.5), 0.5);
+    const Points d = test::smooth_field(x);
+    GreedySettings coarse;
+    coarse.tolerance = 0.05;
+    CorrectedDeformation corrected(std::make_unique<GreedyRbfDeformation>(coarse));
+    corrected.fit(x, d);
+    ASSERT_NE(corrected.global().values_at_handles(), nullptr) << "the premise: values kept";
+    const std::unique_ptr<SpaceDeformation> restored = read_field(write_field(corrected));
+    const Points other = test::random_points(1500, -0.2, 1.2, 11);
+    Points mixed(x.rows() + other.rows(), 3);
+    for (Eigen::Index i = 0, a = 0, b = 0; i < mixed.rows(); ++i)
+        mixed.row(i) =
+            (i % 3 == 0 && a < x.rows()) || b == other.rows() ? x.row(a++) : other.row(b++);
+    const Points got = displacements(corrected, mixed);
+    EXPECT_EQ(got, displacements(*restored, mixed));
+    EXPECT_LE((displacements(corrected, x) - d).rowwise().norm().maxCoeff(),
+              1e-14 * test::max_norm(d));
+}
+
+TEST(ExactPointIndex, finds_rows_by_exact_coordinates_and_no_row_for_shared_ones)
+{
+    // Grid coordinates (0.5, 1.25: many trailing zero bits) must spread over the table.
+    Points p(1003, 3);
+    for (Eigen::Index i = 0; i < 1000; ++i)
+        p.row(i) << double(i % 10) * 0.5, double((i / 10) % 10) * 1.25, double(i / 100) * 0.25;
+    p.row(1000) << 0.0, -0.0, 7.0;  // -0 is the same point as +0
+    p.row(1001) << 0.0, 0.0, 7.0;   // ... so this one and row 1000 share a point
+    p.row(1002) << 0.5, 1.25, 0.25; // row 111's point again
+    const detail::ExactPointIndex index(p);
+    EXPECT_EQ(index.find(1.5, 2.5, 0.75), 3 * 1 + 10 * 2 + 100 * 3);
+    EXPECT_EQ(index.find(0.0, 0.0, 7.0), -1) << "two rows share it";
+    EXPECT_EQ(index.find(0.5, 1.25, 0.25), -1) << "two rows share it";
+    EXPECT_EQ(index.find(0.5, 1.25, 0.25 + 1e-16), -1) << "not a point of the index";
+    EXPECT_EQ(index.find(0.25, 0.0, 0.0), -1) << "not a point of the index";
+    const std::vector<Index> rows = index.find_rows(p.topRows(1000));
+    for (Index i = 0; i < 1000; ++i)
+        if (i != 111)
+            EXPECT_EQ(rows[std::size_t(i)], i);
+    EXPECT_TRUE(detail::ExactPointIndex().empty());
+    EXPECT_EQ(detail::ExactPointIndex().find(0.0, 0.0, 0.0), -1);
+}
+
 } // namespace meshmorph

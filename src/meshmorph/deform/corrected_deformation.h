@@ -19,6 +19,7 @@
 
 #include <memory>
 
+#include "meshmorph/deform/exact_point_index.h"
 #include "meshmorph/deform/idw_deformation.h"
 
 namespace meshmorph::detail
@@ -52,10 +53,18 @@ public:
     bool limited() const { return limit_; }
 
 private:
+    //! The global part at every row of points: at a handle of the fit its value from the
+    //! fit (values_at_handles, bit for bit what its evaluation gives), elsewhere evaluated.
+    void evaluate_global(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const;
+
     std::unique_ptr<SpaceDeformation> global_;
     IdwDeformation correction_;
     bool limit_ = false;
     FitReport report_;
+    //! The handles of the fit and the global part's values there (empty when the global
+    //! part does not keep them, or for a field read back from a file).
+    detail::ExactPointIndex handle_rows_;
+    Points global_at_handles_;
 };
 
 } // namespace meshmorph

@@ -142,18 +142,6 @@ void IdwTree::index_single_sources()
     }
 }
 
-namespace
-{
-
-PointKey point_key(double x, double y, double z)
-{
-    // + 0.0 turns -0 into +0, which compares equal to it.
-    return {std::bit_cast<std::uint64_t>(x + 0.0), std::bit_cast<std::uint64_t>(y + 0.0),
-            std::bit_cast<std::uint64_t>(z + 0.0)};
-}
-
-} // namespace
-
 void IdwTree::index_lone_sources()
 {
     // Coincident neighbours are looked for in the source's own leaf only: a leaf is kept
@@ -161,8 +149,7 @@ void IdwTree::index_lone_sources()
     // serial run does. A neighbour in another leaf is possible only within round-off of a
     // split; the point then takes one of the coincident values, as the sum would.
     const double reach2 = 16.0 * idw_coincident2; // generous: a false "yes" only means a sum
-    lone_.clear();
-    lone_.reserve(sx_.size());
+    lone_ = ExactPointIndex(sx_.size());
     for (const Node& node : nodes_)
     {
         if (node.child >= 0)
@@ -180,17 +167,14 @@ void IdwTree::index_lone_sources()
             if (!lone)
                 continue;
             // Equal points in two leaves: neither is looked up (-1: the sum decides).
-            const auto [it, inserted] = lone_.emplace(point_key(sx_[sj], sy_[sj], sz_[sj]), j);
-            if (!inserted)
-                it->second = -1;
+            lone_.insert(sx_[sj], sy_[sj], sz_[sj], j);
         }
     }
 }
 
 Index IdwTree::lone_source_at(double x, double y, double z) const
 {
-    const auto it = lone_.find(point_key(x, y, z));
-    return it == lone_.end() ? -1 : it->second;
+    return lone_.find(x, y, z);
 }
 
 void IdwTree::compute_moments(Node& node) const

@@ -51,10 +51,10 @@
 #pragma once
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "meshmorph/core/types.h"
+#include "meshmorph/deform/exact_point_index.h"
 #include "meshmorph/deform/field_stream.h"
 #include "meshmorph/deform/idw_node.h"
 
@@ -71,23 +71,6 @@ struct IdwWeight
 //! Squared distance below which a query is taken to sit on a source (normalised units:
 //! 1e-13 of the sources' extent, far below any mesh spacing, far above round-off).
 inline constexpr double idw_coincident2 = 1e-26;
-
-//! A point's exact coordinates as a hash key.
-struct PointKey
-{
-    std::uint64_t x, y, z;
-    bool operator==(const PointKey&) const = default;
-};
-struct PointKeyHash
-{
-    std::size_t operator()(const PointKey& k) const
-    {
-        std::uint64_t h = k.x * 0x9e3779b97f4a7c15ull;
-        h ^= (k.y + 0x7f4a7c159e3779b9ull + (h << 6) + (h >> 2));
-        h ^= (k.z + 0x94d049bb133111ebull + (h << 6) + (h >> 2));
-        return static_cast<std::size_t>(h);
-    }
-};
 
 //! theta's factor for quiet nodes (see above).
 inline constexpr double quiet_theta_factor = 1.75;
@@ -163,7 +146,7 @@ private:
     //! Exact coordinates (bit patterns, -0 as +0) of the sources without a coincident
     //! neighbour -> their tree index. A mesh morph evaluates the field at every constraint,
     //! and these points take their source's value without a sum over the tree.
-    std::unordered_map<PointKey, Index, PointKeyHash> lone_;
+    ExactPointIndex lone_;
 };
 
 } // namespace meshmorph::detail
