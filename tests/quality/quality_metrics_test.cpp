@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "helpers.h"
+#include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/quality/cell_closedness.h"
 #include "meshmorph/quality/cell_concavity.h"
 #include "meshmorph/quality/cell_determinant.h"
@@ -22,6 +23,7 @@
 #include "meshmorph/quality/face_tets.h"
 #include "meshmorph/quality/face_weights.h"
 #include "meshmorph/quality/point_nearness.h"
+#include "shape_meshes.h"
 
 using namespace meshmorph;
 
@@ -35,7 +37,41 @@ PolyMesh sheared_block(double shear)
         3, 3, 2, [shear](double u, double v, double w) { return Vector3(u + shear * v, v, w); });
 }
 
+//! Face centres and areas of `mesh` as compute_geometry gives them (eight quads at a time
+//! where it can) against one face at a time, bit for bit.
+void expect_faces_as_one_by_one(const PolyMesh& mesh)
+{
+    const MeshGeometry g = compute_geometry(mesh);
+    Points centres(mesh.n_faces(), 3), areas(mesh.n_faces(), 3);
+    for (Index f = 0; f < mesh.n_faces(); ++f)
+    {
+        face_centre_and_area(mesh, f, centres, areas);
+        EXPECT_EQ(g.face_centres.row(f), centres.row(f)) << "face " << f;
+        EXPECT_EQ(g.face_areas.row(f), areas.row(f)) << "face " << f;
+    }
+}
+
 } // namespace
+
+TEST(MeshGeometry, faces_eight_at_a_time_give_the_results_of_one_at_a_time_bit_for_bit)
+{
+    // Warped quads (the four points off a plane) with coordinates that do not round alike.
+    PolyMesh warped = test::make_block_mesh(7, 5, 3,
+                                            [](double u, double v, double w)
+                                            {
+                                                return Vector3(u + 0.1 * std::sin(7 * v + w),
+                                                               v + 0.03 * std::cos(11 * u * w),
+                                                               w + 0.05 * u * v * v);
+                                            });
+    ASSERT_GT(warped.n_faces(), 200);
+    expect_faces_as_one_by_one(warped);
+    // Degenerate quads: every point in one place (the centre is then the mean, the area 0).
+    warped.points.rowwise() = Vector3(0.25, -1.5, 3.0).transpose();
+    expect_faces_as_one_by_one(warped);
+    // Pentagons and quads mixed in groups of eight.
+    expect_faces_as_one_by_one(test::make_pentagon_cells());
+    expect_faces_as_one_by_one(test::make_split_top_cube());
+}
 
 TEST(FaceOrthogonality, box_is_orthogonal_and_boundary_faces_are_one)
 {
