@@ -73,6 +73,26 @@ TEST(MeshGeometry, faces_eight_at_a_time_give_the_results_of_one_at_a_time_bit_f
     expect_faces_as_one_by_one(test::make_split_top_cube());
 }
 
+TEST(FaceSkewness, faces_eight_at_a_time_give_the_results_of_one_at_a_time_bit_for_bit)
+{
+    for (const PolyMesh& mesh :
+         {test::make_block_mesh(9, 7, 4,
+                                [](double u, double v, double w)
+                                {
+                                    return Vector3(u + 0.2 * v * v + 0.05 * std::sin(9 * w),
+                                                   v + 0.04 * std::cos(13 * u * w),
+                                                   w + 0.1 * u * v);
+                                }),
+          test::make_pentagon_cells(), test::make_split_top_cube()})
+    {
+        const MeshGeometry g = compute_geometry(mesh);
+        const Eigen::VectorXd all = face_skewness(mesh, g);
+        for (Index f = 0; f < mesh.n_faces(); ++f)
+            EXPECT_EQ(all[f], face_skewness_at(mesh, g, f)) << "face " << f;
+        EXPECT_GT(all.maxCoeff(), 0.01) << "the premise: skewed faces";
+    }
+}
+
 TEST(FaceOrthogonality, box_is_orthogonal_and_boundary_faces_are_one)
 {
     const PolyMesh mesh = test::make_box_mesh(3, 2, 2);

@@ -17,6 +17,10 @@ namespace meshmorph
 //! projection onto the face normal, with twice the normalisation factor. OpenMP over faces.
 Eigen::VectorXd face_skewness(const PolyMesh& mesh, const MeshGeometry& geometry);
 
+//! \brief The skewness of face f alone, as face_skewness(mesh, geometry) computes it (which
+//! computes most quads eight at a time, to the same bits).
+double face_skewness_at(const PolyMesh& mesh, const MeshGeometry& geometry, Index f);
+
 //! \brief checkMesh's (polyMeshTools::faceSkewness): as above, but cyclic faces measure
 //! against the cell across them, as internal faces do.
 Eigen::VectorXd face_skewness(const PolyMesh& mesh, const MeshGeometry& geometry,
