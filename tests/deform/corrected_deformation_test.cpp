@@ -164,8 +164,12 @@ TEST(ExactPointIndex, finds_rows_by_exact_coordinates_and_no_row_for_shared_ones
     EXPECT_EQ(index.find(0.25, 0.0, 0.0), -1) << "not a point of the index";
     const std::vector<Index> rows = index.find_rows(p.topRows(1000));
     for (Index i = 0; i < 1000; ++i)
+    {
         if (i != 111)
+        {
             EXPECT_EQ(rows[std::size_t(i)], i);
+        }
+    }
     EXPECT_TRUE(detail::ExactPointIndex().empty());
     EXPECT_EQ(detail::ExactPointIndex().find(0.0, 0.0, 0.0), -1);
 }

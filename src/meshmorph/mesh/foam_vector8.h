@@ -20,7 +20,10 @@
 namespace meshmorph::detail
 {
 
-//! Eight doubles: one AVX-512 register, or four SSE ones (GCC splits it).
+//! Eight doubles: one AVX-512 register, or four SSE ones (GCC splits it). Without AVX-512,
+//! GCC notes (-Wpsabi) that such a vector is returned differently than with it; the
+//! components including this header build with -Wno-psabi, as every object of a build has
+//! the same flags and these functions are inline.
 using double8 = double __attribute__((vector_size(64)));
 inline constexpr int lanes8 = 8;
 

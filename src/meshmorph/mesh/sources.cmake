@@ -14,3 +14,8 @@ meshmorph_add_component(mesh
 # Bit-level agreement with OpenFOAM's checkMesh: the geometry must never contract a*b+c into
 # an FMA (on FMA hardware it would stop matching checkMesh).
 target_compile_options(meshmorph_mesh PRIVATE -ffp-contract=off)
+# mesh/foam_vector8.h returns 64-byte vectors: without AVX-512 GCC notes the ABI differs
+# from an AVX-512 build's (no object of one build mixes the two).
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    target_compile_options(meshmorph_mesh PRIVATE -Wno-psabi)
+endif()
