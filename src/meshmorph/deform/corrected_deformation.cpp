@@ -2,6 +2,8 @@
 // Global deformation plus the IDW interpolant of its residual.
 #include "meshmorph/deform/corrected_deformation.h"
 
+#include <algorithm>
+
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/deform/field_stream.h"
@@ -132,7 +134,7 @@ void CorrectedDeformation::evaluate_global(const Eigen::Ref<const Points>& point
     // in pieces, so that the gathered copies stay small (fresh pages cost more than the
     // copies on a virtual machine).
     const std::vector<Index> at_handle = handle_rows_.find_rows(points);
-    constexpr Eigen::Index piece = 1 << 14;
+    const Eigen::Index piece = std::min<Eigen::Index>(points.rows(), 1 << 14);
     Points x(piece, 3), g(piece, 3);
     std::vector<Eigen::Index> rows;
     rows.reserve(std::size_t(piece));

@@ -42,7 +42,7 @@ Index median_cut(const Points& p, std::vector<Index>& order, Index begin, Index 
 
 //! A query point with its row, so that the median cuts compare and move contiguous memory
 //! (the rows of p, looked up through order, are scattered: on the motorBike's 406k points
-//! the cuts took twice as long).
+//! the cuts took 1.5 times as long).
 struct QueryPoint
 {
     double c[3];
