@@ -37,6 +37,19 @@ PolyMesh sheared_block(double shear)
         3, 3, 2, [shear](double u, double v, double w) { return Vector3(u + shear * v, v, w); });
 }
 
+//! A block of nx x ny x nz hexahedra warped so that its quads are off a plane and skewed,
+//! with coordinates that do not round alike.
+PolyMesh warped_block(int nx, int ny, int nz)
+{
+    return test::make_block_mesh(nx, ny, nz,
+                                 [](double u, double v, double w)
+                                 {
+                                     return Vector3(u + 0.1 * std::sin(7 * v + w) + 0.2 * v * v,
+                                                    v + 0.03 * std::cos(11 * u * w),
+                                                    w + 0.05 * u * v * v);
+                                 });
+}
+
 //! Face centres and areas of `mesh` as compute_geometry gives them (eight quads at a time
 //! where it can) against one face at a time, bit for bit.
 void expect_faces_as_one_by_one(const PolyMesh& mesh)
@@ -55,15 +68,11 @@ void expect_faces_as_one_by_one(const PolyMesh& mesh)
 
 TEST(MeshGeometry, faces_eight_at_a_time_give_the_results_of_one_at_a_time_bit_for_bit)
 {
-    // Warped quads (the four points off a plane) with coordinates that do not round alike.
-    PolyMesh warped = test::make_block_mesh(7, 5, 3,
-                                            [](double u, double v, double w)
-                                            {
-                                                return Vector3(u + 0.1 * std::sin(7 * v + w),
-                                                               v + 0.03 * std::cos(11 * u * w),
-                                                               w + 0.05 * u * v * v);
-                                            });
-    ASSERT_GT(warped.n_faces(), 200);
+    // Warped quads: few faces (one range of faces, serial), then over 20000 (several
+    // ranges, with OpenMP).
+    expect_faces_as_one_by_one(warped_block(7, 5, 3));
+    PolyMesh warped = warped_block(24, 22, 16);
+    ASSERT_GT(warped.n_faces(), 20000);
     expect_faces_as_one_by_one(warped);
     // Degenerate quads: every point in one place (the centre is then the mean, the area 0).
     warped.points.rowwise() = Vector3(0.25, -1.5, 3.0).transpose();
@@ -75,15 +84,8 @@ TEST(MeshGeometry, faces_eight_at_a_time_give_the_results_of_one_at_a_time_bit_f
 
 TEST(FaceSkewness, faces_eight_at_a_time_give_the_results_of_one_at_a_time_bit_for_bit)
 {
-    for (const PolyMesh& mesh :
-         {test::make_block_mesh(9, 7, 4,
-                                [](double u, double v, double w)
-                                {
-                                    return Vector3(u + 0.2 * v * v + 0.05 * std::sin(9 * w),
-                                                   v + 0.04 * std::cos(13 * u * w),
-                                                   w + 0.1 * u * v);
-                                }),
-          test::make_pentagon_cells(), test::make_split_top_cube()})
+    for (const PolyMesh& mesh : {warped_block(9, 7, 4), warped_block(24, 22, 16),
+                                 test::make_pentagon_cells(), test::make_split_top_cube()})
     {
         const MeshGeometry g = compute_geometry(mesh);
         const Eigen::VectorXd all = face_skewness(mesh, g);
