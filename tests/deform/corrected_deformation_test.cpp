@@ -127,24 +127,34 @@ TEST(CorrectedDeformation, at_its_handles_it_gives_what_its_evaluation_gives_the
     // The fitted field takes the global part's values at its handles from the fit; a field
     // read back (what every -parallel rank evaluates) has no such values and sums at every
     // point. Both must agree bit for bit, at handles and other points queried together and
-    // in any order, or -parallel would not equal serial.
+    // in any order, or -parallel would not equal serial: for a greedy global part, a direct
+    // one, and a direct one with the limit.
     const Points x = test::sphere_points(2000, Vector3(0.5, 0.5, 0.5), 0.5);
     const Points d = test::smooth_field(x);
     GreedySettings coarse;
     coarse.tolerance = 0.05;
-    CorrectedDeformation corrected(std::make_unique<GreedyRbfDeformation>(coarse));
-    corrected.fit(x, d);
-    ASSERT_NE(corrected.global().values_at_handles(), nullptr) << "the premise: values kept";
-    const std::unique_ptr<SpaceDeformation> restored = read_field(write_field(corrected));
+    std::vector<std::unique_ptr<CorrectedDeformation>> fields;
+    fields.push_back(
+        std::make_unique<CorrectedDeformation>(std::make_unique<GreedyRbfDeformation>(coarse)));
+    fields.push_back(std::make_unique<CorrectedDeformation>(std::make_unique<RbfDeformation>()));
+    fields.push_back(std::make_unique<CorrectedDeformation>(std::make_unique<RbfDeformation>(),
+                                                            IdwSettings{}, true));
     const Points other = test::random_points(1500, -0.2, 1.2, 11);
     Points mixed(x.rows() + other.rows(), 3);
     for (Eigen::Index i = 0, a = 0, b = 0; i < mixed.rows(); ++i)
         mixed.row(i) =
             (i % 3 == 0 && a < x.rows()) || b == other.rows() ? x.row(a++) : other.row(b++);
-    const Points got = displacements(corrected, mixed);
-    EXPECT_EQ(got, displacements(*restored, mixed));
-    EXPECT_LE((displacements(corrected, x) - d).rowwise().norm().maxCoeff(),
-              1e-14 * test::max_norm(d));
+    for (const std::unique_ptr<CorrectedDeformation>& corrected : fields)
+    {
+        corrected->fit(x, d);
+        ASSERT_NE(corrected->global().values_at_handles(), nullptr) << "the premise: kept";
+        const std::unique_ptr<SpaceDeformation> restored = read_field(write_field(*corrected));
+        EXPECT_EQ(displacements(*corrected, mixed), displacements(*restored, mixed))
+            << corrected->report().method;
+        EXPECT_LE((displacements(*corrected, x) - d).rowwise().norm().maxCoeff(),
+                  1e-14 * test::max_norm(d))
+            << corrected->report().method;
+    }
 }
 
 TEST(ExactPointIndex, finds_rows_by_exact_coordinates_and_no_row_for_shared_ones)
