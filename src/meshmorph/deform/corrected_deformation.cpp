@@ -166,10 +166,8 @@ void CorrectedDeformation::evaluate_global(const Eigen::Ref<const Points>& point
 void CorrectedDeformation::evaluate(const Eigen::Ref<const Points>& points,
                                     Eigen::Ref<Points> out) const
 {
-    if (out.rows() != points.rows())
-        throw InvalidInput("corrected deformation: evaluate() output has " +
-                           std::to_string(out.rows()) + " rows for " +
-                           std::to_string(points.rows()) + " points");
+    // The parts check their points; the rows of out first, as the shortcut writes them.
+    detail::check_output_rows(points, out, "corrected deformation");
     evaluate_global(points, out);
     Points c(points.rows(), 3);
     correction_.evaluate(points, c);

@@ -104,6 +104,12 @@ void check_evaluate_arguments(bool is_fitted, const Eigen::Ref<const Points>& po
     if (!is_fitted)
         throw InvalidInput(std::string(method) + ": evaluate() called before fit()");
     require_finite(points, (std::string(method) + " evaluate: point").c_str());
+    check_output_rows(points, out, method);
+}
+
+void check_output_rows(const Eigen::Ref<const Points>& points, const Eigen::Ref<Points>& out,
+                       const char* method)
+{
     if (out.rows() != points.rows())
         throw InvalidInput(std::string(method) + ": evaluate() output has " +
                            std::to_string(out.rows()) + " rows for " +

@@ -83,6 +83,9 @@ void require_finite(const Eigen::Ref<const Points>& p, const char* what);
 //! Common fit() argument checks: m > 0, equal sizes, finite.
 void check_fit_arguments(const Eigen::Ref<const Points>& handles,
                          const Eigen::Ref<const Points>& displacements);
+//! Throws InvalidInput naming `method` unless out has a row per point.
+void check_output_rows(const Eigen::Ref<const Points>& points, const Eigen::Ref<Points>& out,
+                       const char* method);
 //! Common evaluate() argument checks.
 void check_evaluate_arguments(bool is_fitted, const Eigen::Ref<const Points>& points,
                               const Eigen::Ref<Points>& out, const char* method);

@@ -15,6 +15,7 @@ namespace meshmorph
 using detail::double8;
 using detail::face_vertex8;
 using detail::FoamVector;
+using detail::lane;
 using detail::lanes8;
 using detail::row;
 using detail::set_row;
@@ -22,6 +23,43 @@ using detail::Vector8;
 
 namespace
 {
+
+//! The sums of a face's triangle fan about the mean of its n vertices
+//! (primitiveMeshFaceCentresAndAreas), for one face (V = FoamVector, S = double) or eight
+//! quads at once (V = Vector8, S = double8). vertex(i) gives vertex i.
+template <class V, class S, class Vertex> struct FanSums
+{
+    V mean, sum_n{}, sum_ac{};
+    S sum_a{};
+
+    FanSums(int n, const Vertex& vertex) : mean(vertex(0))
+    {
+        for (int i = 1; i < n; ++i)
+            mean = mean + vertex(i);
+        mean = mean / double(n);
+        for (int i = 0; i < n; ++i)
+        {
+            const V pi = vertex(i);
+            const V pj = vertex((i + 1) % n);
+            const V c = pi + pj + mean;
+            const V t = cross(pj - pi, mean - pi);
+            const S a = mag(t);
+            sum_n = sum_n + t;
+            sum_a += a;
+            sum_ac = sum_ac + a * c;
+        }
+    }
+};
+
+//! A face's centre and area vector from its fan's sums (one lane's, for eight quads).
+std::pair<FoamVector, FoamVector> centre_and_area_of(const FoamVector& mean,
+                                                     const FoamVector& sum_n,
+                                                     const FoamVector& sum_ac, double sum_a)
+{
+    if (sum_a < constants::rootvsmall)
+        return {mean, {}};
+    return {((1.0 / 3.0) * sum_ac) / sum_a, 0.5 * sum_n};
+}
 
 //! Centre and area vector of one face (primitiveMeshFaceCentresAndAreas).
 std::pair<FoamVector, FoamVector> centre_and_area(const Points& p, std::span<const Index> face)
@@ -34,66 +72,26 @@ std::pair<FoamVector, FoamVector> centre_and_area(const Points& p, std::span<con
     }
     if (n == 0)
         return {};
-    FoamVector mean = row(p, face[0]);
-    for (std::size_t i = 1; i < n; ++i)
-        mean += row(p, face[i]);
-    mean /= static_cast<double>(n);
-    FoamVector sum_n, sum_ac;
-    double sum_a = 0.0;
-    for (std::size_t i = 0; i < n; ++i)
-    {
-        const FoamVector pi = row(p, face[i]);
-        const FoamVector pj = row(p, face[(i + 1) % n]);
-        const FoamVector c = pi + pj + mean;
-        const FoamVector t = detail::cross(pj - pi, mean - pi);
-        const double a = detail::mag(t);
-        sum_n += t;
-        sum_a += a;
-        sum_ac += a * c;
-    }
-    if (sum_a < constants::rootvsmall)
-        return {mean, {}};
-    return {((1.0 / 3.0) * sum_ac) / sum_a, 0.5 * sum_n};
+    const auto vertex = [&](int i) { return row(p, face[std::size_t(i)]); };
+    const FanSums<FoamVector, double, decltype(vertex)> fan(int(n), vertex);
+    return centre_and_area_of(fan.mean, fan.sum_n, fan.sum_ac, fan.sum_a);
 }
 
-//! centre_and_area of eight quads at once, lane by lane the same operations in the same
-//! order, so bit for bit the same results (-ffp-contract=off).
+//! centre_and_area of eight quads at once: the same fan, lane by lane (same bits with
+//! -ffp-contract=off).
 void quad_centres_and_areas(const PolyMesh& mesh, const Index* faces, Points& centres,
                             Points& areas)
 {
     const Vector8 p[4] = {face_vertex8(mesh, faces, 0), face_vertex8(mesh, faces, 1),
                           face_vertex8(mesh, faces, 2), face_vertex8(mesh, faces, 3)};
-    Vector8 mean = p[0];
-    for (int i = 1; i < 4; ++i)
-        mean = mean + p[i];
-    mean = {mean.x / 4.0, mean.y / 4.0, mean.z / 4.0};
-    Vector8 sum_n{}, sum_ac{};
-    double8 sum_a{};
-    for (int i = 0; i < 4; ++i)
-    {
-        const Vector8& pi = p[i];
-        const Vector8& pj = p[(i + 1) % 4];
-        const Vector8 c = pi + pj + mean;
-        const Vector8 t = cross(pj - pi, mean - pi);
-        const double8 a = mag(t);
-        sum_n = sum_n + t;
-        sum_a += a;
-        sum_ac = sum_ac + a * c;
-    }
+    const auto vertex = [&](int i) { return p[i]; };
+    const FanSums<Vector8, double8, decltype(vertex)> fan(4, vertex);
     for (int l = 0; l < lanes8; ++l)
     {
-        const Index f = faces[l];
-        if (sum_a[l] < constants::rootvsmall)
-        {
-            set_row(centres, f, {mean.x[l], mean.y[l], mean.z[l]});
-            set_row(areas, f, {});
-            continue;
-        }
-        constexpr double third = 1.0 / 3.0;
-        set_row(centres, f,
-                {(third * sum_ac.x[l]) / sum_a[l], (third * sum_ac.y[l]) / sum_a[l],
-                 (third * sum_ac.z[l]) / sum_a[l]});
-        set_row(areas, f, {0.5 * sum_n.x[l], 0.5 * sum_n.y[l], 0.5 * sum_n.z[l]});
+        const auto [centre, area] = centre_and_area_of(lane(fan.mean, l), lane(fan.sum_n, l),
+                                                       lane(fan.sum_ac, l), fan.sum_a[l]);
+        set_row(centres, faces[l], centre);
+        set_row(areas, faces[l], area);
     }
 }
 

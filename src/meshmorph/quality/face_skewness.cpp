@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <span>
 
 #include "meshmorph/mesh/foam_vector.h"
 #include "meshmorph/mesh/foam_vector8.h"
@@ -20,10 +21,26 @@ using detail::Vector8;
 namespace
 {
 
+//! The skewness of a face from its centre cf, area af, the offset cpf of cf from the owner's
+//! centre, the vector d it is measured along (to the cell across, or the owner centre's
+//! projection onto the face normal), the normalisation factor and its n vertices, for one
+//! face (V = FoamVector, S = double) or eight at once (V = Vector8, S = double8).
+template <class V, class S, class Vertex>
+S skewness_from(const V& cf, const V& af, const V& cpf, const V& d, double factor, int n,
+                const Vertex& vertex)
+{
+    constexpr double rootvsmall = constants::rootvsmall;
+    const V sv = cpf - (dot(af, cpf) / (dot(af, d) + rootvsmall)) * d;
+    const V sv_hat = sv / (mag(sv) + rootvsmall);
+    S fd = factor * mag(d) + rootvsmall;
+    for (int k = 0; k < n; ++k)
+        fd = detail::lane_max(fd, detail::lane_abs(dot(sv_hat, vertex(k) - cf)));
+    return mag(sv) / fd;
+}
+
 //! Skewness of face f; `across` is the cell centre on the other side, if any.
 double skewness_of(const PolyMesh& mesh, const MeshGeometry& g, Index f, const FoamVector* across)
 {
-    constexpr double rootvsmall = constants::rootvsmall;
     const FoamVector cf = row(g.face_centres, f);
     const FoamVector af = row(g.face_areas, f);
     const FoamVector own_cc = row(g.cell_centres, mesh.owner[f]);
@@ -38,23 +55,20 @@ double skewness_of(const PolyMesh& mesh, const MeshGeometry& g, Index f, const F
     else
     {
         FoamVector normal = af;
-        normal /= detail::mag(normal) + rootvsmall;
+        normal /= detail::mag(normal) + constants::rootvsmall;
         d = detail::dot(normal, cpf) * normal;
         factor = 0.4;
     }
-    const FoamVector sv = cpf - (detail::dot(af, cpf) / (detail::dot(af, d) + rootvsmall)) * d;
-    const FoamVector sv_hat = sv / (detail::mag(sv) + rootvsmall);
-    double fd = factor * detail::mag(d) + rootvsmall;
-    for (Index p : mesh.faces[f])
-        fd = std::max(fd, std::abs(detail::dot(sv_hat, row(mesh.points, p) - cf)));
-    return detail::mag(sv) / fd;
+    const std::span<const Index> face = mesh.faces[f];
+    return skewness_from<FoamVector, double>(cf, af, cpf, d, factor, int(face.size()),
+                                             [&](int k)
+                                             { return row(mesh.points, face[std::size_t(k)]); });
 }
 
-//! skewness_of eight internal quads at once, lane by lane in its order (same bits).
+//! skewness_of eight internal quads at once: the same kernel, lane by lane (same bits).
 void internal_quads_skewness(const PolyMesh& mesh, const MeshGeometry& g, const Index* faces,
                              Eigen::VectorXd& skewness)
 {
-    constexpr double rootvsmall = constants::rootvsmall;
     std::array<Index, detail::lanes8> owner, neighbour;
     for (int l = 0; l < detail::lanes8; ++l)
     {
@@ -62,16 +76,11 @@ void internal_quads_skewness(const PolyMesh& mesh, const MeshGeometry& g, const 
         neighbour[std::size_t(l)] = mesh.neighbour[faces[l]];
     }
     const Vector8 cf = detail::gather8(g.face_centres, faces);
-    const Vector8 af = detail::gather8(g.face_areas, faces);
     const Vector8 own_cc = detail::gather8(g.cell_centres, owner.data());
-    const Vector8 cpf = cf - own_cc;
-    const Vector8 d = detail::gather8(g.cell_centres, neighbour.data()) - own_cc;
-    const Vector8 sv = cpf - (dot(af, cpf) / (dot(af, d) + rootvsmall)) * d;
-    const Vector8 sv_hat = sv / (mag(sv) + rootvsmall);
-    double8 fd = 0.2 * mag(d) + rootvsmall;
-    for (int k = 0; k < 4; ++k)
-        fd = detail::max8(fd, detail::abs8(dot(sv_hat, detail::face_vertex8(mesh, faces, k) - cf)));
-    const double8 s = mag(sv) / fd;
+    const double8 s = skewness_from<Vector8, double8>(
+        cf, detail::gather8(g.face_areas, faces), cf - own_cc,
+        detail::gather8(g.cell_centres, neighbour.data()) - own_cc, 0.2, 4,
+        [&](int k) { return detail::face_vertex8(mesh, faces, k); });
     for (int l = 0; l < detail::lanes8; ++l)
         skewness[faces[l]] = s[l];
 }
