@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Blocked RBF evaluation. The inner loop runs over a block of points for one centre so that
 // GCC vectorises it without reassociating sums (-O3 -march=native, -fno-math-errno for sqrt);
-// every point accumulates its centres in index order, so the result does not depend on the
-// number of threads or on the block a point lands in.
+// the triharmonic kernel (the default) has a loop of its own on eight-lane vectors
+// (sum_block_triharmonic). Every point accumulates its centres in index order, so the result
+// does not depend on the number of threads or on the block a point lands in.
 #include "meshmorph/deform/rbf_evaluator.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/deform/triharmonic8.h"
 
 namespace meshmorph::detail
 {
@@ -91,6 +93,11 @@ template <class F> void with_kernel(const KernelParams& k, F&& f)
     }
 }
 
+bool is_triharmonic(const KernelParams& k)
+{
+    return k.type == KernelType::polyharmonic && k.power == 3;
+}
+
 template <class Phi>
 void sum_block(const Phi& phi, const RbfModel& m, const double* __restrict px,
                const double* __restrict py, const double* __restrict pz, double* __restrict ax,
@@ -120,6 +127,68 @@ void sum_block(const Phi& phi, const RbfModel& m, const double* __restrict px,
             ay[i] += f * wyj;
             az[i] += f * wzj;
         }
+    }
+}
+
+//! The triharmonic sum over a block: sixteen points (two vectors of eight) at a time, their
+//! sums in registers over all the centres, in index order as sum_block. Every eighth centre
+//! takes r^3 by Newton steps, the others by the square-root unit, so that both the
+//! square-root and the multiply-add units stay busy (triharmonic8.h): 11% less time for the
+//! motorBike's sums than every centre by the square root. Which centres take the Newton
+//! steps depends on their index alone, so a point's sum does not depend on the block, the
+//! thread or the rank it is evaluated on.
+void sum_block_triharmonic(const RbfModel& m, const double* px, const double* py, const double* pz,
+                           double* ax, double* ay, double* az)
+{
+    static_assert(point_block % 16 == 0 && centre_pad == 8);
+    const std::size_t nc = m.cx.size(); // a multiple of centre_pad
+    const double* cx = m.cx.data();
+    const double* cy = m.cy.data();
+    const double* cz = m.cz.data();
+    const double* wx = m.wx.data();
+    const double* wy = m.wy.data();
+    const double* wz = m.wz.data();
+    const auto load = [](const double* p)
+    {
+        double8 v;
+        __builtin_memcpy(&v, p, sizeof v);
+        return v;
+    };
+    const auto store = [](double* p, const double8& v) { __builtin_memcpy(p, &v, sizeof v); };
+    for (int v = 0; v < point_block; v += 16)
+    {
+        const double8 x0 = load(px + v), y0 = load(py + v), z0 = load(pz + v);
+        const double8 x1 = load(px + v + 8), y1 = load(py + v + 8), z1 = load(pz + v + 8);
+        double8 sx0 = {}, sy0 = {}, sz0 = {}, sx1 = {}, sy1 = {}, sz1 = {};
+        for (std::size_t j0 = 0; j0 < nc; j0 += centre_pad)
+        {
+#pragma GCC unroll 8
+            for (std::size_t u = 0; u < centre_pad; ++u)
+            {
+                const std::size_t j = j0 + u;
+                const double xj = cx[j], yj = cy[j], zj = cz[j];
+                const double wxj = wx[j], wyj = wy[j], wzj = wz[j];
+                const bool newton = u == centre_pad - 1;
+                double8 dx = x0 - xj, dy = y0 - yj, dz = z0 - zj;
+                double8 r2 = dx * dx + dy * dy + dz * dz;
+                double8 f = newton ? r3_by_newton(r2) : r3_by_sqrt(r2);
+                sx0 += f * wxj;
+                sy0 += f * wyj;
+                sz0 += f * wzj;
+                dx = x1 - xj, dy = y1 - yj, dz = z1 - zj;
+                r2 = dx * dx + dy * dy + dz * dz;
+                f = newton ? r3_by_newton(r2) : r3_by_sqrt(r2);
+                sx1 += f * wxj;
+                sy1 += f * wyj;
+                sz1 += f * wzj;
+            }
+        }
+        store(ax + v, sx0);
+        store(ay + v, sy0);
+        store(az + v, sz0);
+        store(ax + v + 8, sx1);
+        store(ay + v + 8, sy1);
+        store(az + v + 8, sz1);
     }
 }
 
@@ -383,6 +452,8 @@ void RbfModel::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Point
                         load_block(*this, points, i0, count, px, py, pz);
                         if (compact)
                             sum_compact_block(phi, *this, count, px, py, pz, ax, ay, az);
+                        else if (is_triharmonic(kernel))
+                            sum_block_triharmonic(*this, px, py, pz, ax, ay, az);
                         else
                             sum_block(phi, *this, px, py, pz, ax, ay, az);
                         store_block(*this, i0, count, px, py, pz, ax, ay, az, out);

@@ -26,3 +26,8 @@ meshmorph_add_component(deform
     SOURCES ${MESHMORPH_DEFORM_SOURCES}
     DEPENDS meshmorph::core
     PRIVATE_DEPENDS LAPACK::LAPACK BLAS::BLAS ${CMAKE_DL_LIBS})
+# deform/triharmonic8.h (core/simd8.h) passes 64-byte vectors: without AVX-512 GCC notes
+# the ABI differs from an AVX-512 build's (no object of one build mixes the two).
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    target_compile_options(meshmorph_deform PRIVATE -Wno-psabi)
+endif()

@@ -13,35 +13,12 @@
 #include <cmath>
 #include <cstddef>
 
-#if defined(__AVX512F__)
-#include <immintrin.h>
-#endif
-
 #include "meshmorph/core/poly_mesh.h"
+#include "meshmorph/core/simd8.h"
 #include "meshmorph/mesh/foam_vector.h"
 
 namespace meshmorph::detail
 {
-
-//! Eight doubles: one AVX-512 register, or four SSE ones (GCC splits it). Without AVX-512,
-//! GCC notes (-Wpsabi) that such a vector is returned differently than with it; the
-//! components including this header build with -Wno-psabi, as every object of a build has
-//! the same flags and these functions are inline.
-using double8 = double __attribute__((vector_size(64)));
-inline constexpr int lanes8 = 8;
-
-//! Lane-wise square root (correctly rounded, as std::sqrt).
-inline double8 sqrt8(const double8& v)
-{
-#if defined(__AVX512F__)
-    return reinterpret_cast<double8>(_mm512_sqrt_pd(reinterpret_cast<__m512d>(v)));
-#else
-    double8 r;
-    for (int l = 0; l < lanes8; ++l)
-        r[l] = std::sqrt(v[l]);
-    return r;
-#endif
-}
 
 //! std::max and std::abs by one name for a double and for eight lanes, so that a kernel
 //! written once serves both (lane-wise: b where a < b, else a; the sign bit cleared).
@@ -59,8 +36,7 @@ inline double lane_abs(double a)
 }
 inline double8 lane_abs(const double8& a)
 {
-    using bits8 = long long __attribute__((vector_size(64)));
-    return reinterpret_cast<double8>(reinterpret_cast<bits8>(a) & 0x7fffffffffffffffLL);
+    return reinterpret_cast<double8>(reinterpret_cast<bits8>(a) & 0x7fffffffffffffffULL);
 }
 
 //! A 3-vector of eight lanes.

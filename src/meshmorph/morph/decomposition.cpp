@@ -2,6 +2,8 @@
 // A rank's part of a decomposed mesh, and bounding boxes over every rank.
 #include "meshmorph/morph/decomposition.h"
 
+#include <algorithm>
+
 #include "meshmorph/mesh/patch_kinds.h"
 #include "meshmorph/morph/patch_assignment.h"
 
@@ -26,13 +28,22 @@ Decomposition make_decomposition(const PolyMesh& mesh, std::vector<Index> global
 Points bounding_corners(const Points& x, const Decomposition* decomposition)
 {
     const bool global = decomposition != nullptr && decomposition->is_distributed();
+    // One pass over the rows: the points are stored row by row, and a column's minCoeff()
+    // strides over all of them once per coordinate and bound (six passes, ~2.5 ms on the
+    // motorBike, run on the main thread three times per morph).
+    double lo[3] = {constants::vgreat, constants::vgreat, constants::vgreat};
+    double hi[3] = {-constants::vgreat, -constants::vgreat, -constants::vgreat};
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+        for (int k = 0; k < 3; ++k)
+        {
+            lo[k] = std::min(lo[k], x(i, k));
+            hi[k] = std::max(hi[k], x(i, k));
+        }
     Points corners(2, 3);
     for (int k = 0; k < 3; ++k)
     {
-        const double lo = x.rows() > 0 ? x.col(k).minCoeff() : constants::vgreat;
-        const double hi = x.rows() > 0 ? x.col(k).maxCoeff() : -constants::vgreat;
-        corners(0, k) = global ? decomposition->comm->min(lo) : lo;
-        corners(1, k) = global ? decomposition->comm->max(hi) : hi;
+        corners(0, k) = global ? decomposition->comm->min(lo[k]) : lo[k];
+        corners(1, k) = global ? decomposition->comm->max(hi[k]) : hi[k];
     }
     return corners;
 }

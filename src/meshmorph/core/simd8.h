@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//! \file Internal: eight doubles as one value (GCC vector extension), for the loops that
+//! are written lane by lane in the scalar code's order: the per-face kernels of the mesh
+//! and quality components (mesh/foam_vector8.h) and the triharmonic RBF sum
+//! (deform/rbf_evaluator.cpp).
+//!
+//! One AVX-512 register, or four SSE ones (GCC splits it). Without AVX-512 GCC notes
+//! (-Wpsabi) that such a vector is passed and returned differently than with it; the
+//! components including this header build with -Wno-psabi under GCC, as every object of a
+//! build has the same flags and these functions are inline.
+#pragma once
+
+#include <cmath>
+
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
+
+namespace meshmorph::detail
+{
+
+using double8 = double __attribute__((vector_size(64)));
+//! The bits of eight doubles (logical shifts: the operands here are non-negative).
+using bits8 = unsigned long long __attribute__((vector_size(64)));
+inline constexpr int lanes8 = 8;
+
+//! Lane-wise square root (correctly rounded, as std::sqrt).
+inline double8 sqrt8(const double8& v)
+{
+#if defined(__AVX512F__)
+    return reinterpret_cast<double8>(_mm512_sqrt_pd(reinterpret_cast<__m512d>(v)));
+#else
+    double8 r;
+    for (int l = 0; l < lanes8; ++l)
+        r[l] = std::sqrt(v[l]);
+    return r;
+#endif
+}
+
+} // namespace meshmorph::detail
