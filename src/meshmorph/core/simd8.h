@@ -37,4 +37,20 @@ inline double8 sqrt8(const double8& v)
 #endif
 }
 
+//! 1 / sqrt(x) lane-wise for finite x > 0, by Newton steps from the bit pattern that halves
+//! the exponent (Lomont's constant for double): four steps take the relative error from
+//! below 3.5e-2 through 1.7e-3, 4.5e-6 and 3e-11 to rounding (a few units in the last
+//! place). IEEE multiplications and additions only, so for one build the bits do not depend
+//! on the processor; an estimate instruction (rsqrt14) has the processor's own bits, its
+//! error bound alone being specified. x = 0 gives a large finite value, not infinity.
+inline double8 inverse_sqrt8(const double8& x)
+{
+    double8 y =
+        reinterpret_cast<double8>(0x5fe6eb50c7b537a9ULL - (reinterpret_cast<bits8>(x) >> 1));
+    const double8 h = 0.5 * x;
+    for (int step = 0; step < 4; ++step)
+        y = y * (1.5 - h * y * y);
+    return y;
+}
+
 } // namespace meshmorph::detail

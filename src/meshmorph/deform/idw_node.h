@@ -1,12 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-//! \file Internal: the records of IdwTree's source tree, shared by the tree (idw_tree.h) and
-//! the evaluation kernels (idw_kernels.h).
+//! \file Internal: the records of IdwTree's source tree and its coincidence distance, shared by the
+//! tree (idw_tree.h) and the evaluation kernels (idw_kernels.h).
 #pragma once
 
 #include "meshmorph/core/types.h"
 
 namespace meshmorph::detail
 {
+
+//! Squared distance below which a query is taken to sit on a source (normalised units:
+//! 1e-13 of the sources' extent, far below any mesh spacing, far above round-off).
+inline constexpr double idw_coincident2 = 1e-26;
 
 //! A node of the source tree: its ball, its range of sources (tree order) or children, and
 //! the moments of its sources about their centroid.

@@ -68,10 +68,6 @@ struct IdwWeight
     double beta = 3.2e-4;  //!< alpha^b (alpha = 0.2)
 };
 
-//! Squared distance below which a query is taken to sit on a source (normalised units:
-//! 1e-13 of the sources' extent, far below any mesh spacing, far above round-off).
-inline constexpr double idw_coincident2 = 1e-26;
-
 //! theta's factor for quiet nodes (see above).
 inline constexpr double quiet_theta_factor = 1.75;
 
