@@ -76,6 +76,13 @@ public:
             for (Eigen::Index a = 0; a < p; ++a)
                 AU_n(a, j) = phi(U_[std::size_t(a)], cand[std::size_t(j)]);
         }
+        // The new columns projected on the null space of the polynomial block: entry (i, j)
+        // loses A_i . Lam_j + L_i . G_j with G = AU_n - AUU Lam_n, where (A_i, L_i) are row
+        // i's columns of AU_ and Lam_ (a centre) or of AU_n and Lam_n (a new one). Done
+        // column by column beside the kernel values: as products of inner dimension p
+        // (Eigen's GEMM, with r0 x b temporaries) it took longer than the kernel values.
+        const Eigen::MatrixXd G =
+            p > 0 ? Eigen::MatrixXd(AU_n - AUU_ * Lam_n) : Eigen::MatrixXd(0, b);
         Eigen::MatrixXd Kon(r0, b), Knn(b, b);
 #pragma omp parallel for schedule(static) if ((r0 + b) * b > 20000)
         for (Eigen::Index j = 0; j < b; ++j)
@@ -88,17 +95,16 @@ public:
                 Knn(i, j) = distance2(cand[std::size_t(i)], cand[std::size_t(j)]);
             model_.kernel.values_in_place(Kon.col(j).data(), std::size_t(r0));
             model_.kernel.values_in_place(Knn.col(j).data(), std::size_t(b));
+            if (p > 0)
+            {
+                subtract_projection(AU_, Lam_, Lam_n.col(j).data(), G.col(j).data(),
+                                    Kon.col(j).data());
+                subtract_projection(AU_n, Lam_n, Lam_n.col(j).data(), G.col(j).data(),
+                                    Knn.col(j).data());
+            }
+            Kon.col(j) *= sign_;
+            Knn.col(j) *= sign_;
         }
-        if (p > 0)
-        {
-            const Eigen::MatrixXd Lo = Lam_.leftCols(r0), Ao = AU_.leftCols(r0);
-            Kon -= Ao.transpose() * Lam_n + Lo.transpose() * AU_n;
-            Kon += Lo.transpose() * (AUU_ * Lam_n);
-            Knn -= AU_n.transpose() * Lam_n + Lam_n.transpose() * AU_n;
-            Knn += Lam_n.transpose() * (AUU_ * Lam_n);
-        }
-        Kon *= sign_;
-        Knn *= sign_;
         factor_.forward(Kon);
         // The Schur complement S = Knn - Kon^T Kon (lower triangle, what dpotrf reads) by
         // BLAS, which runs on one thread here: Eigen's product splits its blocks by the
@@ -183,6 +189,21 @@ public:
     }
 
 private:
+    //! x_i -= A(:, i) . lam + L(:, i) . g for the A.cols() rows of x (A and L: p x n).
+    static void subtract_projection(const Eigen::MatrixXd& A, const Eigen::MatrixXd& L,
+                                    const double* lam, const double* g, double* x)
+    {
+        const Eigen::Index p = A.rows();
+        for (Eigen::Index i = 0; i < A.cols(); ++i)
+        {
+            const double* a = A.col(i).data();
+            const double* l = L.col(i).data();
+            double s = 0.0;
+            for (Eigen::Index k = 0; k < p; ++k)
+                s += a[k] * lam[k] + l[k] * g[k];
+            x[i] -= s;
+        }
+    }
     double distance2(Eigen::Index i, Eigen::Index j) const
     {
         return (X_.row(i) - X_.row(j)).squaredNorm();
