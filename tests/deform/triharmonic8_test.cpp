@@ -68,7 +68,7 @@ TEST(Triharmonic8, newton_steps_give_zero_at_zero_distance_and_below_the_floor)
 
 TEST(Triharmonic8, a_points_sum_does_not_depend_on_the_points_evaluated_with_it)
 {
-    // Every eighth centre goes by Newton steps: a point's value must still be the same
+    // Every sixth centre goes by Newton steps: a point's value must still be the same
     // wherever it lands in a block (a -parallel rank evaluates other sets of points).
     const Points h = test::random_points(301); // centres padded: not a multiple of eight
     RbfDeformation rbf;
