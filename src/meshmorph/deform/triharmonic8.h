@@ -2,7 +2,7 @@
 //! \file Internal: the triharmonic kernel r^3 = r2^(3/2) on eight lanes, by the square-root
 //! unit or by Newton steps on the multiply-add units (the blocked RBF sum uses both).
 //!
-//! The triharmonic sums are bound by the square-root unit: on the AVX-512 Zen 4 cores the
+//! The triharmonic sums are bound by the square-root unit: on the AMD EPYC (AVX-512) cores the
 //! benchmarks run on, a square root of eight lanes issues every ~13 cycles, while the rest of
 //! a term (the difference, the squared distance, the three multiply-adds into the sums)
 //! needs ~7 on the multiply-add units. r3_by_newton() computes r^3 without the square-root
