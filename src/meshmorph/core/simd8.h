@@ -24,6 +24,18 @@ using double8 = double __attribute__((vector_size(64)));
 using bits8 = unsigned long long __attribute__((vector_size(64)));
 inline constexpr int lanes8 = 8;
 
+//! Eight consecutive doubles from p (no alignment needed), and back.
+inline double8 load8(const double* p)
+{
+    double8 v;
+    __builtin_memcpy(&v, p, sizeof v);
+    return v;
+}
+inline void store8(double* p, const double8& v)
+{
+    __builtin_memcpy(p, &v, sizeof v);
+}
+
 //! Lane-wise square root (correctly rounded, as std::sqrt).
 inline double8 sqrt8(const double8& v)
 {

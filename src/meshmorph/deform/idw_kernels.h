@@ -65,10 +65,7 @@ constexpr int chunk = 8;
 inline void inverse_sqrt(const double* in, double* out)
 {
     static_assert(chunk == lanes8);
-    double8 x;
-    __builtin_memcpy(&x, in, sizeof x);
-    const double8 y = inverse_sqrt8(x);
-    __builtin_memcpy(out, &y, sizeof y);
+    store8(out, inverse_sqrt8(load8(in)));
 }
 
 //! One query block in structure-of-arrays form with its accumulators.

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Blocked RBF evaluation. The inner loop runs over a block of points for one centre so that
 // GCC vectorises it without reassociating sums (-O3 -march=native, -fno-math-errno for sqrt);
-// the triharmonic kernel (the default) has a loop of its own on eight-lane vectors
-// (sum_block_triharmonic). Every point accumulates its centres in index order, so the result
+// the triharmonic kernel (the default) has a loop of its own on eight-lane vectors (an
+// overload of sum_block). Every point accumulates its centres in index order, so the result
 // does not depend on the number of threads or on the block a point lands in.
 #include "meshmorph/deform/rbf_evaluator.h"
 
@@ -93,11 +93,6 @@ template <class F> void with_kernel(const KernelParams& k, F&& f)
     }
 }
 
-bool is_triharmonic(const KernelParams& k)
-{
-    return k.type == KernelType::polyharmonic && k.power == 3;
-}
-
 template <class Phi>
 void sum_block(const Phi& phi, const RbfModel& m, const double* __restrict px,
                const double* __restrict py, const double* __restrict pz, double* __restrict ax,
@@ -170,26 +165,20 @@ struct TriharmonicSums
     }
 };
 
-//! The triharmonic sum over a block: sixteen points at a time, their sums in registers over
-//! all the centres, in index order as sum_block. Which centres take the Newton steps depends
-//! on their index alone, so a point's sum does not depend on the block, the thread or the
-//! rank it is evaluated on.
-void sum_block_triharmonic(const RbfModel& m, const double* px, const double* py, const double* pz,
-                           double* ax, double* ay, double* az)
+//! sum_block for the triharmonic kernel (chosen by overload, as with_kernel picks the
+//! kernel): sixteen points at a time, their sums in registers over all the centres, in index
+//! order as the generic one. Which centres take the Newton steps depends on their index
+//! alone, so a point's sum does not depend on the block, the thread or the rank it is
+//! evaluated on.
+void sum_block(const Triharmonic&, const RbfModel& m, const double* px, const double* py,
+               const double* pz, double* ax, double* ay, double* az)
 {
     static_assert(point_block % 16 == 0 && centre_pad == 8 && newton_every == 6);
     const std::size_t nc = m.cx.size(); // a multiple of centre_pad
-    const auto load = [](const double* p)
-    {
-        double8 v;
-        __builtin_memcpy(&v, p, sizeof v);
-        return v;
-    };
-    const auto store = [](double* p, const double8& v) { __builtin_memcpy(p, &v, sizeof v); };
     for (int v = 0; v < point_block; v += 16)
     {
-        TriharmonicSums t{load(px + v),     load(py + v),     load(pz + v),
-                          load(px + v + 8), load(py + v + 8), load(pz + v + 8)};
+        TriharmonicSums t{load8(px + v),     load8(py + v),     load8(pz + v),
+                          load8(px + v + 8), load8(py + v + 8), load8(pz + v + 8)};
         // Groups of eight start at j0 % 6 = 0, 2, 4, 0, ...
         for (std::size_t j0 = 0; j0 < nc; j0 += centre_pad)
             switch (j0 % newton_every)
@@ -204,12 +193,12 @@ void sum_block_triharmonic(const RbfModel& m, const double* px, const double* py
                 t.add_eight<4>(m, j0);
                 break;
             }
-        store(ax + v, t.sx0);
-        store(ay + v, t.sy0);
-        store(az + v, t.sz0);
-        store(ax + v + 8, t.sx1);
-        store(ay + v + 8, t.sy1);
-        store(az + v + 8, t.sz1);
+        store8(ax + v, t.sx0);
+        store8(ay + v, t.sy0);
+        store8(az + v, t.sz0);
+        store8(ax + v + 8, t.sx1);
+        store8(ay + v + 8, t.sy1);
+        store8(az + v + 8, t.sz1);
     }
 }
 
@@ -473,8 +462,6 @@ void RbfModel::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Point
                         load_block(*this, points, i0, count, px, py, pz);
                         if (compact)
                             sum_compact_block(phi, *this, count, px, py, pz, ax, ay, az);
-                        else if (is_triharmonic(kernel))
-                            sum_block_triharmonic(*this, px, py, pz, ax, ay, az);
                         else
                             sum_block(phi, *this, px, py, pz, ax, ay, az);
                         store_block(*this, i0, count, px, py, pz, ax, ay, az, out);
