@@ -14,6 +14,7 @@
 #include "helpers.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/mesh/mesh_geometry.h"
+#include "meshmorph/quality/cell_validity.h"
 #include "meshmorph/quality/check_mesh.h"
 #include "meshmorph/quality/report_text.h"
 
@@ -274,6 +275,38 @@ TEST(CheckMesh, without_cell_fields_the_summary_is_the_same)
         // -allGeometry checks the determinant, so it is computed either way.
         EXPECT_EQ(without.cell_determinant.size(), all_geometry ? mesh.n_cells : 0);
     }
+}
+
+TEST(CheckMesh, a_check_after_the_points_moved_takes_over_what_did_not_change)
+{
+    // A morph's check after: the topology and mesh statistics from the check before, the
+    // face pyramid errors its last step counted. The report is a fresh check's.
+    const PolyMesh original = distorted_block();
+    const CompactList cf = cell_faces(original);
+    CheckMeshSettings settings;
+    settings.write_precision = 17;
+    const QualityReport before = check_mesh(original, cf, compute_geometry(original, cf), settings);
+    PolyMesh moved = original;
+    moved.points.row(40) += Eigen::RowVector3d(0.4, 0.3, 0.3); // inverts cells around it
+    const MeshGeometry g = compute_geometry(moved, cf);
+    std::vector<char> pyramid_errors;
+    const InvalidCells invalid = count_invalid_cells(moved, g, &pyramid_errors);
+    ASSERT_GT(invalid.wrong_pyramids, 0);
+    ASSERT_EQ(Index(pyramid_errors.size()), moved.n_faces());
+    const QualityReport fresh = check_mesh(moved, cf, g, settings);
+    CheckMeshSettings after_settings = settings;
+    after_settings.unchanged_topology = &before;
+    after_settings.face_pyramid_errors = &pyramid_errors;
+    const QualityReport after = check_mesh(moved, cf, g, after_settings);
+    EXPECT_EQ(after.text, fresh.text);
+    EXPECT_EQ(after.incorrectly_oriented_face_pyramids, invalid.wrong_pyramids);
+    EXPECT_EQ(after.negative_volume_cells, invalid.negative_volume_cells);
+    EXPECT_EQ(after.cell_types.hex, fresh.cell_types.hex);
+    EXPECT_EQ(after.n_internal_points, fresh.n_internal_points);
+    // Errors of another size (not of these faces) are not taken: computed afresh.
+    const std::vector<char> wrong(std::size_t(moved.n_faces() - 1), 2);
+    after_settings.face_pyramid_errors = &wrong;
+    EXPECT_EQ(check_mesh(moved, cf, g, after_settings).text, fresh.text);
 }
 
 TEST(CheckMesh, rejects_out_of_range_vertex_labels)

@@ -236,8 +236,9 @@ void morph_resolved(const MorphOptions& options, const MorphCase& in, const Comp
     moved->points = std::move(stepped.points); // exactly the points stepped.geometry is of
     CheckMeshSettings check_settings;
     check_settings.scaled_jacobian = options.scaled_jacobian;
-    check_settings.cell_fields = options.vtk;           // the VTK file shows them
-    check_settings.unchanged_topology = &result.before; // only the points moved
+    check_settings.cell_fields = options.vtk;                     // the VTK file shows them
+    check_settings.unchanged_topology = &result.before;           // only the points moved
+    check_settings.face_pyramid_errors = &stepped.pyramid_errors; // counted after the last step
     result.after = check_morph_mesh(*moved, cf, stepped.geometry, check_settings, in.decomposition);
     result.timings.check += stage.seconds();
     judge(options, result);

@@ -141,16 +141,18 @@ const parallel::Communicator& communicator(const Decomposition* decomposition)
 
 //! Invalid cells counted over every rank (a cell lives on one rank only).
 InvalidCells global_invalid_cells(const PolyMesh& mesh, const MeshGeometry& geometry,
-                                  const parallel::Communicator& comm)
+                                  const parallel::Communicator& comm,
+                                  std::vector<char>& pyramid_errors)
 {
-    InvalidCells local = count_invalid_cells(mesh, geometry);
+    InvalidCells local = count_invalid_cells(mesh, geometry, &pyramid_errors);
     return {Index(comm.sum(std::int64_t(local.negative_volume_cells))),
             Index(comm.sum(std::int64_t(local.wrong_pyramids)))};
 }
 
 //! Untangle the step's new invalid cells in place and recount them.
 void repair(PolyMesh& current, const CompactList& cell_faces, MeshGeometry& geometry,
-            OriginalState& original, StepRecord& record, const parallel::Communicator& comm)
+            std::vector<char>& pyramid_errors, OriginalState& original, StepRecord& record,
+            const parallel::Communicator& comm)
 {
     const Stopwatch clock;
     record.untangle = untangle_cells(current, cell_faces, geometry, original.points(),
@@ -160,7 +162,7 @@ void repair(PolyMesh& current, const CompactList& cell_faces, MeshGeometry& geom
     record.untangle.points_moved = comm.sum(std::int64_t(record.untangle.points_moved));
     record.untangle.max_move = comm.max(record.untangle.max_move);
     record.untangle.layers = int(comm.max(std::int64_t(record.untangle.layers)));
-    record.invalid = global_invalid_cells(current, geometry, comm);
+    record.invalid = global_invalid_cells(current, geometry, comm, pyramid_errors);
     record.untangle_seconds = comm.max(clock.seconds());
 }
 
@@ -280,10 +282,11 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         std::swap(current.points, other); // current: the trial; other: the accepted state
         const Stopwatch check_clock;
         MeshGeometry geometry = compute_geometry(current, cell_faces);
-        record.invalid = global_invalid_cells(current, geometry, comm);
+        std::vector<char> pyramid_errors;
+        record.invalid = global_invalid_cells(current, geometry, comm, pyramid_errors);
         record.check_seconds = comm.max(check_clock.seconds());
         if (settings.untangle && record.invalid.worse_than(before))
-            repair(current, cell_faces, geometry, original, record, comm);
+            repair(current, cell_faces, geometry, pyramid_errors, original, record, comm);
         const bool failed = record.invalid.worse_than(before);
         const bool redo = failed && is_auto && !stuck && length > shortest * 1.5;
         record.accepted = !redo;
@@ -300,6 +303,7 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         stuck = stuck || (failed && is_auto);
         out.last = std::move(m);
         out.geometry = std::move(geometry);
+        out.pyramid_errors = std::move(pyramid_errors);
         done = record.to;
         ++steps_done;
     }

@@ -64,11 +64,12 @@ struct StepRecord
 
 struct SteppedMorph
 {
-    Points points;                 //!< nPoints x 3, the morphed points
-    Points displacement;           //!< points - original points
-    std::vector<StepRecord> steps; //!< every step tried, in order
-    PointMorph last;               //!< the last step's fit (counts, report)
-    MeshGeometry geometry;         //!< of the final points (for the final check)
+    Points points;                    //!< nPoints x 3, the morphed points
+    Points displacement;              //!< points - original points
+    std::vector<StepRecord> steps;    //!< every step tried, in order
+    PointMorph last;                  //!< the last step's fit (counts, report)
+    MeshGeometry geometry;            //!< of the final points (for the final check)
+    std::vector<char> pyramid_errors; //!< face_pyramid_errors of the final points (same)
     //! The fraction of the motion reached without new invalid cells (1: all of it). The
     //! whole motion is always applied: with auto, once even the shortest step fails the
     //! rest goes in one step, so that -force writes the motion asked for.

@@ -8,11 +8,15 @@
 namespace meshmorph
 {
 
-InvalidCells count_invalid_cells(const PolyMesh& mesh, const MeshGeometry& g)
+InvalidCells count_invalid_cells(const PolyMesh& mesh, const MeshGeometry& g,
+                                 std::vector<char>* pyramid_errors)
 {
-    return {
-        check_cell_volumes(g.cell_volumes).count("negativeVolumeCells"),
-        check_face_pyramids(face_pyramid_errors(mesh, g)).count("incorrectlyOrientedFacePyramids")};
+    std::vector<char> errors = face_pyramid_errors(mesh, g);
+    const InvalidCells counts{check_cell_volumes(g.cell_volumes).count("negativeVolumeCells"),
+                              check_face_pyramids(errors).count("incorrectlyOrientedFacePyramids")};
+    if (pyramid_errors != nullptr)
+        *pyramid_errors = std::move(errors);
+    return counts;
 }
 
 } // namespace meshmorph

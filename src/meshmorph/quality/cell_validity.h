@@ -32,7 +32,10 @@ struct InvalidCells
 };
 
 //! \brief Both counts for a mesh and its geometry (compute_geometry): check_cell_volumes
-//! and check_face_pyramids.
-InvalidCells count_invalid_cells(const PolyMesh& mesh, const MeshGeometry& geometry);
+//! and check_face_pyramids. \param pyramid_errors if given, receives the
+//! face_pyramid_errors counted (a later check_mesh of the same points takes them over:
+//! CheckMeshSettings::face_pyramid_errors).
+InvalidCells count_invalid_cells(const PolyMesh& mesh, const MeshGeometry& geometry,
+                                 std::vector<char>* pyramid_errors = nullptr);
 
 } // namespace meshmorph

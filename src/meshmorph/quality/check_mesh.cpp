@@ -175,14 +175,31 @@ void reuse_topology(const QualityReport& before, const PolyMesh& mesh,
     r.cell_zones = cell_zone_summaries(mesh, cell_faces, g);
 }
 
-//! Whether `before` can stand for this check's topology part.
+//! Whether `before` can stand for this check's topology part (and its mesh statistics).
 bool can_reuse_topology(const CheckMeshSettings& s, const ProcessorFaces* processors,
-                        const QualityReport& r)
+                        const PolyMesh& mesh)
 {
     const QualityReport* before = s.unchanged_topology;
-    return before != nullptr && processors == nullptr && !s.all_topology &&
-           before->n_topology_checks > 0 && before->n_cells == r.n_cells &&
-           before->n_faces == r.n_faces && before->n_points == r.n_points;
+    return !s.no_topology && before != nullptr && processors == nullptr && !s.all_topology &&
+           before->n_topology_checks > 0 && before->n_cells == mesh.n_cells &&
+           before->n_faces == mesh.n_faces() && before->n_points == mesh.n_points();
+}
+
+//! "Mesh stats" and the cell types of `before`, a check of the same faces, cells and zones
+//! (the label checks of validate() passed there).
+void reuse_mesh_stats(const QualityReport& before, QualityReport& r)
+{
+    r.n_points = before.n_points;
+    r.n_faces = before.n_faces;
+    r.n_internal_faces = before.n_internal_faces;
+    r.n_cells = before.n_cells;
+    r.n_patches = before.n_patches;
+    r.n_point_zones = before.n_point_zones;
+    r.n_face_zones = before.n_face_zones;
+    r.n_cell_zones = before.n_cell_zones;
+    r.n_internal_points = before.n_internal_points;
+    r.edges = before.edges;
+    r.cell_types = before.cell_types;
 }
 
 //! The scaled Jacobian's corners of the check `unchanged_topology` names, when it has them
@@ -240,6 +257,16 @@ void run_all_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces
     checks.push_back(check_volume_ratio(face_volume_ratio(mesh, g.cell_volumes, coupled), summed));
 }
 
+//! The face pyramid errors of the checked points: the caller's when it has them, else computed.
+std::vector<char> pyramid_errors_of(const PolyMesh& mesh, const MeshGeometry& g,
+                                    const CheckMeshSettings& s)
+{
+    const std::vector<char>* known = s.face_pyramid_errors;
+    if (known != nullptr && Index(known->size()) == mesh.n_faces())
+        return *known;
+    return face_pyramid_errors(mesh, g);
+}
+
 void run_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces, const MeshGeometry& g,
                          const CheckMeshSettings& settings, const ProcessorFaces* processors,
                          QualityReport& r)
@@ -271,7 +298,7 @@ void run_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
     const CoupledFaces coupled = coupled_faces(mesh, g, cyclics, processors);
     const Eigen::VectorXd ortho = face_orthogonality(mesh, g, coupled);
     checks.push_back(check_face_orthogonality(ortho, coupled.statistics_faces()));
-    checks.push_back(check_face_pyramids(face_pyramid_errors(mesh, g)));
+    checks.push_back(check_face_pyramids(pyramid_errors_of(mesh, g, settings)));
     const Eigen::VectorXd skewness = face_skewness(mesh, g, coupled);
     checks.push_back(check_face_skewness(skewness, coupled.master));
     checks.push_back(check_coupled_points(coupled_point_match(mesh, g, cyclics, processors)));
@@ -295,23 +322,30 @@ QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
                          const MeshGeometry& geometry, const CheckMeshSettings& settings,
                          const ProcessorFaces* processors)
 {
-    validate(mesh);
+    const bool reuse = can_reuse_topology(settings, processors, mesh);
+    if (!reuse)
+        validate(mesh);
     require_cell_faces_of(mesh, cell_faces);
     QualityReport report;
     const CompactList pf = settings.all_topology ? point_faces(mesh) : CompactList{};
-    const std::vector<CellShape> shapes =
-        mesh_stats(mesh, cell_faces, pf, settings.all_topology, report);
+    std::vector<CellShape> shapes;
+    if (reuse)
+        reuse_mesh_stats(*settings.unchanged_topology, report);
+    else
+        shapes = mesh_stats(mesh, cell_faces, pf, settings.all_topology, report);
     // The paper's measure (not a checkMesh check): minimum over cells where it is defined.
     if (settings.scaled_jacobian)
     {
         report.jacobian_corners = reusable_corners(settings, mesh);
+        if (!report.jacobian_corners && shapes.empty())
+            shapes = classify_cells(mesh, cell_faces);
         if (!report.jacobian_corners)
             report.jacobian_corners =
                 std::make_shared<const JacobianCorners>(jacobian_corners(mesh, cell_faces, shapes));
         report.cell_scaled_jacobian = scaled_jacobian(mesh, *report.jacobian_corners);
     }
     report.min_scaled_jacobian = min_finite(report.cell_scaled_jacobian);
-    if (!settings.no_topology && can_reuse_topology(settings, processors, report))
+    if (reuse)
         reuse_topology(*settings.unchanged_topology, mesh, cell_faces, geometry, report);
     else if (!settings.no_topology)
         run_topology_checks(mesh, cell_faces, geometry, pf, settings.all_topology, processors,

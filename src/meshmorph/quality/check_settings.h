@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace meshmorph
 {
@@ -56,6 +57,10 @@ struct CheckMeshSettings
     //! Jacobian's corners (QualityReport::jacobian_corners) are reused in any check of as many
     //! cells (a -parallel morph keeps each rank's own in the reduced report).
     const QualityReport* unchanged_topology = nullptr;
+    //! face_pyramid_errors of the checked points, when the caller has them already (a morph
+    //! counts them after its last step, count_invalid_cells): the check takes them over
+    //! instead of computing them again. Ignored unless it has an entry per face.
+    const std::vector<char>* face_pyramid_errors = nullptr;
 };
 
 } // namespace meshmorph
