@@ -3,6 +3,8 @@
 #include "meshmorph/deform/corrected_deformation.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <vector>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
@@ -130,37 +132,34 @@ void CorrectedDeformation::evaluate_global(const Eigen::Ref<const Points>& point
         return;
     }
     // A morph evaluates the field at its constraints too (on the motorBike 57k of 406k
-    // points, each a sum over every centre). The other points go through the global part
-    // in pieces, so that the gathered copies stay small (fresh pages cost more than the
-    // copies on a virtual machine).
+    // points, each a sum over every centre): those take the fit's values. The other points
+    // go through the global part in pieces, so that the gathered copies stay small (fresh
+    // pages cost more than the copies on a virtual machine); the gathers and scatters run
+    // on every thread, and pieces of 2^16 points keep the evaluation's tails short (one per
+    // piece).
     const std::vector<Index> at_handle = handle_rows_.find_rows(points);
-    const Eigen::Index piece = std::min<Eigen::Index>(points.rows(), 1 << 14);
-    Points x(piece, 3), g(piece, 3);
     std::vector<Eigen::Index> rows;
-    rows.reserve(std::size_t(piece));
-    const auto flush = [&]
-    {
-        const Eigen::Index n = Eigen::Index(rows.size());
-        if (n == 0)
-            return;
-        global_->evaluate(x.topRows(n), g.topRows(n));
-        for (Eigen::Index k = 0; k < n; ++k)
-            out.row(rows[std::size_t(k)]) = g.row(k);
-        rows.clear();
-    };
+    rows.reserve(std::size_t(points.rows()));
     for (Eigen::Index i = 0; i < points.rows(); ++i)
-    {
+        if (at_handle[std::size_t(i)] < 0)
+            rows.push_back(i);
+#pragma omp parallel for schedule(static) if (points.rows() > 4096)
+    for (std::int64_t i = 0; i < std::int64_t(points.rows()); ++i)
         if (const Index j = at_handle[std::size_t(i)]; j >= 0)
-        {
             out.row(i) = global_at_handles_.row(j);
-            continue;
-        }
-        x.row(Eigen::Index(rows.size())) = points.row(i);
-        rows.push_back(i);
-        if (Eigen::Index(rows.size()) == piece)
-            flush();
+    const std::int64_t piece = std::min<std::int64_t>(std::int64_t(rows.size()), 1 << 16);
+    Points x(piece, 3), g(piece, 3);
+    for (std::int64_t begin = 0; begin < std::int64_t(rows.size()); begin += piece)
+    {
+        const std::int64_t n = std::min<std::int64_t>(piece, std::int64_t(rows.size()) - begin);
+#pragma omp parallel for schedule(static) if (n > 4096)
+        for (std::int64_t k = 0; k < n; ++k)
+            x.row(k) = points.row(rows[std::size_t(begin + k)]);
+        global_->evaluate(x.topRows(n), g.topRows(n));
+#pragma omp parallel for schedule(static) if (n > 4096)
+        for (std::int64_t k = 0; k < n; ++k)
+            out.row(rows[std::size_t(begin + k)]) = g.row(k);
     }
-    flush();
 }
 
 void CorrectedDeformation::evaluate(const Eigen::Ref<const Points>& points,
@@ -171,7 +170,9 @@ void CorrectedDeformation::evaluate(const Eigen::Ref<const Points>& points,
     evaluate_global(points, out);
     Points c(points.rows(), 3);
     correction_.evaluate(points, c);
-    out += c;
+#pragma omp parallel for schedule(static) if (points.rows() > 4096)
+    for (std::int64_t i = 0; i < std::int64_t(points.rows()); ++i)
+        out.row(i) += c.row(i);
     if (limit_)
         detail::limit_to_ball(out, report_.max_displacement);
 }

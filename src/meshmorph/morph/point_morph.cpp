@@ -5,6 +5,7 @@
 #include "meshmorph/morph/cyclic_coupling.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 #include <tuple>
@@ -305,11 +306,12 @@ Prescription fit_constraints(const FitInput& in, const Constraints& c,
 //! max over the constrained points of |d - prescribed|.
 double max_error(const Points& displacement, const Prescription& p)
 {
-    double error = 0.0;
-    for (std::size_t i = 0; i < p.points.size(); ++i)
-        error = std::max(
-            error,
-            (displacement.row(p.points[i]) - p.values.row(static_cast<Eigen::Index>(i))).norm());
+    double error = 0.0; // a maximum: the same on any number of threads
+    const std::int64_t n = std::int64_t(p.points.size());
+#pragma omp parallel for schedule(static) reduction(max : error) if (n > 4096)
+    for (std::int64_t i = 0; i < n; ++i)
+        error =
+            std::max(error, (displacement.row(p.points[std::size_t(i)]) - p.values.row(i)).norm());
     return error;
 }
 
@@ -459,7 +461,12 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
 
 double max_norm(const Points& values)
 {
-    return values.rows() == 0 ? 0.0 : values.rowwise().norm().maxCoeff();
+    double largest = 0.0; // a maximum: the same on any number of threads
+    const std::int64_t n = values.rows();
+#pragma omp parallel for schedule(static) reduction(max : largest) if (n > 4096)
+    for (std::int64_t i = 0; i < n; ++i)
+        largest = std::max(largest, values.row(i).norm());
+    return largest;
 }
 
 } // namespace meshmorph::morph
