@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// checkMesh's geometry checks: reductions run serially in storage order, so the numbers do
-// not depend on the number of threads that computed the fields.
+// checkMesh's geometry checks: sums run serially in storage order, so the numbers do not
+// depend on the number of threads; extremes and the lists of failing faces (which do not
+// depend on an order) are found on every thread.
 #include "meshmorph/quality/geometry_checks.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+
+#include <omp.h>
 
 #include "meshmorph/mesh/foam_vector.h"
 #include "meshmorph/quality/face_orthogonality.h"
@@ -18,6 +22,27 @@ namespace
 constexpr double small = constants::small;
 constexpr double vsmall = constants::vsmall;
 constexpr double great = constants::great;
+
+//! The indices f in [0, n) with is(f), ascending: the rare faces a check lists, found on
+//! every thread (each takes one contiguous range; the ranges are joined in order).
+template <class Predicate> std::vector<Index> faces_where(Index n, const Predicate& is)
+{
+    std::vector<std::vector<Index>> found;
+#pragma omp parallel if (n > 65536)
+    {
+#pragma omp single
+        found.resize(std::size_t(omp_get_num_threads()));
+        std::vector<Index>& mine = found[std::size_t(omp_get_thread_num())];
+#pragma omp for schedule(static)
+        for (Index f = 0; f < n; ++f)
+            if (is(f))
+                mine.push_back(f);
+    }
+    std::vector<Index> all;
+    for (const std::vector<Index>& part : found)
+        all.insert(all.end(), part.begin(), part.end());
+    return all;
+}
 
 //! The elements with errors[i] > 0 and the sum of the errors.
 std::pair<Index, std::vector<Index>> error_faces(const std::vector<char>& errors)
@@ -43,14 +68,19 @@ struct FieldRange
 FieldRange field_range(const Eigen::VectorXd& values, double threshold)
 {
     FieldRange r;
-    for (Eigen::Index i = 0; i < values.size(); ++i)
+    const std::int64_t n = values.size();
+    double lo = r.min, hi = r.max; // extremes: the same in any order
+#pragma omp parallel for schedule(static) reduction(min : lo) reduction(max : hi) if (n > 65536)
+    for (std::int64_t i = 0; i < n; ++i)
     {
-        if (values[i] < threshold)
-            r.below.push_back(static_cast<Index>(i));
-        r.min = std::min(r.min, values[i]);
-        r.max = std::max(r.max, values[i]);
-        r.sum += values[i];
+        lo = std::min(lo, values[i]);
+        hi = std::max(hi, values[i]);
     }
+    r.min = lo;
+    r.max = hi;
+    r.below = faces_where(Index(n), [&](Index i) { return values[i] < threshold; });
+    for (std::int64_t i = 0; i < n; ++i) // in storage order, as checkMesh sums
+        r.sum += values[i];
     return r;
 }
 
@@ -222,25 +252,23 @@ CheckResult check_cell_volumes(const Eigen::VectorXd& volumes)
 
 CheckResult check_face_orthogonality(const Eigen::VectorXd& ortho, const std::vector<char>& summed)
 {
-    Index n_summed = 0;
     const double threshold = std::cos(detail::deg_to_rad(70.0));
-    double min_cos = great, sum_cos = 0;
     Index severe = 0, errors = 0;
-    std::vector<Index> faces;
+    const std::vector<Index> faces =
+        faces_where(Index(ortho.size()), [&](Index f) { return ortho[f] < threshold; });
+    for (Index f : faces)
+        (ortho[f] > small ? severe : errors)++;
+    // The sum in storage order (as checkMesh's); min and count without a branch per face
+    // (a face not summed adds +0, which leaves every sum as it was).
+    Index n_summed = 0;
+    double min_cos = great, sum_cos = 0;
     for (Index f = 0; f < static_cast<Index>(ortho.size()); ++f)
     {
+        const bool in = summed[static_cast<std::size_t>(f)] != 0;
         const double o = ortho[f];
-        if (o < threshold)
-        {
-            faces.push_back(f);
-            (o > small ? severe : errors)++;
-        }
-        if (summed[static_cast<std::size_t>(f)])
-        {
-            min_cos = std::min(min_cos, o);
-            sum_cos += o;
-            ++n_summed;
-        }
+        min_cos = std::min(min_cos, in ? o : great);
+        sum_cos += in ? o : 0.0;
+        n_summed += in;
     }
     const double avg_cos = sum_cos / static_cast<double>(std::max<Index>(n_summed, 1));
     CheckResult r(CheckId::face_orthogonality);
@@ -271,18 +299,16 @@ CheckResult check_face_pyramids(const std::vector<char>& errors)
 
 CheckResult check_face_skewness(const Eigen::VectorXd& skewness, const std::vector<char>& counted)
 {
-    Index n_counted = 0;
-    double max_skew = skewness.size() > 0 ? skewness[0] : 0;
-    std::vector<Index> faces;
-    for (Eigen::Index f = 0; f < skewness.size(); ++f)
-    {
+    double max_skew = skewness.size() > 0 ? skewness[0] : 0; // a maximum: any order
+    const std::int64_t n = skewness.size();
+#pragma omp parallel for schedule(static) reduction(max : max_skew) if (n > 65536)
+    for (std::int64_t f = 0; f < n; ++f)
         max_skew = std::max(max_skew, skewness[f]);
-        if (skewness[f] > 4)
-        {
-            faces.push_back(static_cast<Index>(f));
-            n_counted += counted.empty() || counted[static_cast<std::size_t>(f)];
-        }
-    }
+    const std::vector<Index> faces =
+        faces_where(Index(n), [&](Index f) { return skewness[f] > 4; });
+    Index n_counted = 0;
+    for (Index f : faces)
+        n_counted += counted.empty() || counted[static_cast<std::size_t>(f)];
     CheckResult r(CheckId::face_skewness);
     r.add("maxSkewness", max_skew);
     r.add("highlySkewedFaces", n_counted);
