@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Per-stage timings of the checker on a case: read, cell addressing, geometry, shapes,
-// scaled Jacobian, check_mesh plain / -allGeometry -allTopology / after a morph (topology
-// reused), best of N runs each.
+// scaled Jacobian, check_mesh plain / -allGeometry -allTopology, and morphMesh's own checks
+// (before the morph, a step's count of invalid cells, after the morph with what the check
+// before and the step already have), best of N runs each.
 // Usage: benchCheckMeshStages CASE [REPEATS]
 #include <algorithm>
 #include <chrono>
