@@ -160,11 +160,23 @@ void run_topology_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
     r.cell_zones = cell_zone_summaries(mesh, cell_faces, g);
 }
 
-//! The topology part of `before`, a report of the same faces, cells and zones: only the
-//! zones' geometric summaries are recomputed.
+//! The mesh statistics, cell types and topology part of `before`, a report of the same
+//! faces, cells and zones (whose label checks, validate(), passed): only the zones'
+//! geometric summaries are recomputed.
 void reuse_topology(const QualityReport& before, const PolyMesh& mesh,
                     const CompactList& cell_faces, const MeshGeometry& g, QualityReport& r)
 {
+    r.n_points = before.n_points;
+    r.n_faces = before.n_faces;
+    r.n_internal_faces = before.n_internal_faces;
+    r.n_cells = before.n_cells;
+    r.n_patches = before.n_patches;
+    r.n_point_zones = before.n_point_zones;
+    r.n_face_zones = before.n_face_zones;
+    r.n_cell_zones = before.n_cell_zones;
+    r.n_internal_points = before.n_internal_points;
+    r.edges = before.edges;
+    r.cell_types = before.cell_types;
     r.checks.assign(before.checks.begin(), before.checks.begin() + before.n_topology_checks);
     r.n_topology_checks = before.n_topology_checks;
     r.cell_to_region = before.cell_to_region;
@@ -183,23 +195,6 @@ bool can_reuse_topology(const CheckMeshSettings& s, const ProcessorFaces* proces
     return !s.no_topology && before != nullptr && processors == nullptr && !s.all_topology &&
            before->n_topology_checks > 0 && before->n_cells == mesh.n_cells &&
            before->n_faces == mesh.n_faces() && before->n_points == mesh.n_points();
-}
-
-//! "Mesh stats" and the cell types of `before`, a check of the same faces, cells and zones
-//! (the label checks of validate() passed there).
-void reuse_mesh_stats(const QualityReport& before, QualityReport& r)
-{
-    r.n_points = before.n_points;
-    r.n_faces = before.n_faces;
-    r.n_internal_faces = before.n_internal_faces;
-    r.n_cells = before.n_cells;
-    r.n_patches = before.n_patches;
-    r.n_point_zones = before.n_point_zones;
-    r.n_face_zones = before.n_face_zones;
-    r.n_cell_zones = before.n_cell_zones;
-    r.n_internal_points = before.n_internal_points;
-    r.edges = before.edges;
-    r.cell_types = before.cell_types;
 }
 
 //! The scaled Jacobian's corners of the check `unchanged_topology` names, when it has them
@@ -257,14 +252,16 @@ void run_all_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces
     checks.push_back(check_volume_ratio(face_volume_ratio(mesh, g.cell_volumes, coupled), summed));
 }
 
-//! The face pyramid errors of the checked points: the caller's when it has them, else computed.
-std::vector<char> pyramid_errors_of(const PolyMesh& mesh, const MeshGeometry& g,
-                                    const CheckMeshSettings& s)
+//! The face pyramid errors of the checked points: the caller's when it has them, else
+//! computed into `computed`.
+const std::vector<char>& pyramid_errors_of(const PolyMesh& mesh, const MeshGeometry& g,
+                                           const CheckMeshSettings& s, std::vector<char>& computed)
 {
     const std::vector<char>* known = s.face_pyramid_errors;
     if (known != nullptr && Index(known->size()) == mesh.n_faces())
         return *known;
-    return face_pyramid_errors(mesh, g);
+    computed = face_pyramid_errors(mesh, g);
+    return computed;
 }
 
 void run_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces, const MeshGeometry& g,
@@ -298,7 +295,8 @@ void run_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
     const CoupledFaces coupled = coupled_faces(mesh, g, cyclics, processors);
     const Eigen::VectorXd ortho = face_orthogonality(mesh, g, coupled);
     checks.push_back(check_face_orthogonality(ortho, coupled.statistics_faces()));
-    checks.push_back(check_face_pyramids(pyramid_errors_of(mesh, g, settings)));
+    std::vector<char> computed;
+    checks.push_back(check_face_pyramids(pyramid_errors_of(mesh, g, settings, computed)));
     const Eigen::VectorXd skewness = face_skewness(mesh, g, coupled);
     checks.push_back(check_face_skewness(skewness, coupled.master));
     checks.push_back(check_coupled_points(coupled_point_match(mesh, g, cyclics, processors)));
@@ -330,24 +328,24 @@ QualityReport check_mesh(const PolyMesh& mesh, const CompactList& cell_faces,
     const CompactList pf = settings.all_topology ? point_faces(mesh) : CompactList{};
     std::vector<CellShape> shapes;
     if (reuse)
-        reuse_mesh_stats(*settings.unchanged_topology, report);
+        reuse_topology(*settings.unchanged_topology, mesh, cell_faces, geometry, report);
     else
         shapes = mesh_stats(mesh, cell_faces, pf, settings.all_topology, report);
     // The paper's measure (not a checkMesh check): minimum over cells where it is defined.
     if (settings.scaled_jacobian)
     {
         report.jacobian_corners = reusable_corners(settings, mesh);
-        if (!report.jacobian_corners && shapes.empty())
-            shapes = classify_cells(mesh, cell_faces);
         if (!report.jacobian_corners)
+        {
+            if (shapes.empty()) // taken over from the check before: not classified here
+                shapes = classify_cells(mesh, cell_faces);
             report.jacobian_corners =
                 std::make_shared<const JacobianCorners>(jacobian_corners(mesh, cell_faces, shapes));
+        }
         report.cell_scaled_jacobian = scaled_jacobian(mesh, *report.jacobian_corners);
     }
     report.min_scaled_jacobian = min_finite(report.cell_scaled_jacobian);
-    if (reuse)
-        reuse_topology(*settings.unchanged_topology, mesh, cell_faces, geometry, report);
-    else if (!settings.no_topology)
+    if (!reuse && !settings.no_topology)
         run_topology_checks(mesh, cell_faces, geometry, pf, settings.all_topology, processors,
                             report);
     run_geometry_checks(mesh, cell_faces, geometry, settings, processors, report);

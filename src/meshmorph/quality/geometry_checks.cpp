@@ -68,19 +68,14 @@ struct FieldRange
 FieldRange field_range(const Eigen::VectorXd& values, double threshold)
 {
     FieldRange r;
-    const std::int64_t n = values.size();
-    double lo = r.min, hi = r.max; // extremes: the same in any order
-#pragma omp parallel for schedule(static) reduction(min : lo) reduction(max : hi) if (n > 65536)
-    for (std::int64_t i = 0; i < n; ++i)
+    for (Eigen::Index i = 0; i < values.size(); ++i)
     {
-        lo = std::min(lo, values[i]);
-        hi = std::max(hi, values[i]);
-    }
-    r.min = lo;
-    r.max = hi;
-    r.below = faces_where(Index(n), [&](Index i) { return values[i] < threshold; });
-    for (std::int64_t i = 0; i < n; ++i) // in storage order, as checkMesh sums
+        if (values[i] < threshold)
+            r.below.push_back(static_cast<Index>(i));
+        r.min = std::min(r.min, values[i]);
+        r.max = std::max(r.max, values[i]);
         r.sum += values[i];
+    }
     return r;
 }
 
