@@ -11,12 +11,16 @@
 #include <regex>
 #include <sstream>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "helpers.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/io/read_poly_mesh.h"
+#include "meshmorph/io/temp_file.h"
 #include "meshmorph/io/write_poly_mesh.h"
 #include "morph_run.h"
 
@@ -265,6 +269,30 @@ TEST(MorphMesh, a_failed_run_replaces_an_earlier_json_report_with_the_error)
     EXPECT_FALSE(j["written"].get<bool>()) << "no stale success may remain";
     EXPECT_EQ(j["exitStatus"].get<int>(), exit_input_error);
     EXPECT_NE(j["error"].get<std::string>().find("wing"), std::string::npos) << j.dump();
+}
+
+TEST(MorphMesh, overwrite_removes_the_temporary_a_killed_run_left_of_points_orig)
+{
+    const fs::path dir = make_case("stale_orig", test::make_box_mesh(2, 2, 2), lift_top);
+    const fs::path mesh_dir = dir / "constant/polyMesh";
+    // A run killed after keeping the original (points.orig equal to the points), and one
+    // killed while it wrote points.orig: its temporary, named for a process that is gone.
+    fs::copy_file(mesh_dir / "points", mesh_dir / "points.orig");
+    const pid_t gone = ::fork();
+    ASSERT_GE(gone, 0);
+    if (gone == 0)
+        ::_exit(0);
+    ASSERT_EQ(::waitpid(gone, nullptr, 0), gone);
+    std::string name = io::temp_path_for(mesh_dir / "points.orig").filename().string();
+    const std::string mine = "." + std::to_string(::getpid()) + ".";
+    ASSERT_NE(name.find(mine), std::string::npos) << name;
+    name.replace(name.find(mine), mine.size(), "." + std::to_string(gone) + ".");
+    write_text(mesh_dir / name, "partial");
+
+    const RunResult r = run({"-case", dir.string(), "-overwrite"});
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_FALSE(fs::exists(mesh_dir / name)) << "the killed run's temporary is left";
+    EXPECT_TRUE(fs::exists(mesh_dir / "points.orig"));
 }
 
 TEST(MorphMesh, a_morph_that_inverts_cells_is_refused_unless_forced)

@@ -11,6 +11,7 @@
 #include "meshmorph/io/case_instance.h"
 #include "meshmorph/io/decomposed_case.h"
 #include "meshmorph/io/foam_file.h"
+#include "meshmorph/io/temp_file.h"
 #include "meshmorph/io/write_poly_mesh.h"
 #if MESHMORPH_WITH_VTK
 #include "meshmorph/io/vtk_writer.h"
@@ -42,6 +43,9 @@ fs::path keep_original_points(const fs::path& points_file)
         return bytes.str();
     };
     const std::string bytes = read_bytes(points_file);
+    // A run killed while it wrote the orig left a temporary of it; the write below removes
+    // such leftovers, but when the orig exists there is no write.
+    io::remove_stale_temps(orig);
     if (fs::exists(orig))
     {
         // A run killed between the two writes leaves an orig equal to the points: nothing
