@@ -287,11 +287,14 @@ TEST(CheckMesh, a_check_after_the_points_moved_takes_over_what_did_not_change)
     settings.write_precision = 17;
     const QualityReport before = check_mesh(original, cf, compute_geometry(original, cf), settings);
     PolyMesh moved = original;
-    moved.points.row(40) += Eigen::RowVector3d(0.4, 0.3, 0.3); // inverts cells around it
+    // An interior point pushed about two cells through its neighbours: the cells around it
+    // invert (9 wrongly oriented pyramids, 1 negative volume), far from any threshold.
+    moved.points.row(101) += Eigen::RowVector3d(0.6, 0.45, 0.45);
     const MeshGeometry g = compute_geometry(moved, cf);
     std::vector<char> pyramid_errors;
     const InvalidCells invalid = count_invalid_cells(moved, g, &pyramid_errors);
     ASSERT_GT(invalid.wrong_pyramids, 0);
+    ASSERT_GT(invalid.negative_volume_cells, 0);
     ASSERT_EQ(Index(pyramid_errors.size()), moved.n_faces());
     const QualityReport fresh = check_mesh(moved, cf, g, settings);
     CheckMeshSettings after_settings = settings;
