@@ -84,7 +84,8 @@ public:
         const Eigen::MatrixXd G =
             p > 0 ? Eigen::MatrixXd(AU_n - AUU_ * Lam_n) : Eigen::MatrixXd(0, b);
         Eigen::MatrixXd Kon(r0, b), Knn(b, b);
-#pragma omp parallel for schedule(static) if ((r0 + b) * b > 20000)
+        // Columns taken as threads come free: the check before the morph shares the cores.
+#pragma omp parallel for schedule(dynamic, 4) if ((r0 + b) * b > 20000)
         for (Eigen::Index j = 0; j < b; ++j)
         {
             // Squared distances first, then the kernel over the column in one vectorised
@@ -475,7 +476,8 @@ std::vector<double> nearest_distances2(const std::vector<Eigen::Index>& queries,
     const std::size_t n = queries.size(), m = set.x.size();
     std::vector<double> d2(n, std::numeric_limits<double>::infinity());
     const std::int64_t blocks = std::int64_t((n + block - 1) / block);
-#pragma omp parallel for schedule(static) if (n * m > 100000)
+    // Blocks taken as threads come free (the check before the morph shares the cores).
+#pragma omp parallel for schedule(dynamic, 4) if (n * m > 100000)
     for (std::int64_t b = 0; b < blocks; ++b)
     {
         const std::size_t i0 = std::size_t(b) * block, count = std::min(block, n - i0);

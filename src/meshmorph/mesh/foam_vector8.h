@@ -137,7 +137,7 @@ void for_quads(Index n_faces, std::int64_t parallel_above, const IsQuad& is_quad
                const Quads8& quads8, const One& one)
 {
     const Index ranges = (n_faces + quad_range - 1) / quad_range;
-#pragma omp parallel for schedule(static) if (n_faces > parallel_above)
+#pragma omp parallel for schedule(dynamic, 1) if (n_faces > parallel_above)
     for (Index r = 0; r < ranges; ++r)
         for_quads_in_range(r * quad_range, std::min(n_faces, (r + 1) * quad_range), is_quad, quads8,
                            one);

@@ -99,7 +99,7 @@ std::vector<char> faces_concave_beyond(const PolyMesh& mesh, const MeshGeometry&
 {
     const Index n_faces = mesh.n_faces();
     std::vector<char> flags(static_cast<std::size_t>(n_faces), 0);
-#pragma omp parallel for schedule(static) if (n_faces > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic, 4096) if (n_faces > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
         for_each_corner(
             mesh, g, f, constants::vsmall,

@@ -24,17 +24,19 @@ constexpr double vsmall = constants::vsmall;
 constexpr double great = constants::great;
 
 //! The indices f in [0, n) with is(f), ascending: the rare faces a check lists, found on
-//! every thread (each takes one contiguous range; the ranges are joined in order).
+//! every thread in pieces taken as threads come free (the check before a morph shares the
+//! cores with the fit, and a thread that waited for its fixed share left the other idle);
+//! the pieces' lists are joined in piece order.
 template <class Predicate> std::vector<Index> faces_where(Index n, const Predicate& is)
 {
-    std::vector<std::vector<Index>> found;
-#pragma omp parallel if (n > 65536)
+    constexpr Index piece = 16384;
+    const Index pieces = (n + piece - 1) / piece;
+    std::vector<std::vector<Index>> found(static_cast<std::size_t>(pieces));
+#pragma omp parallel for schedule(dynamic, 1) if (n > 65536)
+    for (Index k = 0; k < pieces; ++k)
     {
-#pragma omp single
-        found.resize(std::size_t(omp_get_num_threads()));
-        std::vector<Index>& mine = found[std::size_t(omp_get_thread_num())];
-#pragma omp for schedule(static)
-        for (Index f = 0; f < n; ++f)
+        std::vector<Index>& mine = found[static_cast<std::size_t>(k)];
+        for (Index f = k * piece; f < std::min(n, (k + 1) * piece); ++f)
             if (is(f))
                 mine.push_back(f);
     }
@@ -296,7 +298,7 @@ CheckResult check_face_skewness(const Eigen::VectorXd& skewness, const std::vect
 {
     double max_skew = skewness.size() > 0 ? skewness[0] : 0; // a maximum: any order
     const std::int64_t n = skewness.size();
-#pragma omp parallel for schedule(static) reduction(max : max_skew) if (n > 65536)
+#pragma omp parallel for schedule(dynamic, 4096) reduction(max : max_skew) if (n > 65536)
     for (std::int64_t f = 0; f < n; ++f)
         max_skew = std::max(max_skew, skewness[f]);
     const std::vector<Index> faces =
