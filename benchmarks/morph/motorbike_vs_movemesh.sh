@@ -363,6 +363,10 @@ run_timed() {
     shift 2
     say "running $tool in $dir (log: $dir/log.$tool)"
     run_status=0
+    # The case was copied just before: its pages go to the disk first, so that neither
+    # tool's time includes the kernel writing back the copy (on this 2-core machine that
+    # took a core for part of a one-second morph).
+    sync
     (cd "$dir" && /usr/bin/time -v -o "time.$tool" "$@" </dev/null >"log.$tool" 2>&1) || run_status=$?
     [[ -s "$dir/time.$tool" ]] || step_failed "time $tool" "/usr/bin/time wrote no report ($dir/time.$tool)"
     read -r run_wall run_cpu run_rss_mb < <(awk '

@@ -252,6 +252,41 @@ TEST(CheckMesh, results_do_not_depend_on_thread_count)
     EXPECT_FALSE(many.text.empty());
 }
 
+TEST(CheckMesh, a_mesh_large_enough_for_threads_gives_the_same_report_on_any_thread_count)
+{
+    // 32^3 cells, 101376 faces: above the size where the geometry and check loops run on
+    // OpenMP's threads (20000 faces) and where the lists of failing faces are gathered in
+    // pieces (65536), so that the pieces, taken as threads come free, are really spread.
+    // Points pushed through their neighbours all over the block fail several checks in
+    // several pieces.
+    PolyMesh mesh = test::make_block_mesh(
+        32, 32, 32,
+        [](double u, double v, double w)
+        { return Vector3(u + 0.15 * std::sin(3 * v) * w, v + 0.1 * u * u, w); });
+    for (Index p = 1000; p < mesh.n_points(); p += 3001)
+        mesh.points.row(p) += Eigen::RowVector3d(0.05, 0.04, 0.045);
+    CheckMeshSettings settings;
+    settings.all_geometry = true;
+    settings.write_precision = 17;
+    const QualityReport many = check_mesh(mesh, settings);
+    ASSERT_GT(mesh.n_faces(), 65536);
+    ASSERT_GE(many.failed_checks, 2) << many.text;
+    ASSERT_GE(many.sets.size(), 2u);
+#ifdef _OPENMP
+    const int threads = omp_get_max_threads();
+    for (const int n : {1, 3})
+    {
+        omp_set_num_threads(n);
+        const QualityReport other = check_mesh(mesh, settings);
+        EXPECT_EQ(other.text, many.text) << n << " threads";
+        ASSERT_EQ(other.sets.size(), many.sets.size()) << n << " threads";
+        for (std::size_t s = 0; s < many.sets.size(); ++s)
+            EXPECT_EQ(other.sets[s].labels, many.sets[s].labels) << many.sets[s].name;
+    }
+    omp_set_num_threads(threads);
+#endif
+}
+
 TEST(CheckMesh, without_cell_fields_the_summary_is_the_same)
 {
     // A distorted block with an inverted cell: every summary line has something to say.
