@@ -8,8 +8,6 @@
 #include <cmath>
 #include <cstdint>
 
-#include <omp.h>
-
 #include "meshmorph/mesh/foam_vector.h"
 #include "meshmorph/quality/face_orthogonality.h"
 
