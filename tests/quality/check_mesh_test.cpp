@@ -252,6 +252,29 @@ TEST(CheckMesh, results_do_not_depend_on_thread_count)
     EXPECT_FALSE(many.text.empty());
 }
 
+namespace
+{
+//! The mesh with its internal points numbered first, as blockMesh numbers them (checkMesh
+//! counts edges for -allTopology only then).
+PolyMesh internal_points_first(PolyMesh mesh)
+{
+    const std::vector<char> boundary = boundary_point_mask(mesh);
+    std::vector<Index> new_label(boundary.size());
+    Index next = 0;
+    for (const char on_boundary : {0, 1})
+        for (std::size_t p = 0; p < boundary.size(); ++p)
+            if (boundary[p] == on_boundary)
+                new_label[p] = next++;
+    Points points(mesh.points.rows(), 3);
+    for (Index p = 0; p < mesh.n_points(); ++p)
+        points.row(new_label[std::size_t(p)]) = mesh.points.row(p);
+    mesh.points = points;
+    for (Index& label : mesh.faces.values)
+        label = new_label[std::size_t(label)];
+    return mesh;
+}
+} // namespace
+
 TEST(CheckMesh, a_mesh_large_enough_for_threads_gives_the_same_report_on_any_thread_count)
 {
     // 32^3 cells, 101376 faces: above the size where the geometry and check loops run on
@@ -259,19 +282,21 @@ TEST(CheckMesh, a_mesh_large_enough_for_threads_gives_the_same_report_on_any_thr
     // pieces (65536), so that the pieces, taken as threads come free, are really spread.
     // Points pushed through their neighbours all over the block fail several checks in
     // several pieces.
-    PolyMesh mesh = test::make_block_mesh(
+    PolyMesh mesh = internal_points_first(test::make_block_mesh(
         32, 32, 32,
         [](double u, double v, double w)
-        { return Vector3(u + 0.15 * std::sin(3 * v) * w, v + 0.1 * u * u, w); });
+        { return Vector3(u + 0.15 * std::sin(3 * v) * w, v + 0.1 * u * u, w); }));
     for (Index p = 1000; p < mesh.n_points(); p += 3001)
         mesh.points.row(p) += Eigen::RowVector3d(0.05, 0.04, 0.045);
     CheckMeshSettings settings;
     settings.all_geometry = true;
+    settings.all_topology = true;
     settings.write_precision = 17;
     const QualityReport many = check_mesh(mesh, settings);
     ASSERT_GT(mesh.n_faces(), 65536);
     ASSERT_GE(many.failed_checks, 2) << many.text;
     ASSERT_GE(many.sets.size(), 2u);
+    ASSERT_TRUE(many.edges.has_value()) << "-allTopology counts edges";
 #ifdef _OPENMP
     const int threads = omp_get_max_threads();
     for (const int n : {1, 3})
