@@ -158,7 +158,8 @@ void cell_centres_and_volumes(const PolyMesh& mesh, const CompactList& cell_face
     // One cell at a time, faces in cell_faces order: owned faces ascending, then neighboured
     // faces ascending -- the same per-cell accumulation order as OpenFOAM's owner pass
     // followed by its neighbour pass, so results are bit-identical and thread-independent.
-#pragma omp parallel for schedule(dynamic, 4096) if (mesh.n_faces() > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic, detail::loop_piece) if (mesh.n_faces() >                \
+                                                                   detail::parallel_threshold)
     for (Index c = 0; c < n_cells; ++c)
         cell_centre_and_volume(mesh, cell_faces, c, g);
 }
@@ -180,7 +181,8 @@ Eigen::VectorXd face_area_magnitudes(const MeshGeometry& g)
 {
     const Index n_faces = static_cast<Index>(g.face_areas.rows());
     Eigen::VectorXd mag_area(n_faces);
-#pragma omp parallel for schedule(dynamic, 4096) if (n_faces > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic,                                                         \
+                                  detail::loop_piece) if (n_faces > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
         mag_area[f] = detail::mag(row(g.face_areas, f));
     return mag_area;

@@ -70,7 +70,8 @@ CellClosedness cell_closedness(const PolyMesh& mesh, const CompactList& cell_fac
 {
     const Index n_cells = mesh.n_cells;
     CellClosedness r{Eigen::VectorXd(n_cells), Eigen::VectorXd(n_cells)};
-#pragma omp parallel for schedule(dynamic, 4096) if (mesh.n_faces() > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic, detail::loop_piece) if (mesh.n_faces() >                \
+                                                                   detail::parallel_threshold)
     for (Index cell = 0; cell < n_cells; ++cell)
     {
         FoamVector sum, sum_mag;

@@ -67,7 +67,8 @@ Eigen::VectorXd cell_determinants(const PolyMesh& mesh, const CompactList& cell_
     const Index n_cells = mesh.n_cells;
     Eigen::VectorXd det(n_cells);
     const bool one_d = dirs.n_geometric() == 1;
-#pragma omp parallel for schedule(dynamic, 4096) if (mesh.n_faces() > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic, detail::loop_piece) if (mesh.n_faces() >                \
+                                                                   detail::parallel_threshold)
     for (Index cell = 0; cell < n_cells; ++cell)
         det[cell] = one_d ? 1.0 : cell_determinant_of(cell_faces[cell], g, dirs, mag_area, counts);
     return det;
@@ -97,8 +98,8 @@ Eigen::VectorXd cell_area_determinant(const CompactList& cell_faces, const MeshG
     constexpr double vsmall = constants::vsmall;
     const Index n_cells = cell_faces.size();
     Eigen::VectorXd scaled(n_cells);
-#pragma omp parallel for schedule(dynamic,                                                         \
-                                  4096) if (g.face_areas.rows() > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic, detail::loop_piece) if (g.face_areas.rows() >           \
+                                                                   detail::parallel_threshold)
     for (Index cell = 0; cell < n_cells; ++cell)
     {
         double t[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};

@@ -89,7 +89,8 @@ Eigen::VectorXd face_concavity(const PolyMesh& mesh, const MeshGeometry& g)
     const Index n_faces = mesh.n_faces();
     const double min_sin = std::sin(detail::deg_to_rad(10.0));
     Eigen::VectorXd concavity(n_faces);
-#pragma omp parallel for schedule(dynamic, 4096) if (n_faces > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic,                                                         \
+                                  detail::loop_piece) if (n_faces > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
         concavity[f] = max_concave_sin(mesh, g, f, min_sin);
     return concavity;
@@ -99,7 +100,8 @@ std::vector<char> faces_concave_beyond(const PolyMesh& mesh, const MeshGeometry&
 {
     const Index n_faces = mesh.n_faces();
     std::vector<char> flags(static_cast<std::size_t>(n_faces), 0);
-#pragma omp parallel for schedule(dynamic, 4096) if (n_faces > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic,                                                         \
+                                  detail::loop_piece) if (n_faces > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
         for_each_corner(
             mesh, g, f, constants::vsmall,

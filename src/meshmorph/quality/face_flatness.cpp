@@ -29,7 +29,8 @@ Eigen::VectorXd face_fan_areas(const PolyMesh& mesh, const MeshGeometry& g)
 {
     const Index n_faces = mesh.n_faces();
     Eigen::VectorXd fan(n_faces);
-#pragma omp parallel for schedule(dynamic, 4096) if (n_faces > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic,                                                         \
+                                  detail::loop_piece) if (n_faces > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
         fan[f] = fan_area(mesh, g, f);
     return fan;
@@ -40,7 +41,8 @@ Eigen::VectorXd face_flatness(const PolyMesh& mesh, const MeshGeometry& g,
 {
     const Index n_faces = mesh.n_faces();
     Eigen::VectorXd flatness(n_faces);
-#pragma omp parallel for schedule(dynamic, 4096) if (n_faces > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic,                                                         \
+                                  detail::loop_piece) if (n_faces > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
         flatness[f] = mesh.faces.item_size(f) <= 3 || mag_area[f] <= constants::rootvsmall
                           ? 1.0

@@ -29,7 +29,8 @@ Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& g, 
 {
     const Index n_int = mesh.n_internal_faces();
     Eigen::VectorXd ortho = Eigen::VectorXd::Ones(mesh.n_faces());
-#pragma omp parallel for schedule(dynamic, 4096) if (mesh.n_faces() > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic, detail::loop_piece) if (mesh.n_faces() >                \
+                                                                   detail::parallel_threshold)
     for (Index f = 0; f < n_int; ++f)
         ortho[f] = orthogonality(row(g.cell_centres, mesh.owner[f]),
                                  row(g.cell_centres, mesh.neighbour[f]), row(g.face_areas, f), eps);
@@ -59,8 +60,8 @@ Eigen::VectorXd cell_non_orthogonality(const CompactList& cell_faces,
 {
     const Index n_cells = cell_faces.size();
     Eigen::VectorXd angle(n_cells);
-#pragma omp parallel for schedule(dynamic,                                                         \
-                                  4096) if (orthogonality.size() > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic, detail::loop_piece) if (orthogonality.size() >          \
+                                                                   detail::parallel_threshold)
     for (Index cell = 0; cell < n_cells; ++cell)
     {
         double min_cos = 1;

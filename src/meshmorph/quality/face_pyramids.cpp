@@ -34,7 +34,8 @@ FacePyramidVolumes face_pyramid_volumes(const PolyMesh& mesh, const MeshGeometry
     const Index n_faces = mesh.n_faces();
     const Index n_int = mesh.n_internal_faces();
     FacePyramidVolumes v{Eigen::VectorXd(n_faces), Eigen::VectorXd(n_int)};
-#pragma omp parallel for schedule(dynamic, 4096) if (n_faces > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic,                                                         \
+                                  detail::loop_piece) if (n_faces > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
     {
         const auto [own, nei] = pyramid_volumes(mesh, g, f);
@@ -49,7 +50,8 @@ std::vector<char> face_pyramid_errors(const PolyMesh& mesh, const MeshGeometry& 
 {
     const Index n_faces = mesh.n_faces();
     std::vector<char> n_err(static_cast<std::size_t>(n_faces), 0);
-#pragma omp parallel for schedule(dynamic, 4096) if (n_faces > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic,                                                         \
+                                  detail::loop_piece) if (n_faces > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
     {
         const auto [own, nei] = pyramid_volumes(mesh, g, f);

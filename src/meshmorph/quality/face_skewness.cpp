@@ -125,7 +125,8 @@ Eigen::VectorXd cell_skewness(const CompactList& cell_faces, const Eigen::Vector
 {
     const Index n_cells = cell_faces.size();
     Eigen::VectorXd cell(n_cells);
-#pragma omp parallel for schedule(dynamic, 4096) if (skewness.size() > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic, detail::loop_piece) if (skewness.size() >               \
+                                                                   detail::parallel_threshold)
     for (Index c = 0; c < n_cells; ++c)
     {
         double max_skew = 0;

@@ -112,7 +112,8 @@ std::vector<char> face_tet_errors(const PolyMesh& mesh, const MeshGeometry& g)
 {
     const Index n_faces = mesh.n_faces();
     std::vector<char> errors(static_cast<std::size_t>(n_faces), 0);
-#pragma omp parallel for schedule(dynamic, 4096) if (n_faces > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic,                                                         \
+                                  detail::loop_piece) if (n_faces > detail::parallel_threshold)
     for (Index f = 0; f < n_faces; ++f)
         errors[f] = tet_errors(FaceTets(mesh, g, f));
     return errors;

@@ -35,7 +35,8 @@ Eigen::VectorXd face_weights(const PolyMesh& mesh, const MeshGeometry& g)
 {
     const Index n_int = mesh.n_internal_faces();
     Eigen::VectorXd weights(n_int);
-#pragma omp parallel for schedule(dynamic, 4096) if (mesh.n_faces() > detail::parallel_threshold)
+#pragma omp parallel for schedule(dynamic, detail::loop_piece) if (mesh.n_faces() >                \
+                                                                   detail::parallel_threshold)
     for (Index f = 0; f < n_int; ++f)
         weights[f] =
             weight(row(g.face_centres, f), row(g.face_areas, f), row(g.cell_centres, mesh.owner[f]),

@@ -21,29 +21,6 @@ constexpr double small = constants::small;
 constexpr double vsmall = constants::vsmall;
 constexpr double great = constants::great;
 
-//! The indices f in [0, n) with is(f), ascending: the rare faces a check lists, found on
-//! every thread in pieces taken as threads come free (the check before a morph shares the
-//! cores with the fit, and a thread that waited for its fixed share left the other idle);
-//! the pieces' lists are joined in piece order.
-template <class Predicate> std::vector<Index> faces_where(Index n, const Predicate& is)
-{
-    constexpr Index piece = 16384;
-    const Index pieces = (n + piece - 1) / piece;
-    std::vector<std::vector<Index>> found(static_cast<std::size_t>(pieces));
-#pragma omp parallel for schedule(dynamic, 1) if (n > 65536)
-    for (Index k = 0; k < pieces; ++k)
-    {
-        std::vector<Index>& mine = found[static_cast<std::size_t>(k)];
-        for (Index f = k * piece; f < std::min(n, (k + 1) * piece); ++f)
-            if (is(f))
-                mine.push_back(f);
-    }
-    std::vector<Index> all;
-    for (const std::vector<Index>& part : found)
-        all.insert(all.end(), part.begin(), part.end());
-    return all;
-}
-
 //! The elements with errors[i] > 0 and the sum of the errors.
 std::pair<Index, std::vector<Index>> error_faces(const std::vector<char>& errors)
 {
@@ -56,6 +33,13 @@ std::pair<Index, std::vector<Index>> error_faces(const std::vector<char>& errors
             faces.push_back(static_cast<Index>(f));
         }
     return {total, std::move(faces)};
+}
+
+//! The indices f in [0, n) with is(f), ascending: the rare faces a check lists. The tests
+//! run on every thread (per_face_flags), the short list is gathered in order.
+template <class Predicate> std::vector<Index> faces_where(Index n, const Predicate& is)
+{
+    return error_faces(detail::per_face_flags(n, is)).second;
 }
 
 //! Minimum, maximum and sum of a field (in storage order) and the elements below a threshold.
@@ -296,7 +280,9 @@ CheckResult check_face_skewness(const Eigen::VectorXd& skewness, const std::vect
 {
     double max_skew = skewness.size() > 0 ? skewness[0] : 0; // a maximum: any order
     const std::int64_t n = skewness.size();
-#pragma omp parallel for schedule(dynamic, 4096) reduction(max : max_skew) if (n > 65536)
+#pragma omp parallel for schedule(dynamic, detail::loop_piece)                                     \
+    reduction(max                                                                                  \
+              : max_skew) if (n > 65536)
     for (std::int64_t f = 0; f < n; ++f)
         max_skew = std::max(max_skew, skewness[f]);
     const std::vector<Index> faces =

@@ -75,7 +75,7 @@ EdgeCounts count_edges(const PolyMesh& mesh, const CompactList& point_faces,
     reduction(+ : n_edges, n_internal_edges, n_one, n_two)
     {
         PointEdges edges(n_points);
-#pragma omp for schedule(dynamic, 4096)
+#pragma omp for schedule(dynamic, detail::loop_piece)
         for (Index p = 0; p < n_points; ++p)
         {
             edges.collect(mesh, point_faces, p);

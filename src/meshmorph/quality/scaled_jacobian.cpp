@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/mesh/foam_vector.h"
 
 namespace meshmorph
 {
@@ -141,7 +142,7 @@ JacobianCorners jacobian_corners(const PolyMesh& mesh, const CompactList& cell_f
 #pragma omp parallel if (n_cells > 20000)
     {
         VtkCell cell;
-#pragma omp for schedule(dynamic, 4096)
+#pragma omp for schedule(dynamic, detail::loop_piece)
         for (Index c = 0; c < n_cells; ++c)
         {
             const VtkCellType type =
@@ -164,7 +165,7 @@ Eigen::VectorXd scaled_jacobian(const PolyMesh& mesh, const JacobianCorners& cor
                            " cells for a mesh of " + std::to_string(mesh.n_cells));
     Eigen::VectorXd result(n_cells);
     // Every cell is independent: the result does not depend on the thread count.
-#pragma omp parallel for schedule(dynamic, 4096) if (n_cells > 20000)
+#pragma omp parallel for schedule(dynamic, detail::loop_piece) if (n_cells > 20000)
     for (Index c = 0; c < n_cells; ++c)
         result[c] = cell_scaled_jacobian(mesh, corners.types[std::size_t(c)],
                                          corners.points[std::size_t(c)]);
