@@ -3,6 +3,7 @@
 // constraints on a smooth field, and with every constraint as a centre equals the full fit
 // (which checks the incremental factorisation).
 #include <algorithm>
+#include <memory>
 
 #include <gtest/gtest.h>
 
@@ -277,6 +278,39 @@ TEST(GreedyRbfDeformation, spread_batches_reach_the_tolerance_with_the_contact_l
     EXPECT_LE((exact - d).cwiseAbs().maxCoeff(), 1e-12 * lift);
 }
 
+TEST(GreedyRbfDeformation, fits_a_small_motion_of_a_contact_the_same_way_at_any_amplitude)
+{
+    // The lifted ball on the floor at two small lifts a factor 4 apart (powers of two, so
+    // that scaling the data is exact in floating point). The jump band's floor (jump_width
+    // of the ball's extent, 0.017) is wider than either lift over jumpSlope 2: the same
+    // constraints are left out, the same centres chosen, and the field is 4 times the
+    // other. A band bound to the lift alone leaves out fewer constraints the smaller the
+    // lift, so the two fits differ.
+    const double small = 1.0 / 256.0, large = 1.0 / 64.0;
+    const BallOnFloor a(2000, small), b(2000, large);
+    GreedySettings s;
+    const auto fitted = [&](const BallOnFloor& data)
+    {
+        auto greedy = std::make_unique<GreedyRbfDeformation>(s);
+        greedy->fit(data.x, data.d);
+        return greedy;
+    };
+    const auto fa = fitted(a), fb = fitted(b);
+    ASSERT_TRUE(fa->converged());
+    ASSERT_TRUE(fb->converged());
+    EXPECT_GT(fa->jump_constraints(), 0);
+    EXPECT_EQ(fa->jump_constraints(), fb->jump_constraints());
+    EXPECT_EQ(fa->centre_indices(), fb->centre_indices());
+    const Points probe = test::random_points(500, 0.0, 1.0, 29);
+    const Points va = displacements(*fa, probe), vb = displacements(*fb, probe);
+    EXPECT_LE((4.0 * va - vb).cwiseAbs().maxCoeff(), 1e-12 * large);
+
+    s.jump_width = 0.0; // the band of the slope alone: lift / 2
+    const auto ga = fitted(a), gb = fitted(b);
+    EXPECT_LT(ga->jump_constraints(), gb->jump_constraints());
+    EXPECT_LT(gb->jump_constraints(), fb->jump_constraints());
+}
+
 //! values_at_handles() is the field at every constraint bit for bit, as evaluate() gives it
 //! (what CorrectedDeformation subtracts from the prescriptions instead of evaluating again).
 void expect_values_at_handles_as_evaluated(const GreedyRbfDeformation& greedy, const Points& x)
@@ -322,13 +356,16 @@ TEST(GreedyRbfDeformation, keeps_its_values_at_the_constraints_with_the_bits_of_
     expect_values_at_handles_as_evaluated(truncated, data.x);
 }
 
-TEST(GreedyRbfDeformation, rejects_negative_spread_or_jump_slope)
+TEST(GreedyRbfDeformation, rejects_negative_spread_jump_slope_or_jump_width)
 {
     GreedySettings s;
     s.spread = -1.0;
     EXPECT_THROW(GreedyRbfDeformation{s}, InvalidInput);
     s.spread = 0.0;
     s.jump_slope = -0.5;
+    EXPECT_THROW(GreedyRbfDeformation{s}, InvalidInput);
+    s.jump_slope = 2.0;
+    s.jump_width = -0.01;
     EXPECT_THROW(GreedyRbfDeformation{s}, InvalidInput);
 }
 

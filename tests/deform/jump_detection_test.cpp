@@ -1,5 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// jump_points against the pairwise definition, on data with a jump and on smooth data.
+// jump_points against the pairwise definition, on data with a jump and on smooth data;
+// jump_band's width: the motion over the slope, or the floor of the moving points' extent.
+#include <algorithm>
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "deform_test_helpers.h"
@@ -77,6 +81,40 @@ TEST(JumpDetection, switched_off_by_a_zero_slope_or_reach)
     EXPECT_EQ(count, 0);
     EXPECT_EQ(detail::jump_points(x, v, 1.0, 0.0, count), std::vector<char>(100, 0));
     EXPECT_EQ(count, 0);
+}
+
+TEST(JumpBand, is_the_motion_over_the_slope_but_no_narrower_than_the_floor_of_the_moving_extent)
+{
+    // Fixed points over [0, 4]^3, and a moving box [1, 2] x [1, 3] x [1, 1.5] (diagonal 2.29).
+    Points x = test::random_points(2000, 0.0, 4.0, 11);
+    const Points box = test::random_points(1000, 0.0, 1.0, 13);
+    const Index n_fixed = x.rows();
+    x.conservativeResize(n_fixed + box.rows() + 2, 3);
+    for (Eigen::Index i = 0; i < box.rows(); ++i)
+        x.row(n_fixed + i) << 1.0 + box(i, 0), 1.0 + 2.0 * box(i, 1), 1.0 + 0.5 * box(i, 2);
+    x.row(x.rows() - 2) << 1.0, 1.0, 1.0; // the box's corners, so its extent is known
+    x.row(x.rows() - 1) << 2.0, 3.0, 1.5;
+    const double extent = std::sqrt(1.0 + 4.0 + 0.25);
+    Eigen::MatrixXd v = Eigen::MatrixXd::Zero(x.rows(), 3);
+    // A round-off displacement on a far fixed point is no motion (1e-6 of the largest).
+    v(0, 0) = 1e-12;
+    for (const double lift : {0.01, 0.4})
+    {
+        v.bottomRows(box.rows() + 2).col(2).setConstant(lift);
+        const detail::JumpBand band = detail::jump_band(x, v, 2.0, 0.025);
+        EXPECT_NEAR(band.extent, extent, 1e-12);
+        const double width = std::max(lift / 2.0, 0.025 * extent);
+        EXPECT_NEAR(band.width, width, 1e-12 * width) << "lift " << lift;
+        EXPECT_NEAR(band.slope, lift / width, 1e-12 * lift / width) << "lift " << lift;
+    }
+    // A small lift sits on the floor (0.057 wide); a large one is bound by the slope (0.2).
+    EXPECT_NEAR(detail::jump_band(x, v, 2.0, 0.025).width, 0.2, 1e-12);
+    v.bottomRows(box.rows() + 2).col(2).setConstant(0.01);
+    EXPECT_NEAR(detail::jump_band(x, v, 2.0, 0.025).width, 0.025 * extent, 1e-12);
+    // No floor: the slope alone. No slope, or no motion: no band.
+    EXPECT_NEAR(detail::jump_band(x, v, 2.0, 0.0).slope, 2.0, 1e-15);
+    EXPECT_EQ(detail::jump_band(x, v, 0.0, 0.025).slope, 0.0);
+    EXPECT_EQ(detail::jump_band(x, Eigen::MatrixXd::Zero(x.rows(), 3), 2.0, 0.025).slope, 0.0);
 }
 
 } // namespace meshmorph

@@ -259,7 +259,7 @@ struct GreedyRbfDeformation::Impl
     bool fitted = false;
     bool converged = false;
     bool stopped_growing = false; //!< stopped because the residual grew (see fit())
-    Index jump_constraints = 0;   //!< left out of the fit (GreedySettings::jump_slope)
+    Index jump_constraints = 0;   //!< left out of the fit (GreedySettings::jump_slope, jump_width)
     std::vector<Index> centre_indices;
     std::vector<double> history;
     std::vector<double> rms_history;
@@ -281,8 +281,8 @@ GreedyRbfDeformation::GreedyRbfDeformation(const GreedySettings& settings)
     impl_->setup = detail::rbf_kernel_setup(settings.rbf);
     if (!(settings.tolerance >= 0.0) || !(settings.rms_tolerance >= 0.0))
         throw InvalidInput("greedy RBF tolerances must be >= 0");
-    if (!(settings.spread >= 0.0) || !(settings.jump_slope >= 0.0))
-        throw InvalidInput("greedy RBF: spread and jumpSlope must be >= 0 (0: off)");
+    if (!(settings.spread >= 0.0) || !(settings.jump_slope >= 0.0) || !(settings.jump_width >= 0.0))
+        throw InvalidInput("greedy RBF: spread, jumpSlope and jumpWidth must be >= 0 (0: off)");
     if (settings.max_centres < 1 || settings.initial_centres < 0 || settings.batch_size < 0)
         throw InvalidInput("greedy RBF: max_centres must be >= 1, initial_centres and "
                            "batch_size >= 0");
@@ -390,18 +390,38 @@ void keep_largest_residuals(std::vector<Eigen::Index>& cand, const Eigen::Vector
     cand.resize(std::size_t(b));
 }
 
-//! Marks the constraints on a near-discontinuity of the data (jump_points). Pairs farther
-//! apart than 2 max|h| / slope cannot jump; nor are pairs farther apart than 1/20 of the
-//! constraints' extent looked at (a change over such a distance is no near-discontinuity).
-Eigen::Index mark_jumps(const Points& X, const Eigen::MatrixXd& H, double slope, CentreMarks& marks)
+//! Marks the constraints on a near-discontinuity of the data (jump_band, jump_points) and
+//! returns the band. Pairs farther apart than twice its width cannot jump; nor are pairs
+//! farther apart than 1/20 of the constraints' extent looked at (a change over such a
+//! distance is no near-discontinuity).
+detail::JumpBand mark_jumps(const Points& X, const Eigen::MatrixXd& H, const GreedySettings& s,
+                            CentreMarks& marks, Index& count)
 {
-    if (!(slope > 0.0) || X.rows() < 2)
-        return 0;
+    count = 0;
+    if (X.rows() < 2)
+        return {};
+    const detail::JumpBand band = detail::jump_band(X, H, s.jump_slope, s.jump_width);
+    if (!(band.slope > 0.0))
+        return band;
     const double extent = (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
-    const double reach = std::min(2.0 * H.rowwise().norm().maxCoeff() / slope, extent / 20.0);
-    Index count = 0;
-    marks.jump = detail::jump_points(X, H, slope, reach, count);
-    return count;
+    const double reach = std::min(2.0 * band.width, extent / 20.0);
+    marks.jump = detail::jump_points(X, H, band.slope, reach, count);
+    return band;
+}
+
+//! The log line of the jumps left out.
+void log_jumps(Index count, const detail::JumpBand& band, const GreedySettings& s)
+{
+    auto line = log::info();
+    line << "    greedy RBF: " << count
+         << " constraints on jumps (displacement changing faster than " << band.slope
+         << " times the distance, a band " << band.width << " wide: ";
+    if (band.width > band.extent * s.jump_width)
+        line << "jumpSlope " << s.jump_slope;
+    else
+        line << "jumpWidth " << s.jump_width << " of the moving constraints' extent "
+             << band.extent;
+    line << ") left to the local correction";
 }
 
 //! A candidate of a spread round and its squared distance to the nearest centre, computed
@@ -638,11 +658,9 @@ void GreedyRbfDeformation::fit(const Eigen::Ref<const Points>& constraints,
 
     const std::vector<Eigen::Index> U = unisolvent_rows(d.P);
     CentreMarks marks(N);
-    d.jump_constraints = mark_jumps(Xphys, H, s.jump_slope, marks);
+    const detail::JumpBand band = mark_jumps(Xphys, H, s, marks, d.jump_constraints);
     if (d.jump_constraints > 0)
-        log::info() << "    greedy RBF: " << d.jump_constraints
-                    << " constraints on jumps (displacement changing faster than jumpSlope "
-                    << s.jump_slope << " times the distance) left to the local correction";
+        log_jumps(d.jump_constraints, band, s);
     for (Eigen::Index u : U)
         marks.is_centre[std::size_t(u)] = 1;
     const Eigen::Index budget = std::max<Eigen::Index>(s.max_centres, p);

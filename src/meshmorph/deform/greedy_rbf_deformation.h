@@ -45,15 +45,24 @@ struct GreedySettings
     //! the round-off of the residuals. A round whose RMS residual grows no longer ends the
     //! refinement (early rounds of a spread batch often do, on their way to the tolerance).
     double spread = 1.0;
-    //! Jump constraints (0: off): a constraint whose displacement differs from a neighbour's
-    //! by more than jump_slope times their distance (a moving wall touching a fixed one, a
-    //! tyre on the floor) is never a centre and the tolerances are met on the others: the
-    //! near-discontinuity is left to the caller's local correction by construction. Slope 2:
-    //! the gap between the two closes or opens by more than twice its width. (On the
-    //! motorBike, 5% lift: 497 of 56756 constraints; slope 1 leaves 1230 and its centres
-    //! invert one cell, which the untangling repairs; 0.5 leaves 2466, and at a 13.5% lift
-    //! 14634, with a slower fit.)
+    //! Jump constraints (jump_slope 0: off): a constraint whose displacement differs from a
+    //! neighbour's by more than the band's slope times their distance (a moving wall touching
+    //! a fixed one, a tyre on the floor) is never a centre and the tolerances are met on the
+    //! others: the near-discontinuity is left to the caller's local correction by
+    //! construction. The band (detail::jump_band) is max|h| / jump_slope wide, but at least
+    //! jump_width times the extent of the moving constraints.
+    //! - jump_slope 2: where the motion is large, the gap between the two closes or opens by
+    //!   more than twice its width (a steeper global field folds cells: at a 13.5% lift of
+    //!   the motorBike a slope of 2.7 made a cell the untangling had to repair).
+    //! - jump_width 0.025: a band bound to the motion alone narrows with it, and the global
+    //!   field must resolve a sharper feature the smaller the motion: on the motorBike 1747
+    //!   centres at a 5% lift, the 2000-centre budget unconverged at 2.5% and 1% (residual
+    //!   0.029 and 0.054). With the floor the band is 0.0635 m on the motorBike (the moving
+    //!   box's diagonal: 2.54 m) up to a 9% lift: 1395 centres at every such lift, and the
+    //!   fit scales with the motion. A band of 0.034 m (1/75) ran out of budget on the finer
+    //!   x2 mesh; 1/40 converges there (1588 centres). docs/morph-method.md has the study.
     double jump_slope = 2.0;
+    double jump_width = 0.025;
 };
 
 //! RBF deformation with greedily selected centres (a subset of the constraint points).
@@ -91,7 +100,8 @@ public:
     void write_field(FieldWriter& out) const override;
     //! The field at every constraint of the last fit (the residual report's values).
     const Points* values_at_handles() const override;
-    //! The constraints on jumps (GreedySettings::jump_slope), never centres and not fitted.
+    //! The constraints on jumps (GreedySettings::jump_slope, jump_width), never centres and not
+    //! fitted.
     const std::vector<char>* handles_left_out() const override;
     //! True when both tolerances were met (false when the budget stopped the refinement).
     bool converged() const;
@@ -109,7 +119,8 @@ public:
     //! fit then keeps the centres of the best round (its residual is the smallest RMS) and
     //! history() / rms_history() end with that round (the worse one is not listed).
     bool stopped_growing() const;
-    //! Constraints (after merging duplicates) left out of the fit as jumps (jump_slope).
+    //! Constraints (after merging duplicates) left out of the fit as jumps (jump_slope,
+    //! jump_width).
     Index jump_constraints() const;
 
 private:

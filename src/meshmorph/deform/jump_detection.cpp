@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "meshmorph/core/tie_break.h"
 
@@ -158,6 +159,28 @@ std::vector<char> jump_points(const Points& x, const Eigen::MatrixXd& values, do
     }
     count = flagged;
     return flag;
+}
+
+JumpBand jump_band(const Points& x, const Eigen::MatrixXd& values, double max_slope,
+                   double min_width)
+{
+    JumpBand band;
+    const Eigen::VectorXd size = values.rowwise().norm();
+    const double largest = size.size() > 0 ? size.maxCoeff() : 0.0;
+    if (!(max_slope > 0.0) || !(largest > 0.0))
+        return band;
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d hi = -lo;
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+        if (size[i] > 1e-6 * largest)
+        {
+            lo = lo.cwiseMin(x.row(i).transpose());
+            hi = hi.cwiseMax(x.row(i).transpose());
+        }
+    band.extent = (hi - lo).norm();
+    band.width = std::max(largest / max_slope, min_width * band.extent);
+    band.slope = largest / band.width;
+    return band;
 }
 
 } // namespace meshmorph::detail

@@ -122,7 +122,7 @@ template <class Parse> auto parse_named(const io::FoamEntry& e, Parse parse)
 GreedySettings read_greedy_settings(const io::FoamDictionary& g, SizeEntry& centres_entry)
 {
     g.check_keywords({"tolerance", "rmsTolerance", "maxCentres", "initialCentres", "batchSize",
-                      "spread", "jumpSlope"},
+                      "spread", "jumpSlope", "jumpWidth"},
                      "rbf.greedy");
     GreedySettings gs;
     gs.tolerance = g.get_or<double>("tolerance", gs.tolerance);
@@ -132,7 +132,8 @@ GreedySettings read_greedy_settings(const io::FoamDictionary& g, SizeEntry& cent
     gs.batch_size = g.get_or<std::int32_t>("batchSize", gs.batch_size);
     gs.spread = g.get_or<double>("spread", gs.spread);
     gs.jump_slope = g.get_or<double>("jumpSlope", gs.jump_slope);
-    for (const char* key : {"spread", "jumpSlope"})
+    gs.jump_width = g.get_or<double>("jumpWidth", gs.jump_width);
+    for (const char* key : {"spread", "jumpSlope", "jumpWidth"})
         if (const io::FoamEntry* e = g.find(key); e && !(e->get<double>() >= 0.0))
             throw e->error(std::string(key) + " must be >= 0 (0: off)");
     if (!(gs.tolerance > 0.0))
