@@ -106,17 +106,34 @@ void split_blocks(std::vector<QueryPoint>& q, Index begin, Index end, Index bloc
 //! 18 times wider than their point spacing (the midpoint cut: 11 times), and their direct
 //! sums reach that much further. For the same largest error (6e-4) the median tree needed
 //! theta 0.25 against 0.2 here, and 1.33x the time.
-std::vector<SplitNode> split_sources(const Points& p, std::vector<Index>& order, Index leaf_size)
+std::vector<SplitNode> split_sources(const Points& p, std::vector<Index>& order, Index leaf_size,
+                                     const std::vector<char>& group)
 {
     constexpr int deepest_midpoint = 96;
     order.resize(static_cast<std::size_t>(p.rows()));
     std::iota(order.begin(), order.end(), Index{0});
     std::vector<SplitNode> nodes{{0, static_cast<Index>(p.rows()), -1}};
     std::vector<int> depth{0};
+    if (!group.empty())
+    {
+        // The root's children: the points of group 1, then the others (each in index order).
+        const Index split = static_cast<Index>(
+            std::stable_partition(order.begin(), order.end(),
+                                  [&](Index a) { return group[std::size_t(a)] != 0; }) -
+            order.begin());
+        if (split > 0 && split < static_cast<Index>(p.rows()))
+        {
+            nodes[0].child = 1;
+            nodes.push_back({0, split, -1});
+            nodes.push_back({split, static_cast<Index>(p.rows()), -1});
+            depth.push_back(1);
+            depth.push_back(1);
+        }
+    }
     for (std::size_t k = 0; k < nodes.size(); ++k)
     {
         const SplitNode node = nodes[k];
-        if (node.end - node.begin <= leaf_size)
+        if (node.end - node.begin <= leaf_size || node.child >= 0)
             continue;
         Vector3 lo, hi;
         const int axis = longest_axis(p, order, node.begin, node.end, lo, hi);

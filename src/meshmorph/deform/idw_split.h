@@ -28,7 +28,11 @@ struct SplitNode
 //! 18 times wider than their point spacing (the midpoint cut: 11 times), and their direct
 //! sums reach that much further. For the same largest error (6e-4) the median tree needed
 //! theta 0.25 against 0.2 here, and 1.33x the time.
-std::vector<SplitNode> split_sources(const Points& p, std::vector<Index>& order, Index leaf_size);
+//!
+//! With `group` (one flag per point) holding both values, the root is split by it first:
+//! its children hold the points of group 1 and the others, each split in space below.
+std::vector<SplitNode> split_sources(const Points& p, std::vector<Index>& order, Index leaf_size,
+                                     const std::vector<char>& group = {});
 
 //! The query blocks of the points `order` (rows of p), ordered by their first point; order
 //! is permuted so that every block is a contiguous range of it. Median cuts along the

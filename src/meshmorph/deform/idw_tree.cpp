@@ -40,7 +40,9 @@ IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& w
     : weight_(weight), theta_(theta)
 {
     std::vector<Index> order;
-    const std::vector<SplitNode> split = split_sources(sources, order, source_leaf);
+    // The quiet sources apart from the others below the root: a node mixing the two is not
+    // quiet, so every ancestor of a loud source was expanded at theta (mark_quiet_nodes).
+    const std::vector<SplitNode> split = split_sources(sources, order, source_leaf, quiet);
     const std::size_t m = order.size();
     for (std::vector<double>* a : {&sx_, &sy_, &sz_, &vx_, &vy_, &vz_})
         a->resize(m);
