@@ -278,10 +278,10 @@ PolyMesh internal_points_first(PolyMesh mesh)
 TEST(CheckMesh, a_mesh_large_enough_for_threads_gives_the_same_report_on_any_thread_count)
 {
     // 32^3 cells, 101376 faces: above the size where the geometry and check loops run on
-    // OpenMP's threads (20000 faces) and where the lists of failing faces are gathered in
-    // pieces (65536), so that the pieces, taken as threads come free, are really spread.
-    // Points pushed through their neighbours all over the block fail several checks in
-    // several pieces.
+    // OpenMP's threads in pieces taken as threads come free (20000 faces, pieces of
+    // detail::loop_piece) and where the largest skewness is reduced on threads (65536), so
+    // that the pieces are really spread. Points pushed through their neighbours all over the
+    // block fail several checks in several pieces.
     PolyMesh mesh = internal_points_first(test::make_block_mesh(
         32, 32, 32,
         [](double u, double v, double w)
