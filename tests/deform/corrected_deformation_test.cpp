@@ -5,6 +5,7 @@
 
 #include "deform_test_helpers.h"
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
 #include "meshmorph/deform/corrected_deformation.h"
 #include "meshmorph/deform/field_io.h"
 #include "meshmorph/deform/greedy_rbf_deformation.h"
@@ -54,10 +55,41 @@ TEST(CorrectedDeformation, a_direct_rbf_on_nearly_coincident_constraints_falls_b
     RbfDeformation alone;
     EXPECT_THROW(alone.fit(x, d), SolverError) << "the premise: the direct system is singular";
     CorrectedDeformation corrected(std::make_unique<RbfDeformation>());
+    const log::CaptureScope capture;
     corrected.fit(x, d);
     EXPECT_EQ(corrected.report().method, "greedy-rbf+idw");
     const double max_d = test::max_norm(d);
     EXPECT_LE((displacements(corrected, x) - d).rowwise().norm().maxCoeff(), 1e-12 * max_d);
+    // The designed path, as exact: a log line, not a warning.
+    EXPECT_NE(capture.text().find("using the greedy RBF instead"), std::string::npos);
+    EXPECT_EQ(capture.text().find("Warning"), std::string::npos) << capture.text();
+}
+
+TEST(CorrectedDeformation, a_direct_rbf_whose_ill_conditioning_shows_falls_back_to_greedy)
+{
+    // Handles clustered in a small region of a large domain (condition ~5e12). The
+    // residual threshold is set below what the direct fit reaches, so that its
+    // ill-conditioning shows; morphMesh's direct RBF asks for the error instead of the
+    // warning (ill_conditioning_is_error), and the correction takes the greedy RBF.
+    Points x = test::random_points(400, 0.0, 1e-2, 3);
+    x.topRows(8) = test::random_points(8, -1.0, 1.0, 4);
+    const Points d = test::smooth_field(x * 50.0);
+    RbfSettings s;
+    RbfDeformation probe(s);
+    probe.fit(x, d);
+    const double relative = probe.report().max_residual / probe.report().max_displacement;
+    ASSERT_GT(relative, 0.0) << "the premise: round-off leaves a residual";
+    ASSERT_GT(probe.report().condition_estimate, s.condition_warning) << "the premise";
+    s.residual_warning = 0.5 * relative;
+    s.ill_conditioning_is_error = true;
+    CorrectedDeformation corrected(std::make_unique<RbfDeformation>(s));
+    const log::CaptureScope capture;
+    corrected.fit(x, d);
+    EXPECT_EQ(corrected.report().method, "greedy-rbf+idw");
+    const double max_d = test::max_norm(d);
+    EXPECT_LE((displacements(corrected, x) - d).rowwise().norm().maxCoeff(), 1e-12 * max_d);
+    EXPECT_NE(capture.text().find("condition estimate"), std::string::npos) << capture.text();
+    EXPECT_EQ(capture.text().find("Warning"), std::string::npos) << capture.text();
 }
 
 namespace

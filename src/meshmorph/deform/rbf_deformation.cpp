@@ -301,11 +301,31 @@ void RbfDeformation::fit(const Eigen::Ref<const Points>& handles,
     d.report.num_merged_duplicates = static_cast<Index>(handles.rows() - d.merged.centres.rows());
     d.report.num_centres = d.report.num_handles;
     d.report.polynomial_terms = static_cast<Index>(d.P.cols());
-    if (d.report.condition_estimate > d.settings.condition_warning)
-        log::warning() << "RBF (" << to_string(d.settings.kernel) << "): condition estimate "
-                       << d.report.condition_estimate << " exceeds " << d.settings.condition_warning
-                       << "; the interpolation may be inaccurate";
     report_residual(displacements);
+    check_conditioning();
+}
+
+void RbfDeformation::check_conditioning()
+{
+    Impl& d = *impl_;
+    const FitReport& r = d.report;
+    const RbfSettings& s = d.settings;
+    if (!(r.condition_estimate > s.condition_warning &&
+          r.max_residual > s.residual_warning * r.max_displacement))
+        return;
+    std::ostringstream what;
+    what << "RBF (" << to_string(s.kernel) << "): condition estimate " << r.condition_estimate
+         << " exceeds " << s.condition_warning << " and the fit misses its handles by up to "
+         << r.max_residual / r.max_displacement
+         << " of the largest displacement: handles this close together make the system "
+            "nearly singular for this kernel";
+    if (s.ill_conditioning_is_error)
+    {
+        d.fitted = false;
+        throw SolverError(what.str());
+    }
+    log::warning() << what.str()
+                   << "; the greedy RBF (rbf { greedy { } }) chooses centres that stay apart";
 }
 
 void RbfDeformation::refit(const Eigen::Ref<const Points>& displacements)

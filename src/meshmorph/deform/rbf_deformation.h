@@ -61,6 +61,9 @@ private:
     struct Impl;
     //! The field at the handles, kept, and the report's residuals from it.
     void report_residual(const Eigen::Ref<const Points>& displacements);
+    //! The warning or error of an ill-conditioned fit (RbfSettings::condition_warning),
+    //! once the residual is known.
+    void check_conditioning();
     std::unique_ptr<Impl> impl_;
 };
 

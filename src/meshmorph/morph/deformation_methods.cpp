@@ -56,7 +56,13 @@ Made make_rbf(const DeformationSettings& s, const Eigen::Ref<const Points>&, Ind
         global = std::make_unique<GreedyRbfDeformation>(g);
     }
     else
-        global = std::make_unique<RbfDeformation>(s.rbf);
+    {
+        // A direct fit that ill-conditioning makes inexact is replaced by the greedy RBF
+        // (CorrectedDeformation::fit) rather than kept with a warning.
+        RbfSettings direct = s.rbf;
+        direct.ill_conditioning_is_error = true;
+        global = std::make_unique<RbfDeformation>(direct);
+    }
     return std::make_unique<CorrectedDeformation>(std::move(global), s.idw, s.limit);
 }
 
