@@ -67,13 +67,12 @@ TEST(CorrectedDeformation, a_direct_rbf_on_nearly_coincident_constraints_falls_b
 
 TEST(CorrectedDeformation, a_direct_rbf_whose_ill_conditioning_shows_falls_back_to_greedy)
 {
-    // Handles clustered in a small region of a large domain (condition ~5e12). The
-    // residual threshold is set below what the direct fit reaches, so that its
+    // The residual threshold is set below what the direct fit reaches, so that its
     // ill-conditioning shows; morphMesh's direct RBF asks for the error instead of the
     // warning (ill_conditioning_is_error), and the correction takes the greedy RBF.
-    Points x = test::random_points(400, 0.0, 1e-2, 3);
-    x.topRows(8) = test::random_points(8, -1.0, 1.0, 4);
-    const Points d = test::smooth_field(x * 50.0);
+    const test::ClusteredHandles c;
+    const Points& x = c.h;
+    const Points& d = c.d;
     RbfSettings s;
     RbfDeformation probe(s);
     probe.fit(x, d);

@@ -430,17 +430,14 @@ TEST(RbfDeformation, ill_conditioning_that_shows_is_a_solver_error_when_asked)
 
 TEST(RbfDeformation, a_large_condition_number_fitted_to_round_off_does_not_warn)
 {
-    // Handles clustered in a small region of a large domain, as near a body in a
-    // snappyHexMesh case (the set-up of the refinement test below): the condition estimate
-    // is above the default warning threshold, and iterative refinement fits the handles to
-    // ~1e-8 of the largest displacement, within the default residual_warning of 1e-6.
-    Points h = test::random_points(400, 0.0, 1e-2, 3);
-    h.topRows(8) = test::random_points(8, -1.0, 1.0, 4);
-    const Points d = test::smooth_field(h * 50.0);
+    // The condition estimate is above the default warning threshold, and iterative
+    // refinement fits the handles to ~1e-8 of the largest displacement, within the default
+    // residual_warning of 1e-6.
+    const test::ClusteredHandles c;
     const RbfSettings defaults;
     RbfDeformation rbf;
     const log::CaptureScope capture;
-    rbf.fit(h, d);
+    rbf.fit(c.h, c.d);
     const FitReport& r = rbf.report();
     ASSERT_GT(r.condition_estimate, defaults.condition_warning) << "the premise";
     ASSERT_LT(r.max_residual, defaults.residual_warning * r.max_displacement) << "the premise";
@@ -453,9 +450,9 @@ TEST(RbfDeformation, iterative_refinement_never_increases_the_residual)
     // snappyHexMesh case) give a condition number ~5e12. Refinement cannot go below the
     // round-off of evaluating the expansion itself (eps * sum |w_j phi_j|, large when the
     // weights are), so this checks it never hurts and keeps the residual ~1e-8 relative.
-    Points h = test::random_points(400, 0.0, 1e-2, 3);
-    h.topRows(8) = test::random_points(8, -1.0, 1.0, 4);
-    const Points d = test::smooth_field(h * 50.0);
+    const test::ClusteredHandles c;
+    const Points& h = c.h;
+    const Points& d = c.d;
     RbfSettings s;
     s.refinement_steps = 0;
     s.condition_warning = 1e14;
