@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -49,6 +50,26 @@ struct RbfDeformation::Impl
     void solve(const Eigen::MatrixXd& H, Eigen::MatrixXd& W, Eigen::MatrixXd& Q) const;
     void set_displacements(const Eigen::MatrixXd& H);
 };
+
+namespace
+{
+
+//! What else than near-coincident handles makes a dense kernel system singular: a shape
+//! parameter small enough to make the kernel flat (the polyharmonic kernels have none).
+std::string flatness_hint(RbfKernel kernel)
+{
+    switch (kernel)
+    {
+    case RbfKernel::gaussian:
+    case RbfKernel::multiquadric:
+    case RbfKernel::inverse_multiquadric:
+        return ", or its shape parameter (rbf.shape) makes it too flat";
+    default:
+        return "";
+    }
+}
+
+} // namespace
 
 void RbfDeformation::Impl::factor_dense()
 {
@@ -121,8 +142,7 @@ void RbfDeformation::Impl::factor_dense()
         s << "RBF (" << to_string(settings.kernel) << "): the reduced " << r << " x " << r
           << " system is not " << (setup.sign < 0 ? "negative" : "positive")
           << " definite (Cholesky failed at column " << info
-          << "): the handles nearly coincide or the kernel is numerically singular"
-          << " (check the shape parameter / support radius)";
+          << "): the handles nearly coincide for this kernel" << flatness_hint(settings.kernel);
         throw SolverError(s.str());
     }
     double rcond = 0.0;
