@@ -402,8 +402,10 @@ TEST(RbfDeformation, warns_when_a_large_condition_number_shows_in_the_residual)
         EXPECT_EQ(warned, factor < 1.0) << "residual threshold " << factor << " x the residual\n"
                                         << capture.text();
         if (warned)
+        {
             EXPECT_NE(capture.text().find("rbf { greedy { } }"), std::string::npos)
                 << "the warning names the key that helps";
+        }
     }
 }
 
