@@ -228,6 +228,12 @@ bool is_exact(const DeformationSettings& settings)
     return row(settings.method).exact;
 }
 
+bool bounded_by_prescriptions(const DeformationSettings& settings)
+{
+    return settings.method == DeformationMethod::idw ||
+           (settings.method == DeformationMethod::rbf && settings.limit);
+}
+
 std::unique_ptr<SpaceDeformation> make_deformation(const DeformationSettings& settings,
                                                    const Eigen::Ref<const Points>& points,
                                                    Index n_constraints)

@@ -35,6 +35,10 @@ bool needs_fit(const DeformationSettings& settings);
 //! Whether the fitted field interpolates every constraint (rbf, idw) rather than fitting
 //! it in the least-squares sense (dmffd) or ignoring it (ffd).
 bool is_exact(const DeformationSettings& settings);
+//! Whether the field never moves a point further than the largest prescribed displacement:
+//! idw (a convex combination of the prescriptions), and rbf with its limit (`rbf { limit
+//! yes; }`, the default). Only the untangling of a step can move points further then.
+bool bounded_by_prescriptions(const DeformationSettings& settings);
 
 //! Short description for the log, e.g. "rbf (triharmonic, linear polynomial, direct)".
 std::string describe(const DeformationSettings& settings, Index n_constraints);

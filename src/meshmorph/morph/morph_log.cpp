@@ -89,12 +89,16 @@ void log_fit(const MorphResult& result, const DeformationSettings& settings, Ind
                     << format_scalar(r.max_residual * rel, 3) << ")";
     log::info() << "Largest displacement " << format_scalar(result.max_displacement, 3)
                 << " (largest prescribed " << format_scalar(result.morph.max_prescribed, 3) << ")";
-    if (result.max_displacement > 1.01 * result.morph.max_prescribed &&
+    // A bounded field that moved points further than its prescriptions did so in the
+    // untangling, whose own line says how far; the advice below would not apply.
+    if (!bounded_by_prescriptions(settings) &&
+        result.max_displacement > 1.01 * result.morph.max_prescribed &&
         result.morph.max_prescribed > 0.0)
         log::warning() << "points away from the constraints move up to "
                        << format_scalar(result.max_displacement / result.morph.max_prescribed, 3)
-                       << " times the largest prescribed displacement (the global RBF "
-                          "overshoots): rbf { limit yes; } or method idw never exceed it";
+                       << " times the largest prescribed displacement (the "
+                       << to_string(settings.method)
+                       << " field overshoots): rbf { limit yes; } or method idw never exceed it";
     log::info() << "Max constraint error " << format_scalar(result.morph.max_constraint_error, 3)
                 << " (" << format_scalar(result.morph.relative_constraint_error, 3)
                 << " of the largest prescribed displacement "
