@@ -168,7 +168,9 @@ TimeSettings read_time_settings(const fs::path& case_dir)
     const FoamDictionary dict = read_dictionary(path, lenient);
     settings.delta_t = dict.get_or<double>("deltaT", 1.0);
     if (!(settings.delta_t > 0))
-        throw dict.entry("deltaT").error("deltaT must be positive");
+        throw dict.entry("deltaT").error(
+            "deltaT must be positive: the mesh is written to the next time, the current one "
+            "plus deltaT (mesh-generation cases often set 0; -overwrite writes in place)");
     const std::string format = dict.get_or<std::string>("timeFormat", "general");
     if (format == "general")
         settings.format = TimeFormat::general;

@@ -682,16 +682,21 @@ struct detail_dictionary_access
     }
 
     // `$dict` at keyword position: merge a copy of that dictionary's entries. Like OpenFOAM,
-    // an undefined name or a value there is ignored (with a warning).
+    // an undefined name or a value there is ignored (with a warning). Not in a dictionary
+    // read for a few entries (skip_unsupported: controlDict), whose skipped #includeEtc
+    // files define such names (windAroundBuildings' runTimePostProcessing merges
+    // `${..colourScheme.paraview}` from one): the warning would be about an entry the tool
+    // never reads.
     void merge_variable_dict(FoamTokenizer& tok, FoamDictionary& dict, const FoamToken& key)
     {
         const FoamEntry* src = try_resolve(tok, key);
         if (!src || !src->is_dict())
         {
-            log::warning() << tok.path() << ":" << key.line << ": '" << key.text
-                           << "' at keyword position "
-                           << (src ? "names a value, not a dictionary" : "is undefined")
-                           << "; ignored";
+            if (!options.skip_unsupported)
+                log::warning() << tok.path() << ":" << key.line << ": '" << key.text
+                               << "' at keyword position "
+                               << (src ? "names a value, not a dictionary" : "is undefined")
+                               << "; ignored";
             tok.accept(';');
             return;
         }
