@@ -21,6 +21,15 @@ namespace
 constexpr double good_enough = 0.2;
 //! A move must raise the local quality by this much to count (stops endless tiny moves).
 constexpr double min_gain = 1e-9;
+//! The repair works on a cell until its quality reaches this cosine (every face pyramid and
+//! internal face 0.06 degrees or more from the 90 degrees where checkMesh's verdict flips),
+//! not merely until checkMesh would pass it: a cell left at a cosine of 1e-12 passes or
+//! fails on the last bits of its points, which another BLAS kernel, compiler or thread
+//! count changes. A relative volume of 1e-3 is ten orders of magnitude above that
+//! round-off, so the verdict after the repair is the same on every machine.
+constexpr double repair_margin = 1e-3;
+//! The target of a cell invalid in the original mesh: below every quality, never worked on.
+constexpr double left_alone = -3.0;
 //! Quality of a cell whose volume is not positive: below any cosine.
 constexpr double collapsed = -2.0;
 
@@ -105,11 +114,13 @@ class Untangler
 {
 public:
     Untangler(PolyMesh& mesh, const CompactList& cell_faces, MeshGeometry& g,
-              const Points& original, const std::vector<char>& movable)
-        : mesh_(mesh), cell_faces_(cell_faces), g_(g), original_(original), movable_(movable),
-          cell_points_(cell_points(mesh, cell_faces)),
+              const Points& original, const std::vector<double>& targets,
+              const std::vector<char>& movable)
+        : mesh_(mesh), cell_faces_(cell_faces), g_(g), original_(original), targets_(targets),
+          movable_(movable), cell_points_(cell_points(mesh, cell_faces)),
           point_cells_(point_cells(mesh.n_points(), cell_points_)),
           in_region_(static_cast<std::size_t>(cell_faces.size()), 0),
+          watched_(static_cast<std::size_t>(cell_faces.size()), 0),
           moved_(static_cast<std::size_t>(mesh.n_points()), 0)
     {
     }
@@ -130,12 +141,21 @@ public:
                     add_cell(n);
     }
 
+    //! The watched cells checkMesh counts as invalid (but for those invalid from the start).
     Index count_invalid() const
     {
-        Index n = 0;
-        for (Index c : region_)
-            n += cell_invalid(mesh_, cell_faces_, g_, c) ? 1 : 0;
-        return n;
+        return count_watched(
+            [&](Index c)
+            {
+                return targets_[static_cast<std::size_t>(c)] > left_alone &&
+                       cell_invalid(mesh_, cell_faces_, g_, c);
+            });
+    }
+
+    //! The watched cells still below their repair target.
+    Index count_below_target() const
+    {
+        return count_watched([&](Index c) { return below_target(c); });
     }
 
     //! One pass over the region's movable points. \return whether any point moved.
@@ -158,12 +178,38 @@ public:
     }
 
 private:
+    //! A cell the repair must raise: below its target (and not invalid from the start).
+    bool below_target(Index c) const
+    {
+        const double target = targets_[static_cast<std::size_t>(c)];
+        return target > left_alone && cell_quality(mesh_, cell_faces_, g_, c) < target;
+    }
+
+    //! How many watched cells satisfy `pred`: the region's and every cell a moved point
+    //! touches (a move raises the worst cell around its point, and may lower another one).
+    template <class Pred> Index count_watched(Pred pred) const
+    {
+        Index n = 0;
+        for (Index c : watched_cells_)
+            n += pred(c) ? 1 : 0;
+        return n;
+    }
+
+    void watch(Index c)
+    {
+        if (watched_[static_cast<std::size_t>(c)])
+            return;
+        watched_[static_cast<std::size_t>(c)] = 1;
+        watched_cells_.push_back(c);
+    }
+
     void add_cell(Index c)
     {
         if (in_region_[static_cast<std::size_t>(c)])
             return;
         in_region_[static_cast<std::size_t>(c)] = 1;
         region_.push_back(c);
+        watch(c);
     }
 
     std::vector<Index> region_points() const
@@ -313,6 +359,8 @@ private:
         {
             moved_[static_cast<std::size_t>(p)] = 1;
             start_.emplace_back(p, x);
+            for (Index c : point_cells_[p])
+                watch(c);
         }
         return moves;
     }
@@ -321,23 +369,38 @@ private:
     const CompactList& cell_faces_;
     MeshGeometry& g_;
     const Points& original_;
+    const std::vector<double>& targets_;
     const std::vector<char>& movable_;
     CompactList cell_points_, point_cells_;
     std::vector<char> in_region_;
     std::vector<Index> region_;
+    std::vector<char> watched_;
+    std::vector<Index> watched_cells_; //!< the region's cells and those of moved points
     std::vector<char> moved_;
     std::vector<std::pair<Index, Vector3>> start_; //!< where each moved point was
 };
 
-//! The cells invalid now that were valid in the original mesh.
-std::vector<Index> newly_invalid_cells(const PolyMesh& mesh, const CompactList& cell_faces,
-                                       const MeshGeometry& g, const std::vector<char>& was_invalid)
+//! f(c) for every cell c, on every thread.
+template <class T, class F> std::vector<T> per_cell(Index n, F f)
 {
-    const std::vector<char> now = invalid_cell_flags(mesh, cell_faces, g);
+    std::vector<T> values(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static)
+    for (Index c = 0; c < n; ++c)
+        values[static_cast<std::size_t>(c)] = static_cast<T>(f(c));
+    return values;
+}
+
+//! The cells below their repair target now (none that were invalid in the original mesh).
+std::vector<Index> cells_below_target(const PolyMesh& mesh, const CompactList& cell_faces,
+                                      const MeshGeometry& g, const std::vector<double>& targets)
+{
     std::vector<Index> cells;
     for (Index c = 0; c < cell_faces.size(); ++c)
-        if (now[static_cast<std::size_t>(c)] && !was_invalid[static_cast<std::size_t>(c)])
+    {
+        const double target = targets[static_cast<std::size_t>(c)];
+        if (target > left_alone && cell_quality(mesh, cell_faces, g, c) < target)
             cells.push_back(c);
+    }
     return cells;
 }
 
@@ -346,26 +409,35 @@ std::vector<Index> newly_invalid_cells(const PolyMesh& mesh, const CompactList& 
 std::vector<char> invalid_cell_flags(const PolyMesh& mesh, const CompactList& cell_faces,
                                      const MeshGeometry& g)
 {
-    const Index n = cell_faces.size();
-    std::vector<char> flags(static_cast<std::size_t>(n), 0);
-#pragma omp parallel for schedule(static)
-    for (Index c = 0; c < n; ++c)
-        flags[static_cast<std::size_t>(c)] = cell_invalid(mesh, cell_faces, g, c) ? 1 : 0;
-    return flags;
+    return per_cell<char>(cell_faces.size(),
+                          [&](Index c) { return cell_invalid(mesh, cell_faces, g, c) ? 1 : 0; });
+}
+
+std::vector<double> repair_targets(const PolyMesh& original, const CompactList& cell_faces,
+                                   const MeshGeometry& g)
+{
+    return per_cell<double>(cell_faces.size(),
+                            [&](Index c)
+                            {
+                                return cell_invalid(original, cell_faces, g, c)
+                                           ? left_alone
+                                           : std::min(repair_margin,
+                                                      cell_quality(original, cell_faces, g, c));
+                            });
 }
 
 UntangleReport untangle_cells(PolyMesh& mesh, const CompactList& cell_faces, MeshGeometry& geometry,
-                              const Points& original_points, const std::vector<char>& was_invalid,
+                              const Points& original_points, const std::vector<double>& targets,
                               const std::vector<char>& movable, const UntangleSettings& settings)
 {
     UntangleReport report;
-    const std::vector<Index> invalid = newly_invalid_cells(mesh, cell_faces, geometry, was_invalid);
-    report.invalid_before = static_cast<Index>(invalid.size());
-    if (invalid.empty())
+    const std::vector<Index> poor = cells_below_target(mesh, cell_faces, geometry, targets);
+    if (poor.empty())
         return report;
-    Untangler untangler(mesh, cell_faces, geometry, original_points, movable);
-    untangler.add_cells(invalid);
-    Index remaining = report.invalid_before;
+    Untangler untangler(mesh, cell_faces, geometry, original_points, targets, movable);
+    untangler.add_cells(poor);
+    report.invalid_before = untangler.count_invalid();
+    Index remaining = static_cast<Index>(poor.size());
     for (int layers = 1; layers <= settings.max_layers && remaining > 0; layers *= 2)
     {
         while (report.layers < layers)
@@ -377,10 +449,11 @@ UntangleReport untangle_cells(PolyMesh& mesh, const CompactList& cell_faces, Mes
         {
             if (!untangler.sweep())
                 break;
-            remaining = untangler.count_invalid();
+            remaining = untangler.count_below_target();
         }
     }
     report.invalid_after = untangler.count_invalid();
+    report.below_target_after = remaining;
     report.points_moved = untangler.points_moved();
     report.max_move = untangler.max_move();
     return report;

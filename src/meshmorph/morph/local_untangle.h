@@ -20,6 +20,13 @@
 //! worst of its cells worse, and points whose cells are already good (cosine >= 0.2) stay
 //! where the morph put them. The neighbourhood starts one layer of cells around the
 //! invalid ones and doubles while cells remain invalid, up to max_layers.
+//!
+//! The repair stops with a margin, not at the edge of validity: it works on a cell until
+//! its quality reaches its target, a cosine of 1e-3 (or the cell's quality in the original
+//! mesh, if lower), so that checkMesh's verdict on the repaired cells does not hang on
+//! round-off (another BLAS kernel or compiler moves the morph's points by ~1e-8 of the
+//! motion). It watches every cell a moved point touches, not only its neighbourhood: a
+//! move that raises the worst cell around a point may lower another.
 #pragma once
 
 #include <vector>
@@ -38,11 +45,12 @@ struct UntangleSettings
 
 struct UntangleReport
 {
-    Index invalid_before = 0; //!< cells invalid (and not in the original mesh) on entry
-    Index invalid_after = 0;  //!< of those and their neighbourhood, still invalid on return
-    Index points_moved = 0;   //!< distinct interior points moved
-    int layers = 0;           //!< the neighbourhood's width when the repair stopped
-    double max_move = 0.0;    //!< the largest distance a point was moved
+    Index invalid_before = 0;     //!< cells invalid (and not in the original mesh) on entry
+    Index invalid_after = 0;      //!< cells it watched that checkMesh counts invalid on return
+    Index below_target_after = 0; //!< cells it watched still below their target on return
+    Index points_moved = 0;       //!< distinct interior points moved
+    int layers = 0;               //!< the neighbourhood's width when the repair stopped
+    double max_move = 0.0;        //!< the largest distance a point was moved
 };
 
 //! \brief Per cell: 1 when it has a volume below OpenFOAM's VSMALL, a wrongly oriented face
@@ -50,14 +58,20 @@ struct UntangleReport
 std::vector<char> invalid_cell_flags(const PolyMesh& mesh, const CompactList& cell_faces,
                                      const MeshGeometry& geometry);
 
-//! \brief Repair the cells that are invalid in `mesh` but were not in the original mesh.
-//! \param mesh the morphed mesh; its interior points near invalid cells are moved.
+//! \brief Per cell of the unmorphed mesh, the quality the repair raises it to when a morph
+//! takes it below: the smaller of the margin (cosine 1e-3) and its own quality there; a
+//! cell invalid in the unmorphed mesh gets a target below every quality (left alone).
+std::vector<double> repair_targets(const PolyMesh& original, const CompactList& cell_faces,
+                                   const MeshGeometry& geometry);
+
+//! \brief Repair the cells that are below their target in `mesh`.
+//! \param mesh the morphed mesh; its interior points near those cells are moved.
 //! \param geometry compute_geometry(mesh, cell_faces) on entry; kept up to date.
 //! \param original_points the mesh before the morph (for the displacement candidate).
-//! \param was_invalid invalid_cell_flags of the original mesh: these cells are left alone.
+//! \param targets repair_targets of the original mesh.
 //! \param movable per point, 1 when the repair may move it (interior points).
 UntangleReport untangle_cells(PolyMesh& mesh, const CompactList& cell_faces, MeshGeometry& geometry,
-                              const Points& original_points, const std::vector<char>& was_invalid,
+                              const Points& original_points, const std::vector<double>& targets,
                               const std::vector<char>& movable, const UntangleSettings& settings);
 
 } // namespace meshmorph::morph

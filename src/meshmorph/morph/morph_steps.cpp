@@ -65,7 +65,12 @@ void log_step(std::size_t number, const StepRecord& r, bool failed, bool redo, b
                     << r.untangle.points_moved << " interior points by up to "
                     << r.untangle.max_move << " (" << r.untangle.layers
                     << " layers of cells around them), " << r.untangle.invalid_after
-                    << " still invalid [" << format_seconds(r.untangle_seconds) << " s]";
+                    << " still invalid"
+                    << (r.untangle.below_target_after > r.untangle.invalid_after
+                            ? ", " + std::to_string(r.untangle.below_target_after) +
+                                  " below the repair's margin"
+                            : std::string())
+                    << " [" << format_seconds(r.untangle_seconds) << " s]";
     log::info() << "Step " << number << ": motion " << format_fraction(r.from) << " -> "
                 << format_fraction(r.to) << ", " << r.centres << " centres, "
                 << r.invalid.negative_volume_cells << " negative-volume cells, "
@@ -110,16 +115,17 @@ public:
     {
     }
     const Points& points() const { return aside_ ? *aside_ : mesh_->points; }
-    const std::vector<char>& invalid_cells()
+    const std::vector<double>& repair_targets()
     {
-        if (!invalid_.empty())
-            return invalid_;
+        if (!targets_.empty())
+            return targets_;
         if (working_)
             std::swap(working_->points, *aside_);
-        invalid_ = invalid_cell_flags(*mesh_, cell_faces_, compute_geometry(*mesh_, cell_faces_));
+        targets_ =
+            morph::repair_targets(*mesh_, cell_faces_, compute_geometry(*mesh_, cell_faces_));
         if (working_)
             std::swap(working_->points, *aside_);
-        return invalid_;
+        return targets_;
     }
     //! Interior points (in a -parallel run also not on processor patches: a point shared
     //! with another rank must move alike on both, so the repair leaves it).
@@ -139,7 +145,8 @@ private:
     PolyMesh* working_ = nullptr; //!< in place: the same mesh, to swap points in and out
     Points* aside_ = nullptr;     //!< in place: the original points
     const CompactList& cell_faces_;
-    std::vector<char> invalid_, movable_;
+    std::vector<double> targets_;
+    std::vector<char> movable_;
 };
 
 //! The ranks of the run (one rank without a decomposition).
@@ -167,9 +174,10 @@ void repair(PolyMesh& current, const CompactList& cell_faces, MeshGeometry& geom
 {
     const Stopwatch clock;
     record.untangle = untangle_cells(current, cell_faces, geometry, original.points(),
-                                     original.invalid_cells(), original.movable_points(), {});
+                                     original.repair_targets(), original.movable_points(), {});
     record.untangle.invalid_before = comm.sum(std::int64_t(record.untangle.invalid_before));
     record.untangle.invalid_after = comm.sum(std::int64_t(record.untangle.invalid_after));
+    record.untangle.below_target_after = comm.sum(std::int64_t(record.untangle.below_target_after));
     record.untangle.points_moved = comm.sum(std::int64_t(record.untangle.points_moved));
     record.untangle.max_move = comm.max(record.untangle.max_move);
     record.untangle.layers = int(comm.max(std::int64_t(record.untangle.layers)));
