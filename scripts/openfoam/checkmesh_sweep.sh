@@ -1,9 +1,21 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Sweep: checkMeshQuality against OpenFOAM v1912's checkMesh on every tutorial of Debian's
-# openfoam-examples that can be meshed here, plain and with -allGeometry -allTopology.
+# openfoam-examples that can be meshed here, plain and with -allGeometry -allTopology; or,
+# with -morph, a morph of every such mesh judged by OpenFOAM's checkMesh.
 # Usage: checkmesh_sweep.sh [-cases REGEX] [-out DIR] [-all] [-jobs N] [-keep] [-list]
-#                           [-mesh-timeout S] [-check-timeout S] [-checker PATH] [-help]
+#                           [-mesh-timeout S] [-check-timeout S] [-checker PATH]
+#                           [-morph [-morph-mesh PATH]] [-help]
+#
+#   -morph        the morph sweep instead of the checker comparison: on every mesh the
+#                 smallest wall patch is scaled by 1% about its centre, everything else
+#                 fixed (in 2D within the planes), by morphMesh; then checkMesh on the
+#                 result (morph_one_mesh.py). Each mesh ends valid, warned (a new checkMesh
+#                 failure that morphMesh named), silent (one it did not: the defect this
+#                 sweep hunts), refused (with the reason), crashed or skipped. Output in
+#                 build/bench/morph-sweep unless -out; summary.md has the counts and table.
+#   -morph-mesh PATH  morphMesh to test (default build/release/applications/...); the
+#                 Python module beside it (build/<preset>/python) reads the meshes
 #
 #   -cases REGEX  only the tutorials whose path (relative to the tutorials directory,
 #                 e.g. incompressible/icoFoam/cavity/cavity) matches REGEX (extended, as [[ =~ ]])
@@ -64,7 +76,8 @@ usage_error() {
     exit 2
 }
 
-cases_regex='' out_dir=$repo_dir/build/bench/checkmesh-sweep all=0 jobs=1 keep=0 list=0
+cases_regex='' out_dir='' all=0 jobs=1 keep=0 list=0 morph=0
+morph_mesh=$repo_dir/build/release/applications/morphMesh/morphMesh
 mesh_timeout='' check_timeout=600 checker=$repo_dir/build/release/applications/checkMeshQuality/checkMeshQuality
 while [[ $# -gt 0 ]]; do
     case "$1" in
@@ -81,11 +94,17 @@ while [[ $# -gt 0 ]]; do
     -check-timeout) [[ $# -ge 2 && $2 =~ ^[1-9][0-9]*$ ]] || usage_error "-check-timeout needs seconds"
                     check_timeout=$2; shift ;;
     -checker) [[ $# -ge 2 ]] || usage_error "-checker needs a PATH"; checker=$2; shift ;;
+    -morph) morph=1 ;;
+    -morph-mesh) [[ $# -ge 2 ]] || usage_error "-morph-mesh needs a PATH"; morph_mesh=$2; shift ;;
     *) usage_error "unknown option '$1'" ;;
     esac
     shift
 done
 [[ -n $mesh_timeout ]] || mesh_timeout=$((all ? 1800 : 600))
+if [[ -z $out_dir ]]; then
+    out_dir=$repo_dir/build/bench/checkmesh-sweep
+    [[ $morph == 0 ]] || out_dir=$repo_dir/build/bench/morph-sweep
+fi
 if [[ -n $cases_regex ]]; then
     # a bad regex is a usage error, not "no case matched"
     rc=0
@@ -96,7 +115,12 @@ fi
 tutorials=$(foam_tutorials)
 need_tool blockMesh checkMesh m4 timeout foamDictionary
 [[ -x $python ]] || die "$python not found"
-if [[ $list == 0 ]]; then
+if [[ $list == 0 && $morph == 1 ]]; then
+    [[ -x $morph_mesh ]] || die "morphMesh not found at '$morph_mesh' (build it: cmake --preset release && cmake --build build/release -j2)"
+    morph_mesh=$(cd "$(dirname "$morph_mesh")" && pwd)/$(basename "$morph_mesh")
+    morph_python_path=$(cd "$(dirname "$morph_mesh")/../.." && pwd)/python
+    [[ -d $morph_python_path/meshmorph ]] || die "no Python module in $morph_python_path (build the preset with MESHMORPH_WITH_PYTHON)"
+elif [[ $list == 0 ]]; then
     [[ -x $checker ]] || die "checkMeshQuality not found at '$checker' (build it: cmake --preset release && cmake --build build/release -j2 --target checkMeshQuality)"
     checker=$(cd "$(dirname "$checker")" && pwd)/$(basename "$checker")
 fi
@@ -449,6 +473,16 @@ run_case() {
         args=(-case "$copy/$case_rel")
         [[ -z $region ]] || args+=(-region "$region")
         if has_time_mesh "$copy/$case_rel" "$region"; then args+=(-latestTime); fi
+        if [[ $morph == 1 ]]; then
+            local margs=("$copy/$case_rel" "$mesh_dir" --morph-mesh "$morph_mesh" --timeout "$check_timeout")
+            [[ -z $region ]] || margs+=(--region "$region")
+            if has_time_mesh "$copy/$case_rel" "$region"; then margs+=(--latest-time); fi
+            local verdict
+            verdict=$(PYTHONPATH=$morph_python_path "$python" "$script_dir/morph_one_mesh.py" "${margs[@]}" 2>"$mesh_dir/morph_one_mesh.err") ||
+                verdict="crashed: morph_one_mesh.py failed ($(tail -n 1 "$mesh_dir/morph_one_mesh.err"))"
+            echo "$foam_script_name: $rel [$method] $mesh_name: $verdict"
+            continue
+        fi
         local mode opts crc
         for mode in plain all; do
             opts=()
@@ -465,6 +499,7 @@ run_case() {
         "$python" "$script_dir/compare_checkmesh.py" mesh "$mesh_dir" ||
             die "compare_checkmesh.py failed on $mesh_dir"
     done <<<"$meshes"
+    [[ $morph == 0 ]] || return 0
     local line
     line=$("$python" "$script_dir/compare_checkmesh.py" case "$work") ||
         die "compare_checkmesh.py failed on $work"
@@ -527,5 +562,9 @@ while [[ $running -gt 0 ]]; do
 done
 echo "finished	$(date -u +%Y-%m-%dT%H:%M:%SZ)" >>"$out_dir/sweep.tsv"
 
+if [[ $morph == 1 ]]; then
+    "$python" "$script_dir/morph_sweep_summary.py" "$out_dir" || die "morph_sweep_summary.py failed"
+    exit 0
+fi
 "$python" "$script_dir/compare_checkmesh.py" summary "$out_dir" ||
     die "compare_checkmesh.py summary failed"
