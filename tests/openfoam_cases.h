@@ -139,6 +139,10 @@ inline const std::map<std::string, std::string>& openfoam_case_scripts()
         // Wedge tutorials: 1900 cells about x; 3466 cells about z.
         {"wedge-cone", "blockmesh-tutorial.sh {dir} incompressible/pimpleFoam/laminar/movingCone"},
         {"wedge-dlr", "blockmesh-tutorial.sh {dir} combustion/reactingFoam/RAS/DLR_A_LTS"},
+        // Converted tutorials: biconic25-55Run35, a 0.1 degree wedge about x (32385 cells);
+        // nacaAirfoil, a 2D STAR-CD mesh with empty planes normal to z.
+        {"biconic", "converted-tutorial.sh {dir} biconic"},
+        {"naca-airfoil", "converted-tutorial.sh {dir} naca"},
         // Cyclic tutorials: 4096 cells periodic in x, y, z; an 80-cell periodic column.
         {"cyclic-box", "blockmesh-tutorial.sh {dir} DNS/dnsFoam/boxTurb16"},
         {"cyclic-column",

@@ -19,9 +19,11 @@
 
 #include "meshmorph/app/morph_mesh.h"
 #include "meshmorph/app/process_memory.h"
+#include "meshmorph/io/temp_file.h"
 
 int main(int argc, char* argv[])
 {
     meshmorph::app::configure_process_memory(argv);
+    meshmorph::io::remove_temps_on_interrupt(); // an interrupted write leaves no temporary
     return meshmorph::app::run_morph_mesh(argc, argv, std::cout, std::cerr);
 }

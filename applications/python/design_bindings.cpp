@@ -29,6 +29,42 @@ struct PyStudy
     std::unique_ptr<std::mutex> busy = std::make_unique<std::mutex>();
 };
 
+//! The library's advice names the command line (morphMesh -variables); from Python the
+//! same step is meshmorph.setup_design.
+std::string python_advice(std::string text)
+{
+    const std::string command = "morphMesh -variables";
+    for (std::size_t at = text.find(command); at != std::string::npos;
+         at = text.find(command, at + 1))
+    {
+        const std::string python = "meshmorph.setup_design(case) (" + command + ")";
+        text.replace(at, command.size(), python);
+        at += python.size() - 1;
+    }
+    return text;
+}
+
+//! DesignStudy(options), its errors' advice in Python's terms.
+std::unique_ptr<design::DesignStudy> open_study(const morph::MorphOptions& o)
+{
+    try
+    {
+        return std::make_unique<design::DesignStudy>(o);
+    }
+    catch (const ParseError& e)
+    {
+        throw ParseError(e.path(), e.line(), python_advice(e.message()));
+    }
+    catch (const IoError& e)
+    {
+        throw IoError(python_advice(e.what()));
+    }
+    catch (const InvalidInput& e)
+    {
+        throw InvalidInput(python_advice(e.what()));
+    }
+}
+
 std::vector<double> amplitudes_from(const PyStudy& s, const py::handle& a)
 {
     std::vector<double> amplitudes = reals_from(a, "amplitudes");
@@ -134,9 +170,7 @@ void bind_design(py::module_& m)
                          case_options(case_dir, region, time, latest_time, dict, {}, force);
                      const CallsInFlight call; // (library calls that may log run without the GIL)
                      const py::gil_scoped_release release;
-                     return PyStudy{std::make_unique<design::DesignStudy>(o),
-                                    {},
-                                    std::make_unique<std::mutex>()};
+                     return PyStudy{open_study(o), {}, std::make_unique<std::mutex>()};
                  }),
              py::arg("case") = ".", py::kw_only(), py::arg("region") = "",
              py::arg("time") = py::none(), py::arg("latest_time") = false,

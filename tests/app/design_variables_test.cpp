@@ -354,6 +354,7 @@ TEST_F(DesignVariables, variants_of_a_table_go_to_their_own_time_directories_wit
                               "-json", json.string()});
     ASSERT_EQ(r.code, 0) << r.log;
     const nlohmann::json j = nlohmann::json::parse(read_text(json));
+    EXPECT_TRUE(j["finished"].get<bool>()) << "rows are recorded as written, then the end";
     ASSERT_EQ(j["rows"].size(), 4u);
     for (int row = 0; row < 4; ++row)
     {
@@ -403,6 +404,19 @@ TEST_F(DesignVariables, bad_amplitudes_and_foreign_files_are_refused_and_leave_t
             "the amplitude 5 of lift is outside its bounds (-3 3)");
     refused({"-variant", "(1 x 2)"}, "'x' is not a finite number");
     refused({"-variants", (*dir_ / "missing.csv").string()}, "missing.csv");
+    // A row out of bounds is named by its number; a header by the column that differs.
+    const std::string zero = amplitude_list(amplitudes(0, 0, 0, 0));
+    test::write_text(
+        *dir_ / "bounds.csv", zero.substr(1, zero.size() - 2) + "\n" +
+                                  [&]
+                                  {
+                                      const std::string a = amplitude_list(amplitudes(5, 0, 0, 0));
+                                      return a.substr(1, a.size() - 2);
+                                  }() +
+                                  "\n");
+    refused({"-variants", (*dir_ / "bounds.csv").string()}, "bounds.csv: row 2");
+    test::write_text(*dir_ / "header.csv", "lift nope\n0 0\n");
+    refused({"-variants", (*dir_ / "header.csv").string()}, "column 2 is 'nope'");
     // A sensitivity of another mesh (the wrong number of points).
     test::write_text(*dir_ / "0/otherMesh",
                      "FoamFile { version 2.0; format ascii; class pointVectorField; object "

@@ -204,3 +204,28 @@ TEST(KilledWrite, overwritten_points_are_old_or_new_and_the_original_is_kept)
     EXPECT_TRUE(test::read_file(orig) == original) << "points.orig is not the original";
     EXPECT_EQ(temporaries(destination.parent_path()), std::vector<std::string>{});
 }
+
+TEST(KilledWrite, an_interrupted_run_leaves_no_report_saying_written)
+{
+    // timeout -s INT 4 morphMesh -overwrite -json r.json used to leave an earlier r.json
+    // saying `written: true`. Interrupted (SIGINT, SIGTERM) or killed (SIGKILL) at the check,
+    // the report says the run did not finish, and no temporary is left in the case.
+    const fs::path dir = make_large_case("killed_report");
+    const fs::path json = dir / "r.json";
+    std::vector<std::string> argv = morph_argv(dir, true);
+    argv.insert(argv.end(), {"-json", json.string()});
+    for (const int sig : {SIGINT, SIGTERM, SIGKILL})
+    {
+        test::write_file(json, "{\"written\": true, \"exitStatus\": 0}\n");
+        test::SpawnedProcess p(argv);
+        ASSERT_TRUE(p.wait_for_output("Read mesh")) << p.output();
+        p.kill(sig);
+        const int status = p.wait();
+        ASSERT_EQ(status, -sig) << "the run ended before the signal: " << p.output();
+        const std::string report = test::read_file(json);
+        EXPECT_NE(report.find("\"written\": false"), std::string::npos) << report;
+        EXPECT_NE(report.find("did not finish"), std::string::npos) << report;
+        EXPECT_EQ(temporaries(dir / "constant/polyMesh"), std::vector<std::string>{});
+        EXPECT_EQ(temporaries(dir), std::vector<std::string>{});
+    }
+}

@@ -8,12 +8,14 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <numbers>
 #include <regex>
 #include <sstream>
 
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -222,7 +224,13 @@ TEST(MorphMesh, overwrite_keeps_the_original_points_and_reruns_say_what_they_rep
     ASSERT_EQ(first.code, 0) << first.err;
     EXPECT_EQ(read_text(dir / "constant/polyMesh/points.orig"), original) << "byte for byte";
     EXPECT_NE(first.log.find("points.orig"), std::string::npos) << first.log;
-    const RunResult second = run({"-case", dir.string(), "-overwrite"});
+    // A default re-run would morph the morphed points: refused, saying how to ask for either.
+    const RunResult refused = run({"-case", dir.string(), "-overwrite"});
+    EXPECT_EQ(refused.code, exit_input_error) << refused.err;
+    EXPECT_NE(refused.err.find("-time constant"), std::string::npos) << refused.err;
+    EXPECT_NE(refused.err.find("points.orig"), std::string::npos) << refused.err;
+    // Asked for by name, the morph builds on it and says so.
+    const RunResult second = run({"-case", dir.string(), "-overwrite", "-time", "constant"});
     ASSERT_EQ(second.code, 0) << second.err;
     EXPECT_EQ(read_text(dir / "constant/polyMesh/points.orig"), original) << "kept, not replaced";
     EXPECT_NE(second.log.find("was morphed before"), std::string::npos) << second.log;
@@ -234,6 +242,200 @@ TEST(MorphMesh, overwrite_keeps_the_original_points_and_reruns_say_what_they_rep
     const RunResult again = run({"-case", fresh.string(), "-time", "0"});
     ASSERT_EQ(again.code, 0) << again.err;
     EXPECT_NE(again.log.find("replacing"), std::string::npos) << again.log;
+}
+
+TEST(MorphMesh, the_same_command_twice_writes_the_same_mesh)
+{
+    // As windAroundBuildings is after snappyHexMesh: no 0/ (fields in 0.orig),
+    // `startFrom latestTime`. The second run reads what the first read (constant), not the
+    // first one's result in 1/, and writes the same points to the same time.
+    const fs::path dir = make_case("rerun_no_zero", test::make_box_mesh(3, 3, 3), lift_top);
+    fs::create_directories(dir / "0.orig");
+    ASSERT_EQ(run({"-case", dir.string()}).code, 0);
+    const std::string first = read_text(dir / "1/polyMesh/points");
+    EXPECT_NE(first.find("morphed by morphMesh from the points of constant"), std::string::npos)
+        << "a morph's result says so in its header";
+    const RunResult again = run({"-case", dir.string()});
+    ASSERT_EQ(again.code, 0) << again.err;
+    EXPECT_NE(again.log.find("constant/polyMesh"), std::string::npos) << again.log;
+    EXPECT_EQ(times(dir), std::vector<std::string>{"1"});
+    EXPECT_EQ(read_text(dir / "1/polyMesh/points"), first) << "the re-run added to the morph";
+
+    // Building on a result is asked for by name: -latestTime reads 1/ and writes 2/.
+    const RunResult on_top = run({"-case", dir.string(), "-latestTime"});
+    ASSERT_EQ(on_top.code, 0) << on_top.err;
+    EXPECT_EQ((std::vector<std::string>{"1", "2"}), times(dir));
+    const Points once = io::read_points_file(dir / "1/polyMesh/points");
+    const Points twice = io::read_points_file(dir / "2/polyMesh/points");
+    EXPECT_GT((twice - once).cwiseAbs().maxCoeff(), 0.04) << "the top lifted again";
+    EXPECT_NE(read_text(dir / "2/polyMesh/points").find("the points of 1"), std::string::npos);
+    // And a default run still starts from constant/, writing 1/ again.
+    ASSERT_EQ(run({"-case", dir.string()}).code, 0);
+    EXPECT_EQ(read_text(dir / "1/polyMesh/points"), first);
+}
+
+TEST(MorphMesh, an_overflowing_or_non_finite_motion_is_an_error_naming_the_entry)
+{
+    // 1e300 used to give non-finite points written as "Mesh OK"; 1e20 an internal error.
+    for (const char* size : {"1e300", "1e200", "1e100", "1e20"})
+    {
+        const fs::path dir =
+            make_case(std::string("overflow_") + size, test::make_box_mesh(3, 3, 3),
+                      "boundary\n{\n    zMax { type translate; vector (0 " + std::string(size) +
+                          " 0); }\n}\n");
+        const RunResult r = run({"-case", dir.string(), "-json", (dir / "r.json").string()});
+        EXPECT_EQ(r.code, exit_input_error) << size << r.log << r.err;
+        EXPECT_NE(r.err.find("morphDict:4"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("zMax"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("times the mesh's size"), std::string::npos) << r.err;
+        EXPECT_TRUE(times(dir).empty()) << "nothing written";
+        EXPECT_FALSE(nlohmann::json::parse(read_text(dir / "r.json"))["written"].get<bool>());
+    }
+}
+
+TEST(MorphMesh, motion_normal_to_a_2d_case_planes_is_an_error_naming_the_entry)
+{
+    // A one-cell-thick box whose z faces are empty: moving a wall along z used to be
+    // dropped silently, writing unchanged points with exit 0.
+    PolyMesh mesh = test::make_box_mesh(4, 4, 1);
+    for (Patch& p : mesh.patches)
+        if (p.name == "zMin" || p.name == "zMax")
+            p.type = "empty";
+    const std::vector<std::pair<std::string, std::string>> refused = {
+        {"translate; vector (0 0 0.01);", "remove its component along the normal"},
+        {"translate; vector (0.01 0 0.01);", "remove its component along the normal"},
+        {"rotate; origin (0 0 0); axis (1 0 0); angle 3;", "axis parallel to the normal"},
+        {"scale; origin (0 0 -1); factor (1.1 1.1 1.1);", "factor 1 along the normal"}};
+    for (const auto& [motion, hint] : refused)
+    {
+        const fs::path dir =
+            make_case("normal_2d", mesh, "boundary\n{\n    xMax { type " + motion + " }\n}\n");
+        const RunResult r = run({"-case", dir.string()});
+        EXPECT_EQ(r.code, exit_input_error) << motion << r.log << r.err;
+        EXPECT_NE(r.err.find("morphDict:4: boundary entry 'xMax'"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("2D case"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(hint), std::string::npos) << r.err;
+        EXPECT_TRUE(times(dir).empty()) << motion;
+    }
+    // In-plane motions of the same case morph as before.
+    for (const char* motion :
+         {"translate; vector (0.01 0.02 0);", "rotate; origin (0.5 0.5 7); axis (0 0 1); angle 3;",
+          "scale; origin (0.5 0.5 7); factor (1.05 1.1 1);"})
+    {
+        const fs::path dir = make_case(
+            "in_plane_2d", mesh, std::string("boundary\n{\n    xMax { type ") + motion + " }\n}\n");
+        const RunResult r = run({"-case", dir.string()});
+        EXPECT_EQ(r.code, 0) << motion << r.log << r.err;
+    }
+}
+
+TEST(MorphMesh, a_check_the_morph_makes_fail_is_a_warning_or_on_request_an_error)
+{
+    // The whole box flattened 2000 times (an affine map, which the RBF's linear part
+    // reproduces exactly: no cell inverts) fails checkMesh's aspect ratio (above 1000).
+    const std::string flatten =
+        "boundary\n{\n    \".*\" { type scale; origin (0 0 0); factor (1 1 0.0005); }\n}\n";
+    const fs::path dir = make_case("new_failure", test::make_box_mesh(3, 3, 3), flatten);
+    const RunResult r = run({"-case", dir.string(), "-json", (dir / "r.json").string()});
+    ASSERT_EQ(r.code, 0) << r.err << r.log;
+    EXPECT_NE(r.err.find("Warning"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("fails the check aspectRatio (27 offenders)"), std::string::npos) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(read_text(dir / "r.json"));
+    ASSERT_EQ(j["newFailedChecks"].size(), 1u) << j.dump();
+    EXPECT_EQ(j["newFailedChecks"][0]["check"], "aspectRatio");
+    EXPECT_EQ(j["newFailedChecks"][0]["count"].get<int>(), 27);
+
+    // A script makes it an error: refused, nothing written.
+    const fs::path strict = make_case("new_failure_refused", test::make_box_mesh(3, 3, 3),
+                                      "newCheckFailures refuse;\n" + flatten);
+    const RunResult refused = run({"-case", strict.string()});
+    EXPECT_EQ(refused.code, exit_refused) << refused.err;
+    EXPECT_NE(refused.err.find("aspectRatio"), std::string::npos) << refused.err;
+    EXPECT_TRUE(times(strict).empty());
+    // A morph that fails nothing new has the key, empty.
+    const fs::path fine = make_case("no_new_failure", test::make_box_mesh(3, 3, 3), lift_top);
+    ASSERT_EQ(run({"-case", fine.string(), "-json", (fine / "r.json").string()}).code, 0);
+    EXPECT_TRUE(nlohmann::json::parse(read_text(fine / "r.json"))["newFailedChecks"].empty());
+}
+
+TEST(MorphMesh, a_region_the_case_does_not_have_is_named_as_such)
+{
+    const fs::path dir = make_case("no_region", test::make_box_mesh(2, 2, 2), lift_top);
+    const RunResult r = run({"-case", dir.string(), "-region", "fluid"});
+    EXPECT_EQ(r.code, exit_input_error);
+    EXPECT_NE(r.err.find("-region fluid: the case has no such region"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("single-region case"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("morphDict"), std::string::npos) << "not a missing dictionary: " << r.err;
+}
+
+//! An annular sector about the x axis between wedge patches zMin and zMax, `degrees` wide:
+//! x in [0, 1], radius in [0.5, 1] (walls yMin, yMax), inlet xMin, outlet xMax.
+PolyMesh annular_wedge(double degrees)
+{
+    const double angle = degrees * std::numbers::pi / 180.0;
+    return test::make_block_mesh(12, 6, 1,
+                                 [&](double u, double v, double w)
+                                 {
+                                     const double r = 0.5 + 0.5 * v, phi = (w - 0.5) * angle;
+                                     return Vector3(u, r * std::cos(phi), r * std::sin(phi));
+                                 },
+                                 {"patch", "patch", "wall", "wall", "wedge", "wedge"});
+}
+
+TEST(MorphMesh, a_wedge_case_keeps_its_symmetry_exactly)
+{
+    // The greedy RBF and its IDW correction choose centres point by point, so the two
+    // wedge planes got displacements that differed by ~1e-3 of the motion, and checkMesh
+    // failed edge alignment (biconic25-55Run35, a 0.1 degree wedge). Each point of one plane
+    // must move as the rotation of its partner's motion, within its plane.
+    for (const double degrees : {5.0, 0.1})
+    {
+        const PolyMesh mesh = annular_wedge(degrees);
+        const fs::path dir =
+            make_case("wedge_" + std::to_string(int(degrees * 10)), mesh,
+                      "rbf { greedy { tolerance 1e-2; } }\nboundary\n{\n"
+                      "    yMax { type translate; vector (0.05 0 0); }\n"
+                      "    xMax { type scale; origin (0 0 0); factor (1.02 1.02 1.02); }\n}\n");
+        const RunResult r = run({"-case", dir.string(), "-json", (dir / "r.json").string()});
+        ASSERT_EQ(r.code, 0) << r.err << r.log;
+        const Points moved = io::read_points_file(dir / "1/polyMesh/points");
+        const double angle = degrees * std::numbers::pi / 180.0;
+        const Eigen::Matrix3d back_to_front =
+            Eigen::AngleAxisd(angle, Vector3::UnitX()).toRotationMatrix();
+        const Vector3 back_normal(0, std::sin(-angle / 2), -std::cos(-angle / 2));
+        double asymmetry = 0, off_plane = 0, largest = 0;
+        const Index per_plane = 13 * 7; // points of the 12 x 6 block's k = 0 plane
+        for (Index p = 0; p < per_plane; ++p)
+        {
+            const Vector3 back = (moved.row(p) - mesh.points.row(p)).transpose();
+            const Vector3 front =
+                (moved.row(p + per_plane) - mesh.points.row(p + per_plane)).transpose();
+            asymmetry = std::max(asymmetry, (back_to_front * back - front).norm());
+            off_plane = std::max(off_plane, std::abs(back.dot(back_normal)));
+            largest = std::max(largest, back.norm());
+        }
+        ASSERT_GT(largest, 0.04) << "the wall moved";
+        // 1e-12 of the motion: far below any checkMesh tolerance, above the 15 digits of
+        // the written points.
+        EXPECT_LE(asymmetry, 1e-12 * largest) << degrees << " degrees";
+        EXPECT_LE(off_plane, 1e-12 * largest) << degrees << " degrees";
+        const nlohmann::json j = nlohmann::json::parse(read_text(dir / "r.json"));
+        EXPECT_EQ(j["after"]["failedChecks"].get<int>(), 0) << j["after"].dump();
+        EXPECT_TRUE(j["newFailedChecks"].empty()) << j["newFailedChecks"].dump();
+    }
+    // A motion that is not axisymmetric cannot be followed: an error naming the entry (it
+    // used to be a conflict with the wedge planes, the points held by rule 'fixed').
+    for (const char* motion :
+         {"translate; vector (0 0.05 0);", "rotate; origin (0.5 0 0); axis (0 0 1); angle 2;"})
+    {
+        const fs::path dir =
+            make_case("wedge_asymmetric", annular_wedge(5.0),
+                      std::string("boundary\n{\n    yMax { type ") + motion + " }\n}\n");
+        const RunResult r = run({"-case", dir.string()});
+        EXPECT_EQ(r.code, exit_input_error) << motion << r.log;
+        EXPECT_NE(r.err.find("boundary entry 'yMax'"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("axisymmetric case"), std::string::npos) << r.err;
+    }
 }
 
 TEST(MorphMesh, json_has_the_interface_keys)
@@ -384,7 +586,7 @@ ffd   { lattice (4 4 4); displacements ( ((1 1 3) (0 0 0.02)) ((2 2 3) (0 0 0.02
 )");
     for (const std::string method : {"dmffd", "ffd"})
     {
-        const RunResult r = run({"-case", dir.string(), "-method", method, "-overwrite", "-json",
+        const RunResult r = run({"-case", dir.string(), "-method", method, "-json",
                                  (dir / (method + ".json")).string()});
         ASSERT_EQ(r.code, 0) << method << r.err;
         const nlohmann::json j = nlohmann::json::parse(read_text(dir / (method + ".json")));

@@ -141,6 +141,35 @@ TEST(Options, argument_after_a_flag_names_the_flag_and_its_hint)
     }
 }
 
+TEST(Options, a_list_the_shell_split_gets_the_hint_to_quote_it)
+{
+    // morphMesh -variant 0 1 0: the shell passes three words; the option takes the first.
+    Options o("morphMesh", "", {{"variant", "(a1 a2 ...)", "amplitudes"}, {"force", "", "f"}});
+    for (const std::vector<const char*>& args :
+         {std::vector<const char*>{"-variant", "0", "1", "0"},
+          std::vector<const char*>{"-variant", "0", "-1.5", "0", "-force"}})
+    {
+        Options fresh = o;
+        try
+        {
+            parse(fresh, args);
+            FAIL() << "expected UsageError";
+        }
+        catch (const UsageError& e)
+        {
+            const std::string want =
+                args[2] == std::string("1") ? "-variant \"(0 1 0)\"" : "-variant \"(0 -1.5 0)\"";
+            EXPECT_NE(
+                std::string(e.what()).find("a list goes in one quoted argument, e.g. " + want),
+                std::string::npos)
+                << e.what();
+        }
+    }
+    Options quoted = o;
+    parse(quoted, {"-variant", "(0 1 0)", "-force"});
+    EXPECT_EQ(quoted.get("variant").value(), "(0 1 0)");
+}
+
 TEST(Options, vtk_flag_writes_into_the_case_and_vtk_file_anywhere)
 {
     std::vector<OptionSpec> specs = vtk_option_specs("morphMesh", "the displacement");

@@ -3,6 +3,7 @@
 // dictionary a user would write: graded wall-resolved 2D meshes whose direct RBF systems
 // are ill-conditioned or singular in double precision. The morph must stay exact and say
 // nothing the user could only ignore.
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -11,7 +12,9 @@
 #include <nlohmann/json.hpp>
 
 #include "helpers.h"
+#include "meshmorph/io/read_poly_mesh.h"
 #include "morph_run.h"
+#include "openfoam_cases.h"
 
 namespace meshmorph::app
 {
@@ -96,6 +99,88 @@ TEST(TutorialMeshes, sbend_lower_wall_moved_takes_the_greedy_rbf_without_a_warni
     EXPECT_EQ(r.err.find("condition estimate"), std::string::npos) << r.err;
     ASSERT_TRUE(m.report.contains("relativeConstraintError")) << r.log;
     EXPECT_LE(m.report["relativeConstraintError"].get<double>(), 1e-12) << r.log;
+}
+
+//! A copy of a generated OpenFOAM case (openfoam_cases.h) with `boundary` as its morphDict's
+//! boundary dictionary.
+fs::path generated_case(const std::string& name, const std::string& copy,
+                        const std::string& boundary)
+{
+    const fs::path dir = test::scratch_dir("tutorial_meshes/" + copy);
+    fs::copy(test::openfoam_case(name), dir, fs::copy_options::recursive);
+    test::write_text(dir / "system/morphDict",
+                     "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; "
+                     "}\nboundary\n{\n" +
+                         boundary + "\n}\n");
+    return dir;
+}
+
+//! OpenFOAM's checkMesh on the case at `time`: its log.
+std::string openfoam_check_mesh(const fs::path& dir, const std::string& time)
+{
+    const std::string cmd = "cd '" + dir.string() + "' && checkMesh -time " + time +
+                            " > log.checkMesh." + time + " 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    std::ifstream in(dir / ("log.checkMesh." + time));
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(TutorialMeshes, the_biconic_wedge_keeps_checkmesh_s_edge_alignment_after_a_motion)
+{
+    // biconic25-55Run35, a 0.1 degree wedge: the cone moved along the axis used to give the
+    // two wedge planes x-displacements 3.5e-6 apart (of 2e-3), and checkMesh then failed
+    // 31634 edges "not aligned with or perpendicular to non-empty directions", exit 0.
+    if (!test::openfoam_available())
+        GTEST_SKIP() << "OpenFOAM not installed: no biconic mesh (datToFoam, collapseEdges)";
+    const fs::path dir = generated_case("biconic", "biconic",
+                                        "    cone { type translate; vector (0.002 0 0); }\n"
+                                        "    outlet { type free; }");
+    const ReportedRun m = morph_with_report(dir);
+    ASSERT_EQ(m.run.code, 0) << m.run.log;
+    const std::string time = m.report["outputInstance"].get<std::string>();
+    const std::string log = openfoam_check_mesh(dir, time);
+    EXPECT_EQ(log.find("not aligned"), std::string::npos) << log;
+    EXPECT_NE(log.find("Mesh OK."), std::string::npos) << log;
+    EXPECT_TRUE(m.report["newFailedChecks"].empty()) << m.report["newFailedChecks"].dump();
+}
+
+TEST(TutorialMeshes, naca_airfoil_wall_moved_normal_to_its_planes_is_refused_naming_the_entry)
+{
+    // nacaAirfoil (2D, empty planes normal to z): the wall moved along z used to be dropped
+    // silently, unchanged points written with exit 0.
+    if (!test::openfoam_available())
+        GTEST_SKIP() << "OpenFOAM not installed: no nacaAirfoil mesh (star4ToFoam)";
+    const fs::path dir = generated_case("naca-airfoil", "naca_normal",
+                                        "    wall_4 { type translate; vector (0 0 0.01); }");
+    const ReportedRun m = morph_with_report(dir);
+    EXPECT_EQ(m.run.code, 2) << m.run.log;
+    EXPECT_NE(m.run.err.find("boundary entry 'wall_4'"), std::string::npos) << m.run.err;
+    EXPECT_NE(m.run.err.find("2D case"), std::string::npos) << m.run.err;
+    EXPECT_FALSE(m.report["written"].get<bool>());
+}
+
+TEST(TutorialMeshes, a_rerun_on_a_case_without_zero_and_starting_from_latest_time_is_the_same)
+{
+    // nacaAirfoil as the windAroundBuildings tutorial leaves its case: fields in 0.orig, no
+    // 0/, `startFrom latestTime`, deltaT 4e-08. The second run used to read the first
+    // one's result and double the motion.
+    if (!test::openfoam_available())
+        GTEST_SKIP() << "OpenFOAM not installed: no nacaAirfoil mesh (star4ToFoam)";
+    const fs::path dir =
+        generated_case("naca-airfoil", "naca_rerun",
+                       "    wall_4 { type rotate; origin (0 0 0); axis (0 0 1); angle 3; }");
+    fs::rename(dir / "0", dir / "0.orig");
+    const ReportedRun first = morph_with_report(dir);
+    ASSERT_EQ(first.run.code, 0) << first.run.log;
+    const std::string time = first.report["outputInstance"].get<std::string>();
+    EXPECT_EQ(time, "4e-08") << "constant plus deltaT";
+    const Points once = io::read_points_file(dir / time / "polyMesh/points");
+    const ReportedRun second = morph_with_report(dir);
+    ASSERT_EQ(second.run.code, 0) << second.run.log;
+    EXPECT_EQ(second.report["instance"], "constant");
+    EXPECT_EQ(second.report["outputInstance"], time);
+    const Points twice = io::read_points_file(dir / time / "polyMesh/points");
+    EXPECT_EQ((twice - once).cwiseAbs().maxCoeff(), 0.0) << "the re-run added to the morph";
 }
 
 } // namespace

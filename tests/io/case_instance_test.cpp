@@ -81,6 +81,39 @@ TEST(CaseInstance, points_and_topology_instances_are_found_separately)
     EXPECT_EQ(poly_mesh_dir(dir, "1", "region0"), dir / "1/polyMesh");
 }
 
+TEST(CaseInstance, the_start_time_skips_motion_results)
+{
+    // A motion result is moved points without a mesh (morphMesh, moveMesh, reconstructPar
+    // of those); whole meshes (snappyHexMesh without -overwrite) and fields are not.
+    const fs::path dir = test::scratch_dir("ci_start");
+    for (const char* f : {"points", "faces", "owner", "neighbour", "boundary"})
+        touch(dir / "constant/polyMesh" / f);
+    touch(dir / "1/polyMesh/points.gz");
+    touch(dir / "2/polyMesh/points");
+    touch(dir / "2/polyMesh/faces");
+    fs::create_directories(dir / "3");
+    touch(dir / "4/fluid/polyMesh/points");
+    const std::vector<TimeDir> times = list_times(dir);
+    EXPECT_TRUE(is_motion_result(dir, "1"));
+    EXPECT_FALSE(is_motion_result(dir, "2"));
+    EXPECT_FALSE(is_motion_result(dir, "3"));
+    EXPECT_FALSE(is_motion_result(dir, "4"));
+    EXPECT_TRUE(is_motion_result(dir, "4", "fluid"));
+    EXPECT_EQ(names(start_times(dir, times)), (std::vector<std::string>{"2", "3", "4"}));
+    EXPECT_EQ(names(start_times(dir, times, "fluid")), (std::vector<std::string>{"1", "2", "3"}));
+    EXPECT_EQ(select_time(start_times(dir, times), TimeSelection::start_time()), "2");
+    // Only results: the case starts from constant, and its next time is the first one's.
+    const fs::path results = test::scratch_dir("ci_start_results");
+    touch(results / "constant/polyMesh/points");
+    touch(results / "constant/polyMesh/faces");
+    touch(results / "1/polyMesh/points");
+    touch(results / "2/polyMesh/points");
+    const std::vector<TimeDir> starts = start_times(results, list_times(results));
+    EXPECT_TRUE(starts.empty());
+    EXPECT_EQ(select_time(starts, TimeSelection::start_time()), "constant");
+    EXPECT_EQ(next_time_name(starts, "constant", TimeSettings{}), "1");
+}
+
 TEST(CaseInstance, formats_time_names_like_openfoam)
 {
     EXPECT_EQ(format_time_name(1), "1");

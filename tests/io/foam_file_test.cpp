@@ -7,6 +7,12 @@
 #include "io_test_util.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/io/foam_file.h"
+#include "meshmorph/io/temp_file.h"
+
+#include <csignal>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 using namespace meshmorph;
 using namespace meshmorph::io;
@@ -121,4 +127,33 @@ TEST(FoamFile, failed_write_names_the_path_and_keeps_the_old_file)
     for ([[maybe_unused]] const fs::directory_entry& e : fs::directory_iterator(dir))
         ++n_entries;
     EXPECT_EQ(n_entries, 1); // only "points"
+}
+
+TEST(TempFile, an_interrupt_removes_the_temporaries_and_ends_the_process_as_the_signal_would)
+{
+    // An interrupted design set-up used to leave its 87 MB temporary until the next one.
+    const std::filesystem::path dir = test::scratch_dir("temp_interrupt");
+    for (const int sig : {SIGINT, SIGTERM})
+    {
+        const std::filesystem::path marker = dir / ("temp_name_" + std::to_string(sig));
+        const pid_t child = ::fork();
+        ASSERT_GE(child, 0);
+        if (child == 0)
+        {
+            io::remove_temps_on_interrupt();
+            const std::filesystem::path temp = io::temp_path_for(dir / "basis");
+            std::ofstream(temp) << "half a basis";
+            std::ofstream(marker) << temp.string(); // tells the parent its name
+            ::raise(sig);
+            ::_exit(0); // not reached: the signal ends the process
+        }
+        int status = 0;
+        ASSERT_EQ(::waitpid(child, &status, 0), child);
+        EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "status " << status;
+        std::ifstream in(marker);
+        std::string temp;
+        std::getline(in, temp);
+        ASSERT_FALSE(temp.empty());
+        EXPECT_FALSE(std::filesystem::exists(temp)) << temp << " left behind";
+    }
 }

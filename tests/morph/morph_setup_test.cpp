@@ -202,13 +202,16 @@ TEST(MorphSetup, processor_patches_outside_a_parallel_run_are_refused)
     }
 }
 
-TEST(MorphSetup, empty_planes_remove_normal_motion_and_refuse_explicit_entries)
+TEST(MorphSetup, empty_planes_refuse_normal_motion_and_explicit_entries)
 {
     const PolyMesh mesh = test::make_block_mesh(
         3, 3, 1, [](double u, double v, double w) { return Vector3(u, v, 0.1 * w); },
         {"patch", "patch", "patch", "patch", "empty", "empty"});
     MorphSetup setup;
+    // A motion with a part normal to the planes would be dropped: an error naming the entry.
     setup.boundary.push_back(translate("yMax", Vector3(0.1, 0.2, 0.3)));
+    EXPECT_THROW(build_constraints(mesh, setup), ParseError);
+    setup.boundary.back() = translate("yMax", Vector3(0.1, 0.2, 0.0));
     const Constraints c = build_constraints(mesh, setup);
     ASSERT_TRUE(c.empty_planes.has_value());
     EXPECT_NEAR(std::abs(c.empty_planes->normal.z()), 1.0, 1e-15);

@@ -154,10 +154,12 @@ TEST(MorphPoints, two_d_cases_stay_two_d)
     MorphSetup setup;
     BoundaryEntry top = make_entry("yMax", MotionType::rotate);
     top.motion.origin = Vector3(0.5, 1, 0);
-    top.motion.axis = Vector3(1, 1, 1); // not a 2D motion: its z part must be dropped
+    top.motion.axis = Vector3(1, 1, 1); // not a 2D motion: refused, it would be dropped
     top.motion.angle_degrees = 3;
     setup.boundary.push_back(top);
     setup.conflicts = ConflictRule::last;
+    EXPECT_THROW(build_constraints(mesh, setup), ParseError);
+    setup.boundary.back().motion.axis = Vector3(0, 0, 1);
     const Constraints c = build_constraints(mesh, setup);
 
     RbfDeformation rbf;

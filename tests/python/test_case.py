@@ -150,8 +150,26 @@ def test_overwrite_keeps_the_original(pipe):
     case.write(overwrite=True)
     assert (pipe / "constant/polyMesh/points.orig").read_bytes() == original
     assert (pipe / "constant/polyMesh/points").read_bytes() != original
-    reread = meshmorph.Case(pipe)
+    # A default open would morph the morphed points again: refused, naming the way to ask.
+    with pytest.raises(meshmorph.InputError, match="-time constant"):
+        meshmorph.Case(pipe)
+    reread = meshmorph.Case(pipe, time="constant")
     assert np.allclose(reread.initial_points, case.points, rtol=0, atol=1e-12)
+
+
+def test_a_second_case_of_the_same_directory_reads_what_the_first_read(pipe):
+    """The re-run rule in Python: a Case opened after a write reads the mesh the case
+    starts from (constant), not the written result, and writes the same time."""
+    write_dict(pipe / "system" / "morphDict", SQUEEZE)
+    first = meshmorph.Case(pipe)
+    first.morph()
+    path = first.write()
+    again = meshmorph.Case(pipe)
+    assert again.instance == "constant"
+    again.morph()
+    assert again.write() == path
+    assert np.array_equal(again.points, first.points)
+    assert b"morphed by morphMesh" in path.read_bytes()[:2000]
 
 
 def test_bad_input_raises_with_the_applications_messages(pipe):

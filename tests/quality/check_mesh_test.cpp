@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #ifdef _OPENMP
@@ -377,4 +378,25 @@ TEST(CheckMesh, rejects_out_of_range_vertex_labels)
     PolyMesh mesh = test::make_box_mesh(1, 1, 1);
     mesh.faces.values[0] = 99;
     EXPECT_THROW(check_mesh(mesh, CheckMeshSettings{}), InvalidInput);
+}
+
+TEST(CheckMesh, a_point_that_is_not_finite_makes_the_mesh_invalid)
+{
+    // An overflowing morph once wrote inf/NaN points that the check called "Mesh OK" (every
+    // comparison with NaN is false); checkMesh itself stops there with a floating-point
+    // exception. Such cells count as negative volumes and their faces as wrongly oriented.
+    for (const double bad :
+         {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN(), 1e300})
+    {
+        PolyMesh mesh = test::make_box_mesh(3, 3, 3);
+        mesh.points(21, 1) = bad; // an interior point of the 3^3 box
+        mesh.points(21, 0) = bad == 1e300 ? -1e300 : bad;
+        const CompactList cf = cell_faces(mesh);
+        const MeshGeometry g = compute_geometry(mesh, cf);
+        const InvalidCells invalid = count_invalid_cells(mesh, g);
+        EXPECT_GT(invalid.negative_volume_cells + invalid.wrong_pyramids, 0) << bad;
+        const QualityReport r = check_mesh(mesh, cf, g, CheckMeshSettings{});
+        EXPECT_FALSE(r.mesh_ok()) << bad;
+        EXPECT_GT(r.negative_volume_cells + r.incorrectly_oriented_face_pyramids, 0) << bad;
+    }
 }

@@ -46,12 +46,15 @@ void check_design_options(const Options& options)
         throw UsageError("-method goes with -variables (a variant uses its set-up's method)");
 }
 
-void write_json(const fs::path& path, const nlohmann::json& j, std::ostream& out)
+//! Write the report `j` to `path` (none if empty; the master only); say so unless `quiet`.
+void write_json(const fs::path& path, const nlohmann::json& j, std::ostream& out,
+                bool quiet = false)
 {
     if (path.empty() || !parallel::Communicator::world().master())
         return;
     io::write_file_atomic(path, j.dump(2) + "\n");
-    out << "Wrote " << path.string() << "\n";
+    if (!quiet)
+        out << "Wrote " << path.string() << "\n";
 }
 
 int run_setup(const morph::MorphOptions& morph, const fs::path& json_path, std::ostream& out)
@@ -63,8 +66,8 @@ int run_setup(const morph::MorphOptions& morph, const fs::path& json_path, std::
     return exit_ok;
 }
 
-//! The log of one variant; true when it was refused.
-bool report_variant(const design::VariantResult& r, std::ostream& out)
+//! The log of one variant (`row`: "row 3: " for -variants, else ""); true when refused.
+bool report_variant(const design::VariantResult& r, std::ostream& out, const std::string& row = "")
 {
     log::info() << "Variant: max displacement " << format_scalar(r.max_displacement, 4)
                 << ", constraint error " << format_scalar(r.relative_constraint_error, 3)
@@ -74,7 +77,7 @@ bool report_variant(const design::VariantResult& r, std::ostream& out)
     log::info() << "Mesh quality of the variant:\n" << summary.str();
     if (r.refused)
     {
-        log::error() << r.refusal << ". Nothing written"
+        log::error() << row << r.refusal << ". Nothing written"
                      << (r.back_off.empty() ? std::string(".") : ": back off " + r.back_off + ".");
         return true;
     }
@@ -117,8 +120,16 @@ int run_variants(const morph::MorphOptions& morph, const fs::path& table, const 
     design::DesignStudy study(morph);
     const std::vector<std::vector<double>> rows =
         design::read_amplitude_table(table, study.names());
-    for (const std::vector<double>& row : rows) // every row checked before any is written
-        study.check_amplitudes(row);
+    for (std::size_t k = 0; k < rows.size(); ++k) // every row checked before any is written
+        try
+        {
+            study.check_amplitudes(rows[k]);
+        }
+        catch (const InvalidInput& e)
+        {
+            throw InvalidInput(table.string() + ": row " + std::to_string(k + 1) + " (" +
+                               "counting data rows from 1): " + e.what());
+        }
     nlohmann::json list = nlohmann::json::array();
     std::string instance = study.design_case().foam.time;
     int refused = 0;
@@ -127,13 +138,17 @@ int run_variants(const morph::MorphOptions& morph, const fs::path& table, const 
         instance = study.next_instance(instance);
         log::info() << "Row " << k + 1 << " of " << rows.size() << " -> " << instance;
         const design::VariantResult r = study.apply(rows[k], instance);
-        refused += report_variant(r, out) ? 1 : 0;
+        refused += report_variant(r, out, "row " + std::to_string(k + 1) + ": ") ? 1 : 0;
         nlohmann::json j = variant_json(study, r);
         j["row"] = k + 1;
         list.push_back(j);
+        // Each row is on record as soon as it is written: an interrupted run's report says
+        // which rows exist (exitStatus null and finished false until the last).
+        write_json(json_path, {{"exitStatus", nullptr}, {"finished", false}, {"rows", list}}, out,
+                   true);
     }
     const int status = refused > 0 ? exit_refused : exit_ok;
-    write_json(json_path, {{"exitStatus", status}, {"rows", list}}, out);
+    write_json(json_path, {{"exitStatus", status}, {"finished", true}, {"rows", list}}, out);
     out << "\n"
         << rows.size() - std::size_t(refused) << " of " << rows.size() << " variants written"
         << (refused > 0 ? " (the others refused)" : "") << ".\n";

@@ -62,6 +62,7 @@ std::string morph_json(const morph::MorphResult& result, int exit_status)
                                 {"maxMove", s.untangle.max_move},
                                 {"layers", s.untangle.layers},
                                 {"stillInvalid", s.untangle.invalid_after},
+                                {"belowMargin", s.untangle.below_target_after},
                                 {"seconds", s.untangle_seconds}}},
                               {"accepted", s.accepted},
                               {"fit", s.fit_seconds},
@@ -77,6 +78,9 @@ std::string morph_json(const morph::MorphResult& result, int exit_status)
     j["instance"] = result.instance;
     j["region"] = result.region;
     j["outputInstance"] = result.output_instance;
+    j["newFailedChecks"] = nlohmann::json::array();
+    for (const auto& [name, count] : result.new_failed_checks)
+        j["newFailedChecks"].push_back({{"check", name}, {"count", count}});
     j["written"] = result.written;
     j["refused"] = result.refused;
     if (result.refused)
@@ -163,9 +167,13 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
         "IDW, DM-FFD or FFD) fitted to the boundary and handle prescriptions of\n"
         "system/morphDict, in steps refitted on the moved mesh ('steps auto': one step,\n"
         "halved while a step inverts cells), then checks the result like checkMesh.\n"
-        "Without -overwrite only <next time>/polyMesh/points is written (read it with\n"
-        "-latestTime); a morph that creates negative-volume cells or wrongly oriented face\n"
-        "pyramids is not written unless -force.\n"
+        "Without -time or -latestTime it morphs the mesh the case starts from (the first\n"
+        "time directory that is not a motion result, i.e. not points without faces, else\n"
+        "constant), so a re-run reads the same mesh and writes the same time; name a\n"
+        "result with -time or -latestTime to morph it further. Without -overwrite only\n"
+        "<that time + deltaT>/polyMesh/points is written (read it with -latestTime); a morph\n"
+        "that creates negative-volume cells or wrongly oriented face pyramids is not\n"
+        "written unless -force.\n"
         "Conflicting prescriptions on shared points follow the dictionary's 'conflicts' rule\n"
         "(default fixed: such points do not move); handles override boundary prescriptions.",
         {{"case", "DIR", "Case directory (default: the current directory)"},
@@ -238,6 +246,24 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
             log::error() << "could not write " << json_path.string() << ": " << e.what();
         }
     };
+    // Until the run ends, the report says it has not: an interrupted run (SIGINT, SIGKILL)
+    // leaves no earlier report saying `written: true`.
+    if (!json_path.empty() && master)
+    {
+        const nlohmann::json unfinished = {
+            {"written", false},
+            {"exitStatus", nullptr},
+            {"error", "the run did not finish (interrupted, killed, or still running)"}};
+        try
+        {
+            io::write_file_atomic(json_path, unfinished.dump(2) + "\n");
+        }
+        catch (const Error& e)
+        {
+            log::error() << "-json: " << e.what() << ". Nothing written.";
+            return exit_input_error;
+        }
+    }
     return run_guarded([&] { return morph_mesh_main(options, json_path, report_out); }, true,
                        report_failure);
 }

@@ -13,6 +13,17 @@
 namespace meshmorph::app
 {
 
+namespace
+{
+
+//! An argument that is a value, not an option: not starting with '-', or a negative number.
+bool is_value(const std::string& arg)
+{
+    return arg.size() < 2 || arg[0] != '-' || (arg[1] >= '0' && arg[1] <= '9') || arg[1] == '.';
+}
+
+} // namespace
+
 Options::Options(std::string app_name, std::string description, std::vector<OptionSpec> specs,
                  std::vector<ExitCode> exit_codes)
     : app_name_(std::move(app_name)), description_(std::move(description)),
@@ -57,11 +68,23 @@ void Options::parse(int argc, const char* const argv[])
         }
     }
     const OptionSpec* previous_flag = nullptr; // the flag just before, for stray arguments
+    // The list option just before (`-variant 0 1 0`: the shell split an unquoted list).
+    const OptionSpec* previous_list = nullptr;
+    std::string list_words;
     for (int i = 1; i < argc; ++i)
     {
         std::string arg = argv[i];
-        if (arg.size() < 2 || arg[0] != '-' || (arg[1] >= '0' && arg[1] <= '9') || arg[1] == '.')
+        if (is_value(arg))
         {
+            if (previous_list && positional_.size() >= positional_names_.size())
+            {
+                list_words += " " + arg;
+                if (i + 1 < argc && is_value(argv[i + 1]))
+                    continue; // gather the rest of the split list for the hint
+                throw UsageError("unexpected argument '" + arg + "' after -" + previous_list->name +
+                                 ": a list goes in one quoted argument, " + "e.g. -" +
+                                 previous_list->name + " \"(" + list_words + ")\"");
+            }
             if (previous_flag && positional_.size() >= positional_names_.size())
                 throw UsageError("unexpected argument '" + arg + "' after -" + previous_flag->name +
                                  ", which takes no argument" +
@@ -70,9 +93,11 @@ void Options::parse(int argc, const char* const argv[])
                                       : ": " + previous_flag->stray_argument_hint + " " + arg));
             positional_.push_back(arg);
             previous_flag = nullptr;
+            previous_list = nullptr;
             continue;
         }
         previous_flag = nullptr;
+        previous_list = nullptr;
         std::string name = arg.substr(arg[1] == '-' ? 2 : 1);
         std::optional<std::string> inline_value;
         if (const std::size_t eq = name.find('='); eq != std::string::npos && arg[1] == '-')
@@ -101,6 +126,11 @@ void Options::parse(int argc, const char* const argv[])
         if (i + 1 >= argc)
             throw UsageError("option -" + name + " expects an argument " + spec->argument);
         values_[name] = argv[++i];
+        if (spec->argument.rfind("(", 0) == 0)
+        {
+            previous_list = spec;
+            list_words = values_[name];
+        }
     }
     if (positional_.size() != positional_names_.size())
     {

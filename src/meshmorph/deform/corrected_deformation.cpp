@@ -3,6 +3,7 @@
 #include "meshmorph/deform/corrected_deformation.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -80,10 +81,15 @@ void CorrectedDeformation::fit(const Eigen::Ref<const Points>& handles,
         const auto* direct = dynamic_cast<const RbfDeformation*>(global_.get());
         if (direct == nullptr)
             throw;
-        log::info() << e.what()
-                    << "; using the greedy RBF instead, whose centres stay apart (the IDW "
-                       "correction keeps the field exact; rbf { greedy { } } chooses it "
-                       "from the start)";
+        // Said once per process: a design set-up fits every variable, a morph every step,
+        // and the same lines for each would bury the log (a 2D case takes this path always).
+        static std::atomic<bool> told{false};
+        if (!told.exchange(true))
+            log::info() << e.what()
+                        << "; using the greedy RBF instead, whose centres stay apart (the IDW "
+                           "correction keeps the field exact; rbf { greedy { } } chooses it "
+                           "from the start). Said once: later fits of this run take the same "
+                           "path without a word";
         GreedySettings greedy;
         greedy.rbf = direct->settings();
         global_ = std::make_unique<GreedyRbfDeformation>(greedy);

@@ -43,6 +43,30 @@ std::optional<double> number(const std::string& w)
     return std::nullopt;
 }
 
+//! Which column of a header differs from the set-up's variables, and what was expected.
+std::string header_mismatch(const std::vector<std::string>& header,
+                            const std::vector<std::string>& names)
+{
+    std::string expected;
+    for (const std::string& n : names)
+        expected += (expected.empty() ? "" : " ") + n;
+    std::size_t k = 0;
+    while (k < header.size() && k < names.size() && header[k] == names[k])
+        ++k;
+    std::string what;
+    if (k < header.size() && k < names.size())
+        what = "column " + std::to_string(k + 1) + " is '" + header[k] + "' where the set-up's " +
+               "variable " + std::to_string(k + 1) + " is '" + names[k] + "'";
+    else if (k < names.size())
+        what = "the header ends at column " + std::to_string(k) + ", before variable '" + names[k] +
+               "'";
+    else
+        what = "column " + std::to_string(k + 1) + " ('" + header[k] +
+               "') is beyond the set-up's " + std::to_string(names.size()) + " variables";
+    return "the header's variable names differ from the set-up's: " + what +
+           " (expected, in the morphDict's order: " + expected + ")";
+}
+
 } // namespace
 
 std::vector<double> parse_amplitudes(const std::string& text)
@@ -77,9 +101,7 @@ std::vector<std::vector<double>> read_amplitude_table(const std::filesystem::pat
         if (rows.empty() && !number(words.front()))
         {
             if (words != names)
-                throw ParseError(path.string(), line_no,
-                                 "the header's variable names differ from the set-up's "
-                                 "(expected them in the morphDict's order)");
+                throw ParseError(path.string(), line_no, header_mismatch(words, names));
             continue;
         }
         std::vector<double> row;

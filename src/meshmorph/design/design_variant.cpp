@@ -27,7 +27,8 @@ namespace
 //! Without -time a design command reads the points its set-up was made on.
 morph::MorphOptions at_setup_instance(morph::MorphOptions options, const DesignBasisHeader& h)
 {
-    if (options.time.mode == io::TimeSelection::Mode::first)
+    if (options.time.mode == io::TimeSelection::Mode::first ||
+        options.time.mode == io::TimeSelection::Mode::start)
         options.time = io::TimeSelection::at(h.instance);
     return options;
 }

@@ -84,6 +84,7 @@ std::string select_time(const std::vector<TimeDir>& times, const TimeSelection& 
     switch (selection.mode)
     {
     case TimeSelection::Mode::first:
+    case TimeSelection::Mode::start:
         return times.empty() ? std::string("constant") : times.front().name;
     case TimeSelection::Mode::latest:
         return times.empty() ? std::string("constant") : times.back().name;
@@ -112,6 +113,22 @@ fs::path poly_mesh_dir(const fs::path& case_dir, const std::string& instance,
     if (!region.empty() && region != "region0")
         dir /= region;
     return dir / "polyMesh";
+}
+
+bool is_motion_result(const fs::path& case_dir, const std::string& time, const std::string& region)
+{
+    const fs::path dir = poly_mesh_dir(case_dir, time, region);
+    return foam_file_exists(dir / "points") && !foam_file_exists(dir / "faces");
+}
+
+std::vector<TimeDir> start_times(const fs::path& case_dir, const std::vector<TimeDir>& times,
+                                 const std::string& region)
+{
+    std::vector<TimeDir> out;
+    for (const TimeDir& t : times)
+        if (!is_motion_result(case_dir, t.name, region))
+            out.push_back(t);
+    return out;
 }
 
 std::string find_instance(const fs::path& case_dir, const std::vector<TimeDir>& times,

@@ -31,7 +31,11 @@ struct TimeSelection
 {
     enum class Mode
     {
-        first,  //!< the earliest time directory (the usual startTime), or constant if none
+        first, //!< the earliest time directory (the usual startTime), or constant if none
+        //! The mesh a case starts from: the earliest time directory that is not a motion
+        //! result (motion_results), or constant if none. morphMesh's default: a re-run
+        //! reads what the first run read, never its result.
+        start,
         latest, //!< `-latestTime`: the newest time directory, or constant if none
         time,   //!< `-time T`: the time directory named or valued T; "constant" is allowed
     };
@@ -39,14 +43,28 @@ struct TimeSelection
     std::string time; //!< for Mode::time
 
     static TimeSelection first_time() { return {}; }
+    static TimeSelection start_time() { return {Mode::start, {}}; }
     static TimeSelection latest_time() { return {Mode::latest, {}}; }
     static TimeSelection at(std::string t) { return {Mode::time, std::move(t)}; }
 };
+
+//! \brief Whether time directory `time` of the case holds a motion result: moved points
+//! (`polyMesh/points`) without a mesh of its own (no `faces`), as morphMesh, moveMesh, a
+//! moving-mesh solver and reconstructPar of those write. snappyHexMesh without -overwrite
+//! writes whole meshes, which are not motion results.
+bool is_motion_result(const std::filesystem::path& case_dir, const std::string& time,
+                      const std::string& region = "");
+
+//! \brief `times` without the motion results (is_motion_result): the times a mesh can
+//! start from, against which TimeSelection::start and its next time are resolved.
+std::vector<TimeDir> start_times(const std::filesystem::path& case_dir,
+                                 const std::vector<TimeDir>& times, const std::string& region = "");
 
 //! \brief Resolve a selection against `times` (as list_times returns them). Returns the
 //! selected time's name, or "constant" when there are no times (or `-time constant`).
 //! `-time T` matches a directory name exactly or, failing that, a value within a relative
 //! 1e-9 (time names are printed with limited precision, so "0.1" must find 0.1000000001).
+//! Mode::start resolves like Mode::first: pass it start_times.
 //! \throw InvalidInput if `-time T` names no existing time or T is not a number.
 std::string select_time(const std::vector<TimeDir>& times, const TimeSelection& selection);
 

@@ -370,7 +370,10 @@ FoamPolyMesh read_poly_mesh(const fs::path& case_dir, const PolyMeshReadOptions&
     FoamPolyMesh result;
     result.case_dir = case_dir;
     result.region = options.region;
-    result.time = select_time(times, options.time);
+    result.time = select_time(options.time.mode == TimeSelection::Mode::start
+                                  ? start_times(case_dir, times, options.region)
+                                  : times,
+                              options.time);
     result.points_instance = find_instance(case_dir, times, result.time, "points", options.region);
     result.faces_instance = find_instance(case_dir, times, result.time, "faces", options.region);
     result.points_dir = poly_mesh_dir(case_dir, result.points_instance, options.region);

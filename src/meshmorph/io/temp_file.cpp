@@ -23,6 +23,41 @@ namespace
 
 std::atomic<unsigned> temp_counter{0};
 
+//! The temporaries this process named last, for the signal handler: a ring of fixed slots
+//! (a handler may not allocate or lock). A slot is published by its `ready` flag after its
+//! name is complete, and withdrawn before it is overwritten. 64 slots: a run has at most a
+//! few writes in flight, and an older name was renamed or removed long ago (its unlink then
+//! fails harmlessly).
+constexpr std::size_t ring_slots = 64;
+constexpr std::size_t slot_bytes = 4096;
+struct TempSlot
+{
+    std::atomic<bool> ready{false};
+    char name[slot_bytes] = {};
+};
+TempSlot ring[ring_slots];
+std::atomic<std::size_t> ring_next{0};
+
+void remember_temp(const fs::path& temp)
+{
+    const std::string& name = temp.native();
+    if (name.size() >= slot_bytes)
+        return; // such a temporary is left to remove_stale_temps
+    TempSlot& slot = ring[ring_next.fetch_add(1) % ring_slots];
+    slot.ready.store(false);
+    std::memcpy(slot.name, name.c_str(), name.size() + 1);
+    slot.ready.store(true);
+}
+
+extern "C" void remove_temps_and_reraise(int sig)
+{
+    for (TempSlot& slot : ring)
+        if (slot.ready.load())
+            ::unlink(slot.name); // async-signal-safe; fails for renamed ones
+    ::signal(sig, SIG_DFL);
+    ::raise(sig);
+}
+
 std::string host_name()
 {
     char name[256] = {};
@@ -67,9 +102,27 @@ std::string errno_text()
 fs::path temp_path_for(const fs::path& target)
 {
     const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-    return dir /
-           ("." + target.filename().string() + "." + host_name() + "." +
-            std::to_string(::getpid()) + "." + std::to_string(temp_counter.fetch_add(1)) + ".tmp");
+    fs::path temp = dir / ("." + target.filename().string() + "." + host_name() + "." +
+                           std::to_string(::getpid()) + "." +
+                           std::to_string(temp_counter.fetch_add(1)) + ".tmp");
+    remember_temp(fs::absolute(temp));
+    return temp;
+}
+
+void remove_temps_on_interrupt()
+{
+    struct sigaction action = {};
+    action.sa_handler = remove_temps_and_reraise;
+    sigemptyset(&action.sa_mask);
+    for (int sig : {SIGINT, SIGTERM, SIGHUP})
+    {
+        struct sigaction old = {};
+        // A signal the caller's parent set to be ignored (nohup, a shell's background job)
+        // stays ignored.
+        if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN)
+            continue;
+        ::sigaction(sig, &action, nullptr);
+    }
 }
 
 int remove_stale_temps(const fs::path& target)

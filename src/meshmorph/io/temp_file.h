@@ -17,6 +17,12 @@ namespace meshmorph::io
 //! \brief A fresh temporary name for `target` (see the file comment).
 std::filesystem::path temp_path_for(const std::filesystem::path& target);
 
+//! \brief From now on SIGINT, SIGTERM and SIGHUP first remove the temporary files this
+//! process named with temp_path_for (the last 64; renamed ones are gone already), then end
+//! the process as the signal would have (an interrupted run leaves no 87 MB temporary of a
+//! design basis behind). A staged directory is left to remove_stale_temps of a later run.
+void remove_temps_on_interrupt();
+
 //! \brief Remove the temporaries of `target` (files, or directories staged whole) whose writer, a
 //! process of this host, is dead (a run killed while writing). Those of other hosts (a shared file
 //! system) and of live processes are left alone. Returns how many were removed; never throws.

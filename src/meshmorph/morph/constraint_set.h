@@ -16,6 +16,7 @@
 #include "meshmorph/morph/empty_planes.h"
 #include "meshmorph/morph/morph_setup.h"
 #include "meshmorph/morph/patch_assignment.h"
+#include "meshmorph/morph/wedge_symmetry.h"
 
 namespace meshmorph::morph
 {
@@ -40,6 +41,8 @@ struct Constraints
     std::vector<CyclicPointPair> cyclic_pairs;
     //! 2D cases: the empty planes.
     std::optional<EmptyPlanes> empty_planes;
+    //! Axisymmetric (two wedge patches): every displacement made axisymmetric.
+    std::optional<WedgeSymmetry> wedge;
 
     std::vector<PatchAssignment> patches;
     //! points.size() and slip_points.size() over the whole mesh (in a -parallel run the lists

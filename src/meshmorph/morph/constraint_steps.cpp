@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The steps of build_constraints, shared by the serial and the distributed composition.
 #include "meshmorph/morph/constraint_steps.h"
+#include "meshmorph/morph/prescription_checks.h"
 
 #include <algorithm>
 #include <limits>
@@ -193,8 +194,9 @@ std::vector<Vector3> resolve_and_merge(const PolyMesh& mesh, const MorphSetup& s
                                        const std::vector<Claim>& claims,
                                        const std::vector<double>& edges,
                                        const std::vector<Claim>& handle_claims, double agree_tol,
-                                       Constraints& out)
+                                       double diagonal, Constraints& out)
 {
+    check_prescriptions(mesh, setup, claims, handle_claims, out.empty_planes, diagonal, agree_tol);
     const Resolution boundary = resolve_boundary(mesh, setup, claims, edges, agree_tol, out);
     const Resolution handles = resolve_handles(setup, handle_claims, agree_tol, out);
     const std::vector<Vector3> values = merge(boundary.points, handles.points, out);

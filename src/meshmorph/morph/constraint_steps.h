@@ -46,13 +46,14 @@ void require_some_motion(const MorphSetup& setup, bool asked, const std::vector<
                          const Constraints& out, double tolerance);
 
 //! \brief Boundary claims and handle claims (both sorted by point, `edges` indexed like
-//! their points) resolved, merged (handles override), checked for motion. Returns the values
+//! their points) checked (check_prescriptions; `diagonal` the mesh's bounding box's),
+//! resolved, merged (handles override), checked for motion. Returns the values
 //! of out.points; counts, summary, slip points recorded in out. \throw InvalidInput.
 std::vector<Vector3> resolve_and_merge(const PolyMesh& mesh, const MorphSetup& setup,
                                        const std::vector<Claim>& claims,
                                        const std::vector<double>& edges,
                                        const std::vector<Claim>& handle_claims, double agree_tol,
-                                       Constraints& out);
+                                       double diagonal, Constraints& out);
 
 //! out.displacements from the values (without their component normal to empty planes).
 void fill_displacements(const std::vector<Vector3>& values, Constraints& out);

@@ -20,6 +20,7 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
     out.conflict_rule = setup.conflicts;
     out.patches = inputs.patches != nullptr ? *inputs.patches : assign_patches(mesh, setup);
     out.empty_planes = find_empty_planes(mesh);
+    out.wedge = find_wedge_symmetry(mesh);
     const Points corners = bounding_corners(mesh.points);
     const double agree_tol =
         detail::agreement_tolerance(corners.row(0).transpose(), corners.row(1).transpose());
@@ -29,7 +30,8 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
     const std::vector<Claim> handle_claims =
         collect_handle_claims(mesh, setup, out.empty_planes, agree_tol);
     const std::vector<Vector3> values = detail::resolve_and_merge(
-        mesh, setup, claims, detail::shortest_boundary_edges(mesh), handle_claims, agree_tol, out);
+        mesh, setup, claims, detail::shortest_boundary_edges(mesh), handle_claims, agree_tol,
+        (corners.row(1) - corners.row(0)).norm(), out);
     detail::fill_displacements(values, out);
     couple_cyclic_prescriptions(mesh, cyclic_point_pairs(mesh), agree_tol, out);
     out.n_prescribed_points = static_cast<Index>(out.points.size());

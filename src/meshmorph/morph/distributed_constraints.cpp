@@ -216,6 +216,9 @@ Constraints build_distributed_constraints(const PolyMesh& mesh, const MorphSetup
                                                : assign_patches(mesh, setup, true);
                          });
     out.empty_planes = agreed_empty_planes(mesh, comm);
+    // Each rank's own wedge pairs: a cell's two wedge faces, and so both partners of its
+    // points, live on one rank.
+    parallel::collective(comm, [&] { out.wedge = find_wedge_symmetry(mesh); });
     const Points corners = bounding_corners(mesh.points, &decomposition);
     const double agree_tol =
         detail::agreement_tolerance(corners.row(0).transpose(), corners.row(1).transpose());
@@ -233,21 +236,21 @@ Constraints build_distributed_constraints(const PolyMesh& mesh, const MorphSetup
     const auto handle_wire = comm.gather_values(to_wire(handle_claims, {}, decomposition));
 
     std::vector<std::vector<WirePrescription>> per_rank;
-    parallel::on_master(comm,
-                        [&]
-                        {
-                            const GlobalPoints g = number_points(boundary_wire, handle_wire);
-                            std::vector<double> edges;
-                            const std::vector<Claim> all_claims =
-                                compact_claims(boundary_wire, g, &edges);
-                            const std::vector<Claim> all_handles =
-                                compact_claims(handle_wire, g, nullptr);
-                            const std::vector<Vector3> values = detail::resolve_and_merge(
-                                mesh, setup, all_claims, edges, all_handles, agree_tol, out);
-                            per_rank = split_by_rank(out, values, g, comm.size());
-                            out.n_prescribed_points = static_cast<Index>(out.points.size());
-                            out.n_slip_points = static_cast<Index>(out.slip_points.size());
-                        });
+    parallel::on_master(
+        comm,
+        [&]
+        {
+            const GlobalPoints g = number_points(boundary_wire, handle_wire);
+            std::vector<double> edges;
+            const std::vector<Claim> all_claims = compact_claims(boundary_wire, g, &edges);
+            const std::vector<Claim> all_handles = compact_claims(handle_wire, g, nullptr);
+            const std::vector<Vector3> values =
+                detail::resolve_and_merge(mesh, setup, all_claims, edges, all_handles, agree_tol,
+                                          (corners.row(1) - corners.row(0)).norm(), out);
+            per_rank = split_by_rank(out, values, g, comm.size());
+            out.n_prescribed_points = static_cast<Index>(out.points.size());
+            out.n_slip_points = static_cast<Index>(out.slip_points.size());
+        });
     const Index prescribed = out.n_prescribed_points, slip = out.n_slip_points;
     set_local(comm.scatter_values(per_rank), out);
     // Each rank couples the cyclics it holds (whole: processorCyclic is refused). The totals

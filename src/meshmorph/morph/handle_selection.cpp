@@ -144,23 +144,20 @@ namespace
 {
 
 //! The handle's displacement at x (evaluated on the reference empty plane in 2D cases,
-//! as the boundary's closed-form motions are).
+//! as the boundary's closed-form motions are; a normal part is refused by
+//! check_prescriptions, not dropped).
 Vector3 handle_displacement(const HandleEntry& handle, const Vector3& x,
                             const std::optional<EmptyPlanes>& planes)
 {
     if (!handle.displacement_at)
         return handle.displacement;
-    if (!planes)
-        return handle.displacement_at(x);
-    return planes->in_plane(handle.displacement_at(planes->project(x)));
+    return handle.displacement_at(planes ? planes->project(x) : x);
 }
 
-//! A labels selection's k-th displacement (without its normal part in a 2D case).
-Vector3 listed_displacement(const HandleEntry& handle, std::size_t k,
-                            const std::optional<EmptyPlanes>& planes)
+//! A labels selection's k-th displacement.
+Vector3 listed_displacement(const HandleEntry& handle, std::size_t k)
 {
-    const Vector3 d = handle.label_displacements.row(static_cast<Eigen::Index>(k)).transpose();
-    return planes ? planes->in_plane(d) : d;
+    return handle.label_displacements.row(static_cast<Eigen::Index>(k)).transpose();
 }
 
 } // namespace
@@ -181,7 +178,7 @@ std::vector<Claim> collect_handle_claims(const PolyMesh& mesh, const MorphSetup&
             const Index p = selected[k];
             const Vector3 d =
                 handle.selection == HandleEntry::Selection::labels
-                    ? listed_displacement(handle, k, planes)
+                    ? listed_displacement(handle, k)
                     : handle_displacement(handle, mesh.points.row(p).transpose(), planes);
             claims.push_back({p, source, source, Claim::Kind::value, d});
         }

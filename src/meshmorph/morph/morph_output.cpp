@@ -66,16 +66,35 @@ fs::path keep_original_points(const fs::path& points_file)
 
 } // namespace
 
+std::string morph_result_note(const std::string& instance)
+{
+    return std::string(morph_note_prefix) + " from the points of " + instance;
+}
+
+bool is_morph_result(const io::FoamHeader& header)
+{
+    return header.note.rfind(morph_note_prefix, 0) == 0;
+}
+
 //! The morphed points, and with -overwrite the original kept first; a failure removes what
 //! this run created, so a failed write leaves the case as it was.
 fs::path write_morphed_points(const MorphOptions& options, const Points& points,
                               const io::FoamPolyMesh& foam, const fs::path& mesh_case,
                               const std::string& instance)
 {
+    // Never written, not even with -force: OpenFOAM cannot read such a file back, and
+    // checkMesh stops on it with a floating-point exception.
+    for (Eigen::Index i = 0; i < points.rows(); ++i)
+        if (!points.row(i).allFinite())
+            throw InvalidInput("the morph moved point " + std::to_string(i) +
+                               " to a coordinate that is not finite (an overflow): nothing "
+                               "written; check the size of the prescribed motion");
     const fs::path orig = options.overwrite ? keep_original_points(foam.points.path) : fs::path();
+    io::FoamFileInfo like = foam.points;
+    like.header.note = morph_result_note(foam.points_instance);
     try
     {
-        return io::write_points(points, foam.points, mesh_case, instance, foam.region);
+        return io::write_points(points, like, mesh_case, instance, foam.region);
     }
     catch (const Error&)
     {
@@ -86,16 +105,17 @@ fs::path write_morphed_points(const MorphOptions& options, const Points& points,
     }
 }
 
-//! Without -overwrite a re-run replaces the points an earlier run wrote: say so.
+//! Without -overwrite the morph replaces points already at the time it writes (an earlier
+//! morph's, or another tool's such as reconstructPar's): say so.
 void warn_if_replacing(const fs::path& case_dir, const std::string& instance,
                        const std::string& region)
 {
-    const fs::path dir = case_dir / instance / region / "polyMesh";
+    const fs::path dir = io::poly_mesh_dir(case_dir, instance, region);
     for (const char* name : {"points", "points.gz"})
         if (fs::exists(dir / name))
             log::warning() << "replacing " << (dir / name).string()
-                           << " (written by an earlier run; use -overwrite or another -time to "
-                              "keep it)";
+                           << ", already at the time this morph writes (to keep it, move it "
+                              "away first)";
 }
 
 //! A decomposed case keeps its own copy of the mesh in every processor directory: a serial

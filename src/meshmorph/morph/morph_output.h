@@ -14,6 +14,16 @@
 namespace meshmorph::morph
 {
 
+//! The start of the header `note` of every points file morphMesh writes: a morph's result
+//! is recognisable as such (OpenFOAM reads and ignores the note).
+constexpr const char* morph_note_prefix = "morphed by morphMesh";
+
+//! The note of a points file morphed from the points of `instance`.
+std::string morph_result_note(const std::string& instance);
+
+//! Whether a header is that of points morphMesh wrote.
+bool is_morph_result(const io::FoamHeader& header);
+
 //! The morphed points, and with -overwrite the original kept first; a failure removes what
 //! this run created, so a failed write leaves the case as it was.
 std::filesystem::path write_morphed_points(const MorphOptions& options, const Points& points,
@@ -21,7 +31,8 @@ std::filesystem::path write_morphed_points(const MorphOptions& options, const Po
                                            const std::filesystem::path& mesh_case,
                                            const std::string& instance);
 
-//! Without -overwrite a re-run replaces the points an earlier run wrote: say so.
+//! Without -overwrite the morph replaces points already at the time it writes (an earlier
+//! morph's, or another tool's such as reconstructPar's): say so.
 void warn_if_replacing(const std::filesystem::path& case_dir, const std::string& instance,
                        const std::string& region);
 

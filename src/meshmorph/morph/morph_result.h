@@ -27,7 +27,9 @@ struct MorphOptions
     //! -region: the mesh constant/<region>/polyMesh, its dictionaries in system/<region>/,
     //! its fields and points in <time>/<region>/; "" for the default region.
     std::string region;
-    io::TimeSelection time;
+    //! Which mesh to morph; by default the one the case starts from (TimeSelection::start):
+    //! the same run twice reads the same mesh, never the first run's result.
+    io::TimeSelection time = io::TimeSelection::start_time();
     bool overwrite = false;
     std::optional<std::string> method; //!< overrides the dictionary's `method`
     //! Compute the per-cell scaled Jacobian before and after (not a checkMesh check: for a
@@ -64,6 +66,10 @@ struct MorphResult
     bool parallel = false; //!< a -parallel run: before/after hold only the invalid cells
     bool refused = false;  //!< new invalid cells, nothing written (no force)
     std::string refusal;   //!< why
+    //! Checks the morphed mesh fails that the mesh before it passed, with the size of each
+    //! check's first offender set (0 when it has none): each is a warning, and an error
+    //! with morphDict's `newCheckFailures refuse`.
+    std::vector<std::pair<std::string, Index>> new_failed_checks;
     bool written = false;
     std::filesystem::path points_file; //!< the written points file
     std::filesystem::path vtk_file;    //!< the written .vtu (if vtk)

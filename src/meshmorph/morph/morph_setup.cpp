@@ -220,7 +220,7 @@ MorphSetup read_morph_setup(const io::FoamDictionary& dict)
     setup.dict_path = dict.path();
     // Other top-level entries are allowed when used as $variables (helper entries).
     dict.check_keywords({"method", "rbf", "dmffd", "ffd", "idw", "steps", "untangle", "boundary",
-                         "handles", "conflicts", "designVariables"},
+                         "handles", "conflicts", "designVariables", "newCheckFailures"},
                         "morphDict", dict.referenced_variables());
     if (const io::FoamEntry* e = dict.find("conflicts"))
         setup.conflicts = read_conflict_rule(*e);

@@ -98,8 +98,47 @@ std::vector<std::string> refusal_reasons(const QualityReport& before, const Qual
     return reasons;
 }
 
+//! The checks `after` fails that `before` passed, each with its first offender set's size.
+std::vector<std::pair<std::string, Index>> new_failed_checks(const QualityReport& before,
+                                                             const QualityReport& after)
+{
+    std::vector<std::pair<std::string, Index>> out;
+    for (const CheckResult& c : after.checks)
+    {
+        if (!c.failed() ||
+            std::find(before.failed_check_names.begin(), before.failed_check_names.end(),
+                      c.failure) != before.failed_check_names.end())
+            continue;
+        out.emplace_back(c.failure, c.sets.empty() ? Index(0) : c.sets.front().size());
+    }
+    return out;
+}
+
+//! Checks the morph makes fail: a warning each, and with `newCheckFailures refuse` the
+//! reason to refuse. \return that reason, or "".
+std::string judge_new_failures(const MorphCase& in, MorphResult& result)
+{
+    result.new_failed_checks = new_failed_checks(result.before, result.after);
+    std::string list;
+    for (const auto& [name, count] : result.new_failed_checks)
+    {
+        log::warning() << "the morphed mesh fails the check " << name
+                       << (count > 0 ? " (" + std::to_string(count) + " offenders)" : std::string())
+                       << ", which the mesh passed before the morph: OpenFOAM's checkMesh will "
+                          "fail it too"
+                       << (in.refuse_new_check_failures
+                               ? std::string()
+                               : " (morphDict 'newCheckFailures refuse;' makes this an error)");
+        list += (list.empty() ? "" : ", ") + name;
+    }
+    if (!in.refuse_new_check_failures || list.empty())
+        return {};
+    return "the morphed mesh fails checks it passed before (" + list +
+           ") and the morphDict says 'newCheckFailures refuse'";
+}
+
 //! The before/after table; then whether the result is refused (true: write nothing).
-bool judge(const MorphOptions& options, MorphResult& result)
+bool judge(const MorphOptions& options, const MorphCase& in, MorphResult& result)
 {
     if (parallel::Communicator::world().master()) // other ranks hold only their part's report
     {
@@ -108,10 +147,13 @@ bool judge(const MorphOptions& options, MorphResult& result)
         log::info() << "Mesh quality before and after the morph:\n" << summary.str();
     }
     const std::vector<std::string> reasons = refusal_reasons(result.before, result.after);
-    if (reasons.empty())
+    const std::string new_failures = judge_new_failures(in, result);
+    if (reasons.empty() && new_failures.empty())
         return false;
-    result.refusal = "the morphed mesh has " + reasons.front() +
-                     (reasons.size() > 1 ? " and " + reasons.back() : std::string());
+    result.refusal = reasons.empty()
+                         ? new_failures
+                         : "the morphed mesh has " + reasons.front() +
+                               (reasons.size() > 1 ? " and " + reasons.back() : std::string());
     if (!options.force)
     {
         result.refused = true; // the caller reports it (morphMesh: exit status 3)
@@ -130,18 +172,82 @@ fs::path morph_dict_path(const MorphOptions& options, const fs::path& case_dir)
     return path.is_relative() ? case_dir / path : path;
 }
 
+namespace
+{
+
+//! -region NAME names a region the case has (constant/NAME/polyMesh): else the error lists
+//! those it has, before a missing dictionary of that region could be blamed.
+void require_region(const fs::path& case_dir, const std::string& region)
+{
+    if (region.empty() || region == "region0" ||
+        fs::is_directory(case_dir / "constant" / region / "polyMesh") ||
+        !io::processor_directories(case_dir).empty()) // decomposed: regions live there
+        return;
+    std::string regions;
+    std::error_code ec;
+    for (const fs::directory_entry& e : fs::directory_iterator(case_dir / "constant", ec))
+        if (fs::is_directory(e.path() / "polyMesh"))
+            regions += (regions.empty() ? "" : ", ") + e.path().filename().string();
+    throw InvalidInput("-region " + region + ": the case has no such region (no " +
+                       (case_dir / "constant" / region / "polyMesh").string() + "); " +
+                       (regions.empty()
+                            ? std::string("it is a single-region case: leave out -region")
+                            : "its regions: " + regions));
+}
+
+//! `newCheckFailures warn | refuse` (default warn). \return true for refuse.
+bool read_new_check_failures(const io::FoamDictionary& dict)
+{
+    const io::FoamEntry* e = dict.find("newCheckFailures");
+    if (e == nullptr)
+        return false;
+    const std::vector<io::FoamValueToken>& t = e->tokens();
+    if (t.size() == 1 && t[0].is_word() && (t[0].text == "warn" || t[0].text == "refuse"))
+        return t[0].text == "refuse";
+    throw e->error("expected 'warn' (the default: a warning per check the morph makes fail) or "
+                   "'refuse' (such a morph is refused, nothing written)");
+}
+
+} // namespace
+
 void read_morph_dict(const MorphOptions& options, MorphCase& in, MorphResult& result)
 {
     in.case_dir = fs::absolute(options.case_dir).lexically_normal();
     if (!fs::is_directory(in.case_dir))
         throw IoError("case directory " + in.case_dir.string() + " does not exist");
+    require_region(in.case_dir, options.region);
     in.dict_path = morph_dict_path(options, in.case_dir);
     const io::FoamDictionary dict = io::read_dictionary(in.dict_path);
     in.setup = read_morph_setup(dict);
     in.settings = read_deformation_settings(dict, options.method);
     in.step_settings = read_step_settings(dict);
+    in.refuse_new_check_failures = read_new_check_failures(dict);
     result.method = to_string(in.settings.method);
 }
+
+namespace
+{
+
+//! A default run that would read points morphMesh wrote in place (-overwrite) would add to
+//! that morph: it refuses and says how to ask for either mesh.
+void refuse_to_morph_a_result_by_default(const MorphOptions& options, const io::FoamPolyMesh& foam)
+{
+    if (options.time.mode != io::TimeSelection::Mode::start || !is_morph_result(foam.points.header))
+        return;
+    const fs::path orig = foam.points.path.parent_path() /
+                          (foam.points.is_compressed ? "points.orig.gz" : "points.orig");
+    throw InvalidInput(
+        foam.points.path.string() + " holds points morphMesh wrote in place (" +
+        foam.points.header.note +
+        "), and a run without -time morphs the mesh the case starts from, never a morph's "
+        "result. To morph the morphed mesh further, name it: -time " +
+        foam.points_instance +
+        (fs::exists(orig) ? "; to start again from the original: mv " + orig.string() + " " +
+                                foam.points.path.string()
+                          : std::string()));
+}
+
+} // namespace
 
 void read_morph_mesh(const MorphOptions& options, MorphCase& in, MorphResult& result)
 {
@@ -158,6 +264,7 @@ void read_morph_mesh(const MorphOptions& options, MorphCase& in, MorphResult& re
                              if (options.parallel)
                                  in.decomposition = read_decomposition(in.foam, comm);
                          });
+    refuse_to_morph_a_result_by_default(options, in.foam);
     const PolyMesh& mesh = in.foam.mesh;
     result.instance = in.foam.points_instance;
     result.region = options.region;
@@ -205,7 +312,10 @@ std::string morph_output_instance(const MorphOptions& options, const MorphCase& 
 {
     if (options.overwrite)
         return in.foam.points_instance;
-    const std::vector<io::TimeDir> times = io::list_times(in.mesh_case);
+    std::vector<io::TimeDir> times = io::list_times(in.mesh_case);
+    // A default run writes where the first one did: the times after its start are results.
+    if (options.time.mode == io::TimeSelection::Mode::start)
+        times = io::start_times(in.mesh_case, times, in.foam.region);
     return io::next_time_name(times, in.foam.time, io::read_time_settings(in.case_dir));
 }
 
@@ -241,7 +351,7 @@ void morph_resolved(const MorphOptions& options, const MorphCase& in, const Comp
     check_settings.face_pyramid_errors = &stepped.pyramid_errors; // counted after the last step
     result.after = check_morph_mesh(*moved, cf, stepped.geometry, check_settings, in.decomposition);
     result.timings.check += stage.seconds();
-    judge(options, result);
+    judge(options, in, result);
 }
 
 void write_morph_result(const MorphOptions& options, const MorphCase& in, const PolyMesh& moved,

@@ -28,6 +28,9 @@ struct MorphCase
     MorphSetup setup;
     DeformationSettings settings;
     StepSettings step_settings;
+    //! morphDict `newCheckFailures refuse`: a check the morph makes fail refuses the morph
+    //! (default `warn`: a warning, and the JSON's newFailedChecks).
+    bool refuse_new_check_failures = false;
     io::FoamPolyMesh foam;
     Decomposition decomposition;
     const Decomposition* parts(const MorphOptions& o) const

@@ -45,6 +45,15 @@ void remove_empty_normal(Points& d, const Constraints& c)
         c.empty_planes->remove_normal(d);
 }
 
+//! A displacement of every mesh point as a 2D or axisymmetric case can follow it: no
+//! normal component in 2D, a wedge case's planes moving as rotations of each other.
+void keep_planes(Points& d, const Constraints& c)
+{
+    remove_empty_normal(d, c);
+    if (c.wedge)
+        c.wedge->apply(d);
+}
+
 //! Evaluate in chunks so long evaluations report progress. A chunk of 2^18 points takes
 //! about 0.3 s on two cores (the motorBike's 406k points: two chunks); smaller chunks cost
 //! more than the progress is worth, since each one sorts its points into blocks anew.
@@ -402,7 +411,7 @@ PointMorph morph_points_distributed(const PolyMesh& mesh, const Constraints& c,
 
     const Stopwatch eval_clock;
     evaluate_with_progress(*field, x_eval, result.displacement, "evaluate");
-    remove_empty_normal(result.displacement, c);
+    keep_planes(result.displacement, c);
     coupled_mean(c.cyclic_pairs, result.displacement);
     synchronise_shared_points(mesh, d, result.displacement);
     result.evaluate_seconds = eval_clock.seconds();
@@ -437,7 +446,7 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
 
     const Stopwatch eval_clock;
     evaluate_with_progress(deformation, x_eval, result.displacement, "evaluate");
-    remove_empty_normal(result.displacement, c);
+    keep_planes(result.displacement, c);
     coupled_mean(c.cyclic_pairs, result.displacement);
     result.evaluate_seconds = eval_clock.seconds();
 
@@ -451,7 +460,7 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
     {
         for (std::size_t i = 0; i < p.points.size(); ++i)
             result.displacement.row(p.points[i]) = p.values.row(static_cast<Eigen::Index>(i));
-        remove_empty_normal(result.displacement, c);
+        keep_planes(result.displacement, c);
         result.snapped = true;
     }
     result.max_constraint_error = max_error(result.displacement, p);

@@ -1,6 +1,7 @@
 # morph: the morph domain between deform and app. morphDict prescriptions (motion,
 # morph_setup) -> which entry moves each patch (patch_assignment) -> claims per point
-# (claims, handle_selection) -> one prescription per point (conflict_resolution) -> the
+# (claims, handle_selection; refused when they cannot be done: prescription_checks) -> one
+# prescription per point (conflict_resolution) -> the
 # constraint set (constraints); one fit and evaluation (point_morph), the step loop
 # (morph_steps) and the repair of cells a step inverts (local_untangle). 2D cases keep
 # their empty planes (empty_planes); slip and wedge patches their plane (patch_plane).
@@ -15,9 +16,11 @@ set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/patch_assignment.cpp
     meshmorph/morph/empty_planes.cpp
     meshmorph/morph/patch_plane.cpp
+    meshmorph/morph/wedge_symmetry.cpp
     meshmorph/morph/claims.cpp
     meshmorph/morph/conflict_resolution.cpp
     meshmorph/morph/handle_selection.cpp
+    meshmorph/morph/prescription_checks.cpp
     meshmorph/morph/decomposition.cpp
     meshmorph/morph/constraint_steps.cpp
     meshmorph/morph/constraints.cpp

@@ -55,8 +55,9 @@ std::vector<char> face_pyramid_errors(const PolyMesh& mesh, const MeshGeometry& 
     for (Index f = 0; f < n_faces; ++f)
     {
         const auto [own, nei] = pyramid_volumes(mesh, g, f);
-        n_err[f] = static_cast<char>((own < -constants::small) +
-                                     (f < mesh.n_internal_faces() && nei < -constants::small));
+        // !(v >= -SMALL): a volume that is not a number (non-finite points) is an error too.
+        n_err[f] = static_cast<char>(!(own >= -constants::small) +
+                                     (f < mesh.n_internal_faces() && !(nei >= -constants::small)));
     }
     return n_err;
 }

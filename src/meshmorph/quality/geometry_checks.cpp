@@ -54,7 +54,9 @@ FieldRange field_range(const Eigen::VectorXd& values, double threshold)
     FieldRange r;
     for (Eigen::Index i = 0; i < values.size(); ++i)
     {
-        if (values[i] < threshold)
+        // A value that is not a number (a point at inf or NaN) is below every threshold:
+        // such geometry is invalid, and checkMesh itself stops with a floating-point error.
+        if (!(values[i] >= threshold))
             r.below.push_back(static_cast<Index>(i));
         r.min = std::min(r.min, values[i]);
         r.max = std::max(r.max, values[i]);
@@ -223,7 +225,7 @@ CheckResult check_cell_volumes(const Eigen::VectorXd& volumes)
     r.add("maxVolume", range.max);
     r.add("totalVolume", range.sum);
     r.add("negativeVolumeCells", size_of(range.below));
-    if (range.min < vsmall)
+    if (!range.below.empty())
         r.failure = "cellVolumes";
     r.add_set("zeroVolumeCells", MeshSet::Kind::cell, std::move(range.below), "zero volume cells");
     return r;
