@@ -16,6 +16,7 @@
 #                 build/bench/morph-sweep unless -out; summary.md has the counts and table.
 #   -morph-mesh PATH  morphMesh to test (default build/release/applications/...); the
 #                 Python module beside it (build/<preset>/python) reads the meshes
+#   -fail-on-silent  with -morph: exit 1 when any mesh ends silent or crashed (CI's subset)
 #
 #   -cases REGEX  only the tutorials whose path (relative to the tutorials directory,
 #                 e.g. incompressible/icoFoam/cavity/cavity) matches REGEX (extended, as [[ =~ ]])
@@ -76,7 +77,7 @@ usage_error() {
     exit 2
 }
 
-cases_regex='' out_dir='' all=0 jobs=1 keep=0 list=0 morph=0
+cases_regex='' out_dir='' all=0 jobs=1 keep=0 list=0 morph=0 fail_on_silent=0
 morph_mesh=$repo_dir/build/release/applications/morphMesh/morphMesh
 mesh_timeout='' check_timeout=600 checker=$repo_dir/build/release/applications/checkMeshQuality/checkMeshQuality
 while [[ $# -gt 0 ]]; do
@@ -95,6 +96,7 @@ while [[ $# -gt 0 ]]; do
                     check_timeout=$2; shift ;;
     -checker) [[ $# -ge 2 ]] || usage_error "-checker needs a PATH"; checker=$2; shift ;;
     -morph) morph=1 ;;
+    -fail-on-silent) fail_on_silent=1 ;;
     -morph-mesh) [[ $# -ge 2 ]] || usage_error "-morph-mesh needs a PATH"; morph_mesh=$2; shift ;;
     *) usage_error "unknown option '$1'" ;;
     esac
@@ -563,7 +565,10 @@ done
 echo "finished	$(date -u +%Y-%m-%dT%H:%M:%SZ)" >>"$out_dir/sweep.tsv"
 
 if [[ $morph == 1 ]]; then
-    "$python" "$script_dir/morph_sweep_summary.py" "$out_dir" || die "morph_sweep_summary.py failed"
+    summary_args=("$out_dir")
+    [[ $fail_on_silent == 0 ]] || summary_args+=(--fail-on-silent)
+    "$python" "$script_dir/morph_sweep_summary.py" "${summary_args[@]}" ||
+        die "silent or crashed meshes (or morph_sweep_summary.py failed): see $out_dir/summary.md"
     exit 0
 fi
 "$python" "$script_dir/compare_checkmesh.py" summary "$out_dir" ||

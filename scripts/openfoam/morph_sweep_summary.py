@@ -3,10 +3,11 @@
 """Summary of a morph sweep (checkmesh_sweep.sh -morph): the count of each verdict, and a
 table of every mesh that did not end valid, with its reason.
 
-Usage: morph_sweep_summary.py OUT_DIR
+Usage: morph_sweep_summary.py OUT_DIR [--fail-on-silent]
 Reads OUT_DIR/cases/<case>/meshes/<mesh>/result.json (written by morph_one_mesh.py) and
 OUT_DIR/cases/<case>/mesh_error (a tutorial that could not be meshed); writes
-OUT_DIR/summary.md (also printed), summary.csv and summary.json.
+OUT_DIR/summary.md (also printed), summary.csv and summary.json. With --fail-on-silent
+the exit status is 1 when any mesh ended silent or crashed.
 """
 import csv
 import glob
@@ -40,6 +41,7 @@ def collect(out_dir):
 
 def main():
     out_dir = sys.argv[1]
+    fail_on_silent = "--fail-on-silent" in sys.argv[2:]
     rows = collect(out_dir)
     counts = {v: sum(r["verdict"] == v for r in rows) for v in ORDER}
     lines = ["# Morph sweep", "",
@@ -66,6 +68,8 @@ def main():
         for r in rows:
             w.writerow(r)
     print(text)
+    if fail_on_silent and (counts["silent"] or counts["crashed"]):
+        return 1
     return 0
 
 

@@ -6,7 +6,8 @@
 #     checkMesh -parallel printed (checkMesh.parallel.report), line by line
 #     (compare_reports.py);
 #   - mpirun -np 2 morphMesh -parallel equals the serial morph of the undecomposed mesh
-#     (compare_decomposed.py: 1e-12 of the extent, shared points bit-identical).
+#     (compare_decomposed.py: 1e-12 of the extent, shared points bit-identical), and run
+#     again writes the same points to the same time.
 #
 #   fixture_case.sh -morphMesh FILE -checkMeshQuality FILE -out DIR
 #
@@ -20,7 +21,7 @@ while [ $# -gt 0 ]; do
         -morphMesh) morph=$2; shift 2 ;;
         -checkMeshQuality) check=$2; shift 2 ;;
         -out) out=$2; shift 2 ;;
-        -help|-h) sed -n '3,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -help|-h) sed -n '3,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "fixture_case.sh: unknown option '$1' (try -help)" >&2; exit 2 ;;
     esac
 done
@@ -40,4 +41,15 @@ mpirun -np 2 --oversubscribe "$check" -case "$out/parallel" -parallel -allGeomet
     { echo "serial morphMesh failed (see $out/log.serial)"; exit 1; }
 mpirun -np 2 --oversubscribe "$morph" -case "$out/parallel" -parallel > "$out/log.parallel" 2>&1 ||
     { echo "morphMesh -parallel failed (see $out/log.parallel)"; exit 1; }
-/usr/bin/python3 "$here/compare_decomposed.py" "$out/parallel" 1 2 "$out/serial/1/polyMesh/points"
+/usr/bin/python3 "$here/compare_decomposed.py" "$out/parallel" 1 2 "$out/serial/1/polyMesh/points" || exit 1
+# The same command again reads what the first read (processor*/constant), not the first
+# run's result in processor*/1: the same points to the same time, no processor*/2.
+for p in "$out"/parallel/processor*; do cp "$p/1/polyMesh/points" "$p/points.first" || exit 1; done
+mpirun -np 2 --oversubscribe "$morph" -case "$out/parallel" -parallel > "$out/log.parallel.again" 2>&1 ||
+    { echo "morphMesh -parallel run again failed (see $out/log.parallel.again)"; exit 1; }
+for p in "$out"/parallel/processor*; do
+    cmp -s "$p/1/polyMesh/points" "$p/points.first" ||
+        { echo "the re-run wrote other points to $p/1 (it morphed the first run's result)"; exit 1; }
+    [ ! -e "$p/2" ] || { echo "the re-run wrote $p/2: it read the first run's result"; exit 1; }
+done
+echo "re-run: the same points in processor*/1, no processor*/2"

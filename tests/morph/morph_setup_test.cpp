@@ -9,6 +9,7 @@
 
 #include "helpers.h"
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/io/foam_dictionary.h"
 
 namespace meshmorph::morph
 {
@@ -441,6 +442,31 @@ TEST(MorphSetup, motion_asked_for_but_resolved_to_nothing_is_an_error)
     }
     setup.conflicts = ConflictRule::last; // the lid wins: it moves
     EXPECT_NO_THROW(build_constraints(mesh, setup));
+}
+
+TEST(MorphSetup, a_value_that_is_not_finite_names_its_keyword_and_line)
+{
+    // It used to name the entry ('zMax', line 4) only: the user had to find the number.
+    const std::vector<std::pair<std::string, std::string>> motions = {
+        {"type translate;\n        vector (0 nan 0);", "vector"},
+        {"type rotate;\n        origin (0 0 0); axis (0 0 1);\n        angle inf;", "angle"},
+        {"type scale;\n        origin (0 0 0);\n        factor (1 -inf 1);", "factor"}};
+    for (const auto& [motion, keyword] : motions)
+    {
+        const std::string text = "boundary\n{\n    zMax\n    {\n        " + motion + "\n    }\n}\n";
+        try
+        {
+            read_morph_setup(io::parse_dictionary(text, "system/morphDict"));
+            ADD_FAILURE() << motion << " was accepted";
+        }
+        catch (const ParseError& e)
+        {
+            const std::string what = e.what();
+            EXPECT_NE(what.find("keyword '" + keyword + "'"), std::string::npos) << what;
+            EXPECT_NE(what.find("not a finite number"), std::string::npos) << what;
+            EXPECT_GT(e.line(), 5u) << what;
+        }
+    }
 }
 
 } // namespace

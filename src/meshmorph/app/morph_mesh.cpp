@@ -182,7 +182,7 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
           "Morph region NAME (constant/NAME/polyMesh, system/NAME/morphDict, "
           "<time>/NAME/pointDisplacement)"},
          {"time", "TIME", "Morph the mesh at this time (a time name or value, or constant)"},
-         {"latestTime", "", "Morph the mesh at the latest time"},
+         {"latestTime", "", "Morph the mesh at the latest time (e.g. an earlier morph's result)"},
          {"overwrite", "", "Replace the points of the mesh instance instead of writing a new time"},
          {"noOverwrite", "", "Write a new time directory (the default)"},
          {"method", "rbf|dmffd|ffd|idw", "Override the dictionary's method"},
@@ -208,8 +208,9 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
           "relative to the case): printed and written to postProcessing/morphMesh/dJda"}},
         {{exit_ok, "morphed mesh written"},
          {exit_input_error, "bad option, dictionary, mesh or surface file; nothing written"},
-         {exit_refused, "the morph (or a variant) creates invalid cells; nothing written (see "
-                        "-force)"},
+         {exit_refused, "the morph (or a variant) creates invalid cells, or with morphDict's "
+                        "'newCheckFailures refuse' fails a check the mesh passed; nothing "
+                        "written (see -force)"},
          {exit_fit_failed, "the deformation could not be fitted; nothing written"},
          {exit_internal_error, "unexpected internal error"}});
     if (const std::optional<int> code = parse_command_line(options, argc, argv, out))

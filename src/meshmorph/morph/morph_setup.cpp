@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <tuple>
+#include <type_traits>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/io/foam_dictionary.h"
@@ -58,6 +59,24 @@ Vector3 read_scale_factor(const io::FoamEntry& f)
     return f.get<Vector3>();
 }
 
+//! `value`, or an error naming the keyword `key` of `d` (its line) when it is not finite.
+template <class T> T finite(const io::FoamDictionary& d, const std::string& key, const T& value)
+{
+    bool ok = false;
+    if constexpr (std::is_same_v<T, double>)
+        ok = std::isfinite(value);
+    else
+        ok = value.allFinite();
+    if (!ok)
+        throw d.entry(key).error("not a finite number (NaN or inf)");
+    return value;
+}
+
+template <class T> T get_finite(const io::FoamDictionary& d, const std::string& key)
+{
+    return finite<T>(d, key, d.get<T>(key));
+}
+
 //! The parameters of `m.type` from its entry (keywords checked first; `other` are allowed
 //! besides the type's own).
 void read_motion_parameters(const io::FoamDictionary& d, Motion& m,
@@ -70,18 +89,18 @@ void read_motion_parameters(const io::FoamDictionary& d, Motion& m,
     switch (m.type)
     {
     case MotionType::translate:
-        m.vector = d.get<Vector3>("vector");
+        m.vector = get_finite<Vector3>(d, "vector");
         break;
     case MotionType::rotate:
-        m.origin = d.get<Vector3>("origin");
-        m.axis = d.get<Vector3>("axis");
-        m.angle_degrees = d.get<double>("angle");
+        m.origin = get_finite<Vector3>(d, "origin");
+        m.axis = get_finite<Vector3>(d, "axis");
+        m.angle_degrees = get_finite<double>(d, "angle");
         if (m.axis.norm() == 0.0)
             throw d.entry("axis").error("rotation axis must not be zero");
         break;
     case MotionType::scale:
-        m.origin = d.get<Vector3>("origin");
-        m.factor = read_scale_factor(d.entry("factor"));
+        m.origin = get_finite<Vector3>(d, "origin");
+        m.factor = finite<Vector3>(d, "factor", read_scale_factor(d.entry("factor")));
         break;
     case MotionType::surface:
         m.file = d.get<std::string>("file");
