@@ -92,7 +92,7 @@ def empty_normal_axis(case):
 def plane_of(points):
     """(centroid, unit normal) of the best-fit plane of points."""
     centroid = points.mean(axis=0)
-    return centroid, np.linalg.svd(points - centroid)[2][-1]
+    return centroid, np.linalg.svd(points - centroid, full_matrices=False)[2][-1]
 
 
 def wedge_axis_point(case, centre):
