@@ -80,13 +80,15 @@ def patch_coordinates(case, name):
     return case.initial_points[case.patch_points(name)]
 
 
-def empty_normal_axis(case):
-    """The coordinate axis the empty planes are normal to, or None (3D)."""
-    for name, p in case.patches.items():
-        if p["type"] == "empty" and p["nFaces"] > 0:
-            spread = np.ptp(patch_coordinates(case, name), axis=0)
-            return int(np.argmin(spread))
-    return None
+def empty_normal_axis(check_mesh_log):
+    """The coordinate axis a 2D case's empty planes are normal to, as checkMesh finds it
+    ("Mesh has 2 solution (non-empty) directions (1 0 1)": y), or None (3D, or 1D)."""
+    m = re.search(r"Mesh has 2 solution \(non-empty\) directions \((-?\d+) (-?\d+) (-?\d+)\)",
+                  check_mesh_log)
+    if not m:
+        return None
+    empty = [k for k in range(3) if int(m.group(k + 1)) != 1]
+    return empty[0] if len(empty) == 1 else None
 
 
 def plane_of(points):
@@ -152,18 +154,17 @@ def main():
     on_axis = wedge_axis_point(case, centre)
     if on_axis is not None:
         centre = on_axis
-    axis = empty_normal_axis(case)
     instance = case.time
+    region = ["-region", a.region] if a.region else []
+    check = ["checkMesh", "-case", a.case] + region
+    before_rc, before_log, _, _ = run(check + ["-time", instance], a.timeout,
+                                      os.path.join(a.out, "checkMesh.before.log"))
+    axis = empty_normal_axis(before_log)
     result.update(patch=patch, patch_faces=faces, points=case.n_points, cells=case.n_cells,
                   instance=instance, two_d=axis is not None)
     dict_path = os.path.abspath(os.path.join(a.out, "morphDict"))
     with open(dict_path, "w") as f:
         f.write(morph_dict(patch, centre, axis))
-
-    region = ["-region", a.region] if a.region else []
-    check = ["checkMesh", "-case", a.case] + region
-    before_rc, before_log, _, _ = run(check + ["-time", instance], a.timeout,
-                                      os.path.join(a.out, "checkMesh.before.log"))
     json_path = os.path.join(a.out, "morph.json")
     morph = [a.morph_mesh, "-case", a.case, "-dict", dict_path, "-json", json_path] + region
     if a.latest_time:
