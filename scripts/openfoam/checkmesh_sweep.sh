@@ -532,7 +532,7 @@ mkdir -p "$out_dir/cases"
 grep '^skip' <<<"$work_list" | cut -f2- >"$out_dir/skipped.tsv" || true
 {
     echo "tutorials	$tutorials"
-    echo "checker	$checker"
+    if [[ $morph == 1 ]]; then echo "morphMesh	$morph_mesh"; else echo "checker	$checker"; fi
     echo "options	${cases_regex:+-cases $cases_regex }$([[ $all == 1 ]] && echo -all)"
     echo "started	$(date -u +%Y-%m-%dT%H:%M:%SZ)"
 } >"$out_dir/sweep.tsv"

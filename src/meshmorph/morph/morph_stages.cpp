@@ -114,11 +114,10 @@ std::vector<std::pair<std::string, Index>> new_failed_checks(const QualityReport
     return out;
 }
 
-//! Checks the morph makes fail: a warning each, and with `newCheckFailures refuse` the
+//! result.new_failed_checks said: a warning each, and with `newCheckFailures refuse` the
 //! reason to refuse. \return that reason, or "".
-std::string judge_new_failures(const MorphCase& in, MorphResult& result)
+std::string judged_new_failures(const MorphCase& in, const MorphResult& result)
 {
-    result.new_failed_checks = new_failed_checks(result.before, result.after);
     std::string list;
     for (const auto& [name, count] : result.new_failed_checks)
     {
@@ -135,6 +134,16 @@ std::string judge_new_failures(const MorphCase& in, MorphResult& result)
         return {};
     return "the morphed mesh fails checks it passed before (" + list +
            ") and the morphDict says 'newCheckFailures refuse'";
+}
+
+//! Checks the morph makes fail, judged on the master and told to every rank.
+std::string judge_new_failures(const MorphCase& in, MorphResult& result)
+{
+    // The master holds the whole report in a -parallel run: its verdict is every rank's.
+    const parallel::Communicator& comm = parallel::Communicator::world();
+    if (comm.master())
+        result.new_failed_checks = new_failed_checks(result.before, result.after);
+    return comm.broadcast(judged_new_failures(in, result));
 }
 
 //! The before/after table; then whether the result is refused (true: write nothing).
