@@ -35,6 +35,12 @@ struct Resolved
     Index rotation = -1; //!< value of a rotate entry: index into the rotations
 };
 
+//! A value stays in a slip (or wedge) plane when its normal part is below this fraction of
+//! it: 10x patch_plane's planarity tolerance, so a translation along a wedge's axis written
+//! to 6 digits stays within both planes. Conflict resolution and the refusal of motions
+//! that leave a wedge plane (prescription_checks.h) use it alike.
+constexpr double in_plane_fraction = 1e-5;
+
 struct ResolveSettings
 {
     ConflictRule rule = ConflictRule::fixed;

@@ -19,9 +19,6 @@ namespace
 // Prescriptions of a point that differ by at most this fraction of its shortest boundary
 // edge agree "to the mesh's resolution" (conflict_resolution.h).
 constexpr double near_agreement_fraction = 0.1;
-// A value stays in a slip plane when its normal part is below this, relative to the value:
-// 10x patch_plane's planarity tolerance.
-constexpr double in_plane_tolerance = 1e-5;
 
 //! "inlet/wall": the patches of the claims, sorted and joined.
 std::string patch_conflict_name(const PolyMesh& mesh, const std::vector<const Claim*>& claims)
@@ -99,7 +96,7 @@ Resolution resolve_boundary(const PolyMesh& mesh, const MorphSetup& setup,
     ResolveSettings s;
     s.rule = setup.conflicts;
     s.agree_tolerance = agree_tol;
-    s.in_plane_tolerance = in_plane_tolerance;
+    s.in_plane_tolerance = in_plane_fraction;
     s.shortest_edges = &edges;
     s.near_agreement = near_agreement_fraction;
     s.conflict_name = [&](const std::vector<const Claim*>& c)

@@ -37,7 +37,4 @@ std::vector<CyclicPointPair> cyclic_point_pairs(const PolyMesh& mesh);
 void couple_cyclic_prescriptions(const PolyMesh& mesh, const std::vector<CyclicPointPair>& pairs,
                                  double tolerance, Constraints& c);
 
-//! \brief The mean of each unprescribed pair's displacements, in each one's frame.
-void coupled_mean(const std::vector<CyclicPointPair>& pairs, Points& displacement);
-
 } // namespace meshmorph::morph

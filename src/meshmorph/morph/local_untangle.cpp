@@ -92,6 +92,14 @@ double cell_quality(const PolyMesh& mesh, const CompactList& cell_faces, const M
     return q;
 }
 
+//! A cell the repair must raise: below its target (and not invalid from the start).
+bool below_target(const PolyMesh& mesh, const CompactList& cell_faces, const MeshGeometry& g,
+                  const std::vector<double>& targets, Index c)
+{
+    const double target = targets[static_cast<std::size_t>(c)];
+    return target > left_alone && cell_quality(mesh, cell_faces, g, c) < target;
+}
+
 //! Inverse of cell_points: the cells around each point.
 CompactList point_cells(Index n_points, const CompactList& cell_points)
 {
@@ -178,11 +186,9 @@ public:
     }
 
 private:
-    //! A cell the repair must raise: below its target (and not invalid from the start).
     bool below_target(Index c) const
     {
-        const double target = targets_[static_cast<std::size_t>(c)];
-        return target > left_alone && cell_quality(mesh_, cell_faces_, g_, c) < target;
+        return morph::below_target(mesh_, cell_faces_, g_, targets_, c);
     }
 
     //! How many watched cells satisfy `pred`: the region's and every cell a moved point
@@ -396,11 +402,8 @@ std::vector<Index> cells_below_target(const PolyMesh& mesh, const CompactList& c
 {
     std::vector<Index> cells;
     for (Index c = 0; c < cell_faces.size(); ++c)
-    {
-        const double target = targets[static_cast<std::size_t>(c)];
-        if (target > left_alone && cell_quality(mesh, cell_faces, g, c) < target)
+        if (below_target(mesh, cell_faces, g, targets, c))
             cells.push_back(c);
-    }
     return cells;
 }
 

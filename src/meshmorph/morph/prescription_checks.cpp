@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/morph/conflict_resolution.h"
 
 namespace meshmorph::morph
 {
@@ -73,8 +74,8 @@ void check_size(const MorphSetup& setup, const Asker& a, const Claim& c, double 
     }
 }
 
-//! The largest normal and in-plane parts of each asker's claims, per asker (keyed by the
-//! claim's source and whether it is a handle).
+//! The largest normal and in-plane parts of one asker's claims (indexed by claim.source:
+//! the patch, or the handle).
 struct PlaneParts
 {
     double normal = 0.0, in_plane = 0.0;
@@ -105,8 +106,7 @@ void check_2d(const MorphSetup& setup, const Asker& a, const PlaneParts& parts,
 
 void check_claims(const MorphSetup& setup, const std::vector<Claim>& claims,
                   const std::optional<EmptyPlanes>& planes, double diagonal, double tolerance,
-                  std::size_t n_askers, const std::function<Asker(const Claim&)>& asker_of,
-                  const std::function<std::size_t(const Claim&)>& index_of)
+                  std::size_t n_askers, const std::function<Asker(const Claim&)>& asker_of)
 {
     std::vector<PlaneParts> parts(n_askers);
     for (const Claim& c : claims)
@@ -118,7 +118,7 @@ void check_claims(const MorphSetup& setup, const std::vector<Claim>& claims,
             check_size(setup, asker_of(c), c, diagonal);
         if (!planes)
             continue;
-        PlaneParts& p = parts[index_of(c)];
+        PlaneParts& p = parts[static_cast<std::size_t>(c.source)];
         const double normal = std::abs(c.value.dot(planes->normal));
         p.in_plane = std::max(p.in_plane, planes->in_plane(c.value).norm());
         if (p.worst == nullptr || normal > p.normal)
@@ -133,10 +133,6 @@ void check_claims(const MorphSetup& setup, const std::vector<Claim>& claims,
                 check_2d(setup, asker_of(*p.worst), p, *planes, tolerance);
 }
 
-//! A motion leaves a wedge plane when its normal part exceeds this fraction of itself (the
-//! tolerance to which conflict resolution finds a value within a slip plane: a translation
-//! along the axis written to 6 digits stays within both planes).
-constexpr double wedge_in_plane_fraction = 1e-5;
 //! Of the largest claimed motion: what round-off of the closed-form motions leaves.
 constexpr double round_off_fraction = 1e-9;
 
@@ -163,7 +159,7 @@ void check_wedge_planes(const PolyMesh& mesh, const MorphSetup& setup,
                 if (c.kind != Claim::Kind::value)
                     continue;
                 const double off = std::abs(c.value.dot(wedge.value));
-                if (off <= wedge_in_plane_fraction * c.value.norm() + tolerance)
+                if (off <= in_plane_fraction * c.value.norm() + tolerance)
                     continue;
                 std::ostringstream o;
                 o.precision(3);
@@ -203,14 +199,10 @@ void check_prescriptions(const PolyMesh& mesh, const MorphSetup& setup,
     const double negligible =
         tolerance +
         round_off_fraction * std::max(largest_claim(claims), largest_claim(handle_claims));
-    check_claims(
-        setup, claims, planes, diagonal, negligible, mesh.patches.size(),
-        [&](const Claim& c) { return boundary_asker(mesh, setup, c); },
-        [](const Claim& c) { return static_cast<std::size_t>(c.source); });
-    check_claims(
-        setup, handle_claims, planes, diagonal, negligible, setup.handles.size(),
-        [&](const Claim& c) { return handle_asker(setup, c); },
-        [](const Claim& c) { return static_cast<std::size_t>(c.source); });
+    check_claims(setup, claims, planes, diagonal, negligible, mesh.patches.size(),
+                 [&](const Claim& c) { return boundary_asker(mesh, setup, c); });
+    check_claims(setup, handle_claims, planes, diagonal, negligible, setup.handles.size(),
+                 [&](const Claim& c) { return handle_asker(setup, c); });
     check_wedge_planes(mesh, setup, claims, negligible);
 }
 

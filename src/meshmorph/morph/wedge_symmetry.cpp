@@ -6,11 +6,13 @@
 #include <cmath>
 #include <limits>
 #include <span>
+#include <tuple>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
 #include "meshmorph/deform/uniform_grid.h"
+#include "meshmorph/mesh/wedge_geometry.h"
 
 namespace meshmorph::morph
 {
@@ -18,8 +20,8 @@ namespace meshmorph::morph
 namespace
 {
 
-//! A wedge plane: the points of its patch, their mean, and the unit normal (the mean of
-//! the faces' unit normals: the wedge's own planes are exact, so any average will do).
+//! A wedge plane: the points of its patch, their mean, and the unit normal (as OpenFOAM's
+//! wedgePolyPatch finds it: the mean of the faces' unit normals, wedge_geometry.h).
 struct WedgePlane
 {
     Index patch = -1;
@@ -37,21 +39,7 @@ WedgePlane wedge_plane(const PolyMesh& mesh, Index k)
     for (Index p : w.points)
         w.centroid += mesh.points.row(p).transpose();
     w.centroid /= double(std::max<std::size_t>(w.points.size(), 1));
-    for (Index f = patch.start_face; f < patch.start_face + patch.n_faces; ++f)
-    {
-        // Newell's normal of the face (degenerate axis faces add nothing).
-        const std::span<const Index> face = mesh.faces[f];
-        Vector3 n = Vector3::Zero();
-        for (std::size_t i = 0; i < face.size(); ++i)
-        {
-            const Vector3 a = mesh.points.row(face[i]).transpose();
-            const Vector3 b = mesh.points.row(face[(i + 1) % face.size()]).transpose();
-            n += a.cross(b);
-        }
-        if (n.norm() > 0.0)
-            w.normal += n.normalized();
-    }
-    w.normal.normalize();
+    w.normal = wedge_geometry(mesh, k).normal.normalized();
     return w;
 }
 
@@ -101,19 +89,12 @@ std::vector<double> shortest_edges(const PolyMesh& mesh, const Patch& patch)
 
 void WedgeSymmetry::apply(Points& d) const
 {
-    for (const CyclicPointPair& pair : pairs)
-    {
-        const Vector3 a = d.row(pair.point).transpose();
-        const Vector3 b = pair.to_partner.transpose() * d.row(pair.partner).transpose();
-        Vector3 mean = 0.5 * (a + b);
-        mean -= mean.dot(normal) * normal;
-        d.row(pair.point) = mean.transpose();
-        d.row(pair.partner) = (pair.to_partner * mean).transpose();
-    }
+    // Within its own plane first: the pair's mean (linear) then lies in both.
+    for (const auto& [p, n] : plane_points)
+        d.row(p) -= d.row(p).dot(n.transpose()) * n.transpose();
+    coupled_mean(pairs, d);
     for (Index p : axis_points)
         d.row(p) = d.row(p).dot(axis.transpose()) * axis.transpose();
-    for (const auto& [p, n] : lone_points)
-        d.row(p) -= d.row(p).dot(n.transpose()) * n.transpose();
 }
 
 std::optional<WedgeSymmetry> find_wedge_symmetry(const PolyMesh& mesh)
@@ -128,10 +109,7 @@ std::optional<WedgeSymmetry> find_wedge_symmetry(const PolyMesh& mesh)
     if (!(ref.normal.cross(other.normal).norm() > 1e-9)) // parallel: not a wedge pair
         return std::nullopt;
     WedgeSymmetry s;
-    s.reference_patch = ref.patch;
-    s.other_patch = other.patch;
     std::tie(s.origin, s.axis) = common_axis(ref, other);
-    s.normal = ref.normal;
     const Vector3 r_ref = radial(ref, s.origin, s.axis), r_other = radial(other, s.origin, s.axis);
     const double angle = std::atan2(s.axis.dot(r_other.cross(r_ref)), r_other.dot(r_ref));
     s.to_reference = Eigen::AngleAxisd(angle, s.axis).toRotationMatrix();
@@ -151,13 +129,13 @@ std::optional<WedgeSymmetry> find_wedge_symmetry(const PolyMesh& mesh)
         if (std::isfinite(edges[std::size_t(p)]))
             largest = std::max(largest, edges[std::size_t(p)]);
     const detail::UniformGrid grid(ref_positions, std::max(largest, 1e-300));
-    std::vector<char> paired(std::size_t(mesh.n_points()), 0);
+    std::vector<char> on_axis(std::size_t(mesh.n_points()), 0);
     for (Index p : other.points)
     {
         if (on_ref[std::size_t(p)])
         {
             s.axis_points.push_back(p);
-            paired[std::size_t(p)] = 1;
+            on_axis[std::size_t(p)] = 1;
             continue;
         }
         const Vector3 x = mesh.points.row(p).transpose();
@@ -176,18 +154,15 @@ std::optional<WedgeSymmetry> find_wedge_symmetry(const PolyMesh& mesh)
                                      best = i;
                                  }
                              });
+        s.plane_points.emplace_back(p, other.normal);
         if (best < 0)
-        {
-            s.lone_points.emplace_back(p, other.normal);
-            continue;
-        }
-        const Index partner = ref.points[std::size_t(best)];
-        s.pairs.push_back({partner, p, s.to_reference.transpose(), ref.patch});
-        paired[std::size_t(partner)] = paired[std::size_t(p)] = 1;
+            continue; // a lone point: it only keeps within its plane
+        s.pairs.push_back(
+            {ref.points[std::size_t(best)], p, s.to_reference.transpose(), ref.patch});
     }
     for (Index p : ref.points)
-        if (!paired[std::size_t(p)])
-            s.lone_points.emplace_back(p, ref.normal);
+        if (!on_axis[std::size_t(p)])
+            s.plane_points.emplace_back(p, ref.normal);
     return s;
 }
 

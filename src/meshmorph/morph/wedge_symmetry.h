@@ -26,21 +26,20 @@ namespace meshmorph::morph
 
 struct WedgeSymmetry
 {
-    Index reference_patch = -1, other_patch = -1; //!< the two wedge patches
-    Vector3 origin = Vector3::Zero();             //!< a point of the axis
-    Vector3 axis = Vector3::UnitX();              //!< unit direction of the axis
-    Vector3 normal = Vector3::UnitZ();            //!< unit normal of the reference plane
+    Vector3 origin = Vector3::Zero(); //!< a point of the axis
+    Vector3 axis = Vector3::UnitX();  //!< unit direction of the axis
     //! Rotation about the axis taking the other plane onto the reference plane.
     Eigen::Matrix3d to_reference = Eigen::Matrix3d::Identity();
     //! A point of the reference plane and its partner on the other (to_partner: the
     //! rotation from the reference plane to the other).
     std::vector<CyclicPointPair> pairs;
     std::vector<Index> axis_points; //!< on both planes
-    //! Points of one plane without a partner (a mesh that is not a clean extrusion), with
-    //! the normal of their plane: they only keep their motion within it.
-    std::vector<std::pair<Index, Vector3>> lone_points;
+    //! Every point of either plane but the axis, with the unit normal of its plane (points
+    //! without a partner, in a mesh that is not a clean extrusion, only keep within it).
+    std::vector<std::pair<Index, Vector3>> plane_points;
 
-    //! Make `d` axisymmetric: pairs to their in-plane mean, axis points along the axis.
+    //! Make `d` axisymmetric: within each plane, pairs to their mean, axis points along the
+    //! axis.
     void apply(Points& d) const;
 };
 
