@@ -37,6 +37,8 @@ required=(build-essential cmake g++ git libeigen3-dev libvtk9-dev libopenblas-de
 # The Python module (pybind11, Debian's python3 and numpy), its tests (pytest) and the
 # tutorials/python example (SciPy's optimisers).
 required+=(python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-scipy)
+# pip's route for the module (pyproject.toml: setuptools and wheel, no build isolation, venv).
+required+=(python3-pip python3-venv python3-setuptools python3-wheel)
 # Oracle tests compare with OpenFOAM v1912 (Debian) and use its tutorials and gmsh.
 if [[ $with_openfoam == 1 ]]; then
     required+=(openfoam openfoam-examples gmsh)

@@ -2,9 +2,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Set-up and the pipe tutorial in one command: installs the dependencies
 # (scripts/install-deps.sh), configures the `release` preset into build/release, builds
-# meshMorph's applications and its Python module with 2 jobs, makes the system python3
-# import the module (scripts/install-python.sh) and runs tutorials/pipe/Allrun (logs in
-# tutorials/pipe/log.*; tutorials/pipe/Allclean removes them).
+# meshMorph's applications and its Python module with 2 jobs, installs the module with pip
+# into the venv .venv (scripts/install-python.sh; `.venv/bin/python` imports it) and runs
+# tutorials/pipe/Allrun (logs in tutorials/pipe/log.*; tutorials/pipe/Allclean removes them).
 # Usage: scripts/run-pipe.sh [--no-openfoam]
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -31,8 +31,8 @@ cmake --preset release
 step "Building ${targets[*]} (preset release, 2 jobs)"
 cmake --build --preset release --target "${targets[@]}"
 
-step "Installing the Python module for $(command -v /usr/bin/python3)"
-bash scripts/install-python.sh build/release
+step "Installing the Python module with pip into .venv (from /usr/bin/python3, system site packages)"
+bash scripts/install-python.sh --build-dir build/release
 
 step "Running tutorials/pipe/Allrun"
 bash tutorials/pipe/Allclean

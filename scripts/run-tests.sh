@@ -6,6 +6,8 @@
 # (Release, -Werror) into build/ci, builds with 2 jobs and runs every CTest test (unit, OpenFOAM oracle and tutorial tests) with 2 jobs
 # and OMP_NUM_THREADS=2, then the deform, morph and app tests once more with another
 # OpenBLAS kernel (OPENBLAS_CORETYPE=SandyBridge, or Haswell where SandyBridge was the first).
+# Then the Python module installed with pip into a fresh venv (build/pip-venv; its CMake build
+# in build/pip/) and tests/python run against that copy from outside the source tree.
 # Then the `asan` preset (clang, ASan + UBSan, Debug) into build/asan: the same tests except
 # those labelled openfoam or tutorial, with OMP_NUM_THREADS=1, and each fuzz target 5 s over its
 # seeds (scripts/fuzz.sh).
@@ -23,7 +25,7 @@ for arg in "$@"; do
     case "$arg" in
         --no-openfoam) deps_args+=(--no-openfoam) ;;
         --no-asan) with_asan=0 ;;
-        -h|--help) sed -n '3,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '3,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "run-tests.sh: unknown option '$arg' (try --help)" >&2; exit 2 ;;
     esac
 done
@@ -65,6 +67,24 @@ OPENBLAS_CORETYPE=$other_kernel OMP_NUM_THREADS=2 ctest --preset ci -L 'deform|m
     tee build/ci/ctest-kernel.log || kernel_status=$?
 [[ $status -eq 0 ]] && status=$kernel_status
 
+# The Python module as users get it: pip into a fresh venv (the whole CMake build of
+# setup.py, in build/pip/), then its tests against that copy, run from / so that neither the
+# source tree nor build/ci can stand in for it (the applications they compare with: build/ci).
+step "Installing the Python module with pip into a fresh venv (build/pip-venv) and testing that copy"
+venv=$PWD/build/pip-venv
+rm -rf "$venv"
+/usr/bin/python3 -m venv --system-site-packages "$venv"
+pip_status=0
+"$venv/bin/python" -m pip install --no-build-isolation --no-index "$PWD" 2>&1 |
+    tee build/pip-install.log || pip_status=$?
+if [[ $pip_status -eq 0 ]]; then
+    (cd / && MESHMORPH_EXPECT_INSTALLED=1 MESHMORPH_BUILD_DIR=$OLDPWD/build/ci OMP_NUM_THREADS=2 \
+        PYTHONDONTWRITEBYTECODE=1 "$venv/bin/python" -m pytest -q -p no:cacheprovider \
+        --basetemp="$venv/pytest" "$OLDPWD/tests/python") 2>&1 | tee build/pip-pytest.log ||
+        pip_status=$?
+fi
+[[ $status -eq 0 ]] && status=$pip_status
+
 asan_status=0
 if [[ $with_asan == 1 ]]; then
     asan_start=$SECONDS
@@ -89,6 +109,8 @@ step "Summary"
 sed -n '/tests passed/,$p' build/ci/ctest.log
 echo "again with OPENBLAS_CORETYPE=$other_kernel:"
 sed -n '/tests passed/,$p' build/ci/ctest-kernel.log
+echo "the pip-installed module (build/pip-pytest.log):"
+tail -n 1 build/pip-pytest.log 2>/dev/null || echo "not tested: pip install failed (build/pip-install.log)"
 if [[ $with_asan == 1 ]]; then
     echo "asan (ASan + UBSan):"
     sed -n '/tests passed/,$p' build/asan/ctest.log

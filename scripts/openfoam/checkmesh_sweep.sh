@@ -121,7 +121,8 @@ if [[ $list == 0 && $morph == 1 ]]; then
     [[ -x $morph_mesh ]] || die "morphMesh not found at '$morph_mesh' (build it: cmake --preset release && cmake --build build/release -j2)"
     morph_mesh=$(cd "$(dirname "$morph_mesh")" && pwd)/$(basename "$morph_mesh")
     morph_python_path=$(cd "$(dirname "$morph_mesh")/../.." && pwd)/python
-    [[ -d $morph_python_path/meshmorph ]] || die "no Python module in $morph_python_path (build the preset with MESHMORPH_WITH_PYTHON)"
+    compgen -G "$morph_python_path/meshmorph/_core*.so" > /dev/null ||
+        die "no Python module in $morph_python_path (build its target meshmorph_python: cmake --build $(dirname "$morph_python_path") --target meshmorph_python)"
 elif [[ $list == 0 ]]; then
     [[ -x $checker ]] || die "checkMeshQuality not found at '$checker' (build it: cmake --preset release && cmake --build build/release -j2 --target checkMeshQuality)"
     checker=$(cd "$(dirname "$checker")" && pwd)/$(basename "$checker")

@@ -18,8 +18,17 @@ Log lines go to Python's logging (logger "meshmorph"; logging.basicConfig(level=
 shows morphMesh's log). Errors raise meshmorph.Error and its kinds ParseError,
 InputError, IoError and SolverError with the applications' messages. See docs/python.md.
 """
-from ._core import (Case, DesignStudy, Error, InputError, IoError, ParseError,  # noqa: F401
-                    SolverError, setup_design)
+from ._requirements import core_not_loading, missing_numpy
+
+# Raised here, so that the traceback is one line of this file above the message.
+if missing_numpy():
+    raise ImportError(missing_numpy())
+try:
+    from ._core import (Case, DesignStudy, Error, InputError, IoError, ParseError,  # noqa: F401
+                        SolverError, setup_design)
+except ImportError as error:
+    raise ImportError(core_not_loading(error)) from None
+from ._build_info import VERSION as __version__  # noqa: E402
 from .idwarp import USMesh  # noqa: F401
 
 __all__ = ["Case", "DesignStudy", "setup_design", "USMesh", "Error", "ParseError",

@@ -14,6 +14,7 @@
 #include "meshmorph/core/config.h"
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
+#include "meshmorph/core/number_format.h"
 #include "meshmorph/io/case_instance.h"
 #include "meshmorph/io/decomposed_case.h"
 #include "meshmorph/io/foam_dictionary.h"
@@ -24,7 +25,6 @@
 #include "meshmorph/quality/parallel_report.h"
 #include "meshmorph/quality/quality_json.h"
 #if MESHMORPH_WITH_VTK
-#include "meshmorph/core/number_format.h"
 #include "meshmorph/io/vtk_writer.h"
 #endif
 

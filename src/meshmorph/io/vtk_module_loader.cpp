@@ -37,16 +37,18 @@ VtkSerialise load_from(const std::string& path, std::string& why)
     return reinterpret_cast<VtkSerialise>(entry);
 }
 
-//! Where the module may be: the build tree (a build is run from there), beside an installed
-//! executable (<prefix>/bin/../lib/meshmorph, wherever the prefix was moved or installed
-//! to), the configured installation.
+//! Where the module may be: beside an installed executable (<prefix>/bin/../lib/meshmorph,
+//! wherever the prefix was moved or installed to; first, so that an installed executable
+//! never loads the module of the build tree it came from), the build tree (a build is run
+//! from there), the configured installation.
 std::vector<std::filesystem::path> module_candidates()
 {
-    std::vector<std::filesystem::path> paths{MESHMORPH_VTK_MODULE_BUILD_PATH};
+    std::vector<std::filesystem::path> paths;
     std::error_code ec;
     const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
     if (!ec)
         paths.push_back(exe.parent_path().parent_path() / MESHMORPH_VTK_MODULE_INSTALL_SUBPATH);
+    paths.emplace_back(MESHMORPH_VTK_MODULE_BUILD_PATH);
     paths.emplace_back(MESHMORPH_VTK_MODULE_INSTALL_PATH);
     return paths;
 }
