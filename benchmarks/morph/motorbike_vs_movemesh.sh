@@ -51,7 +51,7 @@ marker=.motorbike_vs_movemesh   # marks the run directories this script may dele
 usage() {
     cat <<EOF
 usage: $foam_script_name [-cache DIR] [-morphMesh PATH] [-lifts "F ..."] [-scaling]
-                          [-factors "K ..."] [-rbf "KEYS"] [-out DIR]
+                          [-factors "K ..."] [-rbf "KEYS"] [-keys "ENTRIES"] [-out DIR]
 
   -cache DIR        the full motorBike case (scripts/openfoam/motorbike.sh DIR full); built
                     there when missing (minutes), reused when present, never modified
@@ -70,6 +70,8 @@ usage: $foam_script_name [-cache DIR] [-morphMesh PATH] [-lifts "F ..."] [-scali
   -factors "K ..."  block count factors for -scaling (default "1 1.26 1.59 2"; 1 = the cache)
   -rbf "KEYS"       morphDict's rbf sub-dictionary, e.g. "greedy { spread 1; jumpSlope 1; }"
                     (default: none, morphMesh's defaults)
+  -keys "ENTRIES"   more top-level morphDict entries for both morphMesh rows, e.g.
+                    "jumpSmoothing yes;" (default: none)
   -out DIR          results: results.{md,csv,json} (lifts) or scaling.{md,csv,json,png},
                     and the runs in DIR/runs (default $root/build/bench/motorbike)
   -help             this text
@@ -86,6 +88,7 @@ lifts="0.05 0.09 0.135"
 factors="1 1.26 1.59 2"
 scaling=false
 rbf_keys=""
+extra_keys=""
 out=$root/build/bench/motorbike
 while [[ $# -gt 0 ]]; do
     case $1 in
@@ -95,6 +98,7 @@ while [[ $# -gt 0 ]]; do
         -factors)   [[ $# -ge 2 ]] || usage; factors=$2; shift 2 ;;
         -scaling)   scaling=true; shift ;;
         -rbf)       [[ $# -ge 2 ]] || usage; rbf_keys=$2; shift 2 ;;
+        -keys)      [[ $# -ge 2 ]] || usage; extra_keys=$2; shift 2 ;;
         -out)       [[ $# -ge 2 ]] || usage; out=$2; shift 2 ;;
         -help|--help|-h) usage 0 ;;
         *) echo "$foam_script_name: unknown option '$1'" >&2; usage ;;
@@ -350,6 +354,7 @@ make_morphmesh_case() {
 FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }
 method rbf;
 $conflicts_line
+$extra_keys
 $rbf_line
 boundary
 {

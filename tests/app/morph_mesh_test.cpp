@@ -438,6 +438,36 @@ TEST(MorphMesh, a_wedge_case_keeps_its_symmetry_exactly)
     }
 }
 
+TEST(MorphMesh, jump_smoothing_when_asked_spreads_the_band_and_keeps_the_morph_exact)
+{
+    // The lid lifted against fixed sides (conflicts fixed: its edges stay; the band, 0.1
+    // wide, spans a cell of 1/12 below the rim): the prescription
+    // jumps along the lid's rim. Asked for, the band's free points are smoothed and reported;
+    // by default nothing is.
+    const std::string lid = "boundary { zMax { type translate; vector (0 0 0.2); } }\n";
+    for (const bool asked : {false, true})
+    {
+        const fs::path dir =
+            make_case(asked ? "jump_smoothing" : "no_jump_smoothing",
+                      test::make_box_mesh(24, 24, 12), (asked ? "jumpSmoothing yes;\n" : "") + lid);
+        const RunResult r = run({"-case", dir.string(), "-json", (dir / "morph.json").string()});
+        ASSERT_EQ(r.code, 0) << r.err;
+        const nlohmann::json j = nlohmann::json::parse(read_text(dir / "morph.json"));
+        const int smoothed = j["steps"].back()["jumpSmoothedPoints"].get<int>();
+        if (asked)
+        {
+            EXPECT_GT(smoothed, 0) << r.out;
+            EXPECT_NE(r.out.find("jump smoothing: "), std::string::npos) << r.out;
+        }
+        else
+        {
+            EXPECT_EQ(smoothed, 0);
+        }
+        EXPECT_LE(j["maxConstraintError"].get<double>(), 1e-9 * 0.2);
+        EXPECT_EQ(j["after"]["negativeVolumeCells"].get<int>(), 0);
+    }
+}
+
 TEST(MorphMesh, json_has_the_interface_keys)
 {
     const fs::path dir = make_case("json", test::make_box_mesh(3, 3, 3), lift_top);
@@ -542,6 +572,7 @@ TEST(MorphMesh, every_dictionary_error_names_file_and_entry_and_writes_nothing)
          "handles { roof { pointZone roofPoints; displacement (0 0 0.1); } }",
          {"roofPoints", "roof"}},
         {"bad_conflict_rule", "conflicts maybe;", {"maybe", "conflicts"}},
+        {"bad_jump_smoothing", "jumpSmoothing maybe;", {"maybe", "jumpSmoothing"}},
     };
     for (const BadDict& c : cases)
     {

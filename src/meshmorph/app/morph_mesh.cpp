@@ -54,6 +54,7 @@ std::string morph_json(const morph::MorphResult& result, int exit_status)
                               {"centres", s.centres},
                               {"globalResidual", s.max_global_residual},
                               {"jumpConstraints", s.jump_constraints},
+                              {"jumpSmoothedPoints", s.jump_smoothed_points},
                               {"negativeVolumeCells", s.invalid.negative_volume_cells},
                               {"incorrectlyOrientedFacePyramids", s.invalid.wrong_pyramids},
                               {"untangle",

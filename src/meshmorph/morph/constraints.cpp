@@ -18,6 +18,7 @@ Constraints build_constraints(const PolyMesh& mesh, const MorphSetup& setup,
         return build_distributed_constraints(mesh, setup, inputs, *inputs.decomposition);
     Constraints out;
     out.conflict_rule = setup.conflicts;
+    out.jump_smoothing = setup.jump_smoothing;
     out.patches = inputs.patches != nullptr ? *inputs.patches : assign_patches(mesh, setup);
     out.empty_planes = find_empty_planes(mesh);
     out.wedge = find_wedge_symmetry(mesh);

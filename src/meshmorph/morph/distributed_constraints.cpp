@@ -209,6 +209,7 @@ Constraints build_distributed_constraints(const PolyMesh& mesh, const MorphSetup
     const parallel::Communicator& comm = *decomposition.comm;
     Constraints out;
     out.conflict_rule = setup.conflicts;
+    out.jump_smoothing = setup.jump_smoothing;
     parallel::collective(comm,
                          [&] {
                              out.patches = inputs.patches != nullptr

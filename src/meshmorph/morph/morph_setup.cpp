@@ -239,10 +239,12 @@ MorphSetup read_morph_setup(const io::FoamDictionary& dict)
     setup.dict_path = dict.path();
     // Other top-level entries are allowed when used as $variables (helper entries).
     dict.check_keywords({"method", "rbf", "dmffd", "ffd", "idw", "steps", "untangle", "boundary",
-                         "handles", "conflicts", "designVariables", "newCheckFailures"},
+                         "handles", "conflicts", "designVariables", "newCheckFailures",
+                         "jumpSmoothing"},
                         "morphDict", dict.referenced_variables());
     if (const io::FoamEntry* e = dict.find("conflicts"))
         setup.conflicts = read_conflict_rule(*e);
+    setup.jump_smoothing = dict.get_or<bool>("jumpSmoothing", setup.jump_smoothing);
     if (dict.found("boundary"))
         for (const io::FoamEntry& e : dict.sub_dict("boundary").entries())
             setup.boundary.push_back(read_boundary_entry(e));

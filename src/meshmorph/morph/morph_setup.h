@@ -65,6 +65,9 @@ struct MorphSetup
     std::vector<BoundaryEntry> boundary;
     std::vector<HandleEntry> handles;
     ConflictRule conflicts = ConflictRule::fixed;
+    //! `jumpSmoothing yes | no` (default no: measured on too few cases to be the default, see
+    //! jump_smoothing.h): a Laplacian on the band around jumps of the prescription.
+    bool jump_smoothing = false;
 };
 
 //! \brief The motion of a sub-dictionary entry { type <fixed|translate|...>; <parameters> }

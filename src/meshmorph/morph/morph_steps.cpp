@@ -288,6 +288,7 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         record.max_global_residual =
             m.report.max_fitted_residual / std::max(m.report.max_displacement, 1e-300);
         record.jump_constraints = m.report.jump_constraints;
+        record.jump_smoothed_points = m.jump_smoothing.band_points;
         record.fit_seconds = m.fit_seconds;
         record.evaluate_seconds = m.evaluate_seconds;
         // The fitted field is spent: its memory (the greedy fit's factor, the IDW tree: ~45 MB

@@ -55,6 +55,7 @@ struct StepRecord
     //! fits (all but the jump constraints, which the correction takes up alone).
     double max_global_residual = 0.0;
     Index jump_constraints = 0;
+    Index jump_smoothed_points = 0; //!< free points the jump smoothing set (jump_smoothing.h)
     double fit_seconds = 0.0, evaluate_seconds = 0.0, check_seconds = 0.0;
     InvalidCells invalid;    //!< after the repair, if there was one
     UntangleReport untangle; //!< the repair (invalid_before 0: none was needed)

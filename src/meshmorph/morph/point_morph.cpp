@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
 #include "meshmorph/core/progress.h"
 #include "meshmorph/core/stopwatch.h"
 #include "meshmorph/deform/field_io.h"
@@ -69,6 +70,18 @@ void evaluate_with_progress(const SpaceDeformation& deformation, const Points& x
         deformation.evaluate(x.middleRows(begin, n), out.middleRows(begin, n));
         progress.update(begin + n);
     }
+}
+
+//! smooth_jumps and its log line.
+JumpSmoothing smooth_jumps_logged(const PolyMesh& mesh, const std::vector<Index>& constrained,
+                                  const Points& values, Points& displacement)
+{
+    const JumpSmoothing s = smooth_jumps(mesh, constrained, values, displacement);
+    if (s.band_points > 0)
+        log::info() << "    jump smoothing: " << s.band_points << " points within " << s.width
+                    << " of " << s.jump_constraints << " constraints on jumps (Laplacian, "
+                    << format_seconds(s.seconds) << " s)";
+    return s;
 }
 
 //! The handles a deformation is fitted to.
@@ -372,6 +385,11 @@ PointMorph morph_points_distributed(const PolyMesh& mesh, const Constraints& c,
                                     SpaceDeformation& deformation, bool fit, const Decomposition& d)
 {
     const parallel::Communicator& comm = *d.comm;
+    // Every rank alike, before any communication.
+    if (fit && c.jump_smoothing)
+        throw InvalidInput("morphDict 'jumpSmoothing yes;' is not available with -parallel yet "
+                           "(the band's Laplacian is solved on one process): remove it, or "
+                           "morph the reconstructed case");
     PointMorph result;
     const Points x_eval = evaluation_positions(mesh.points, c);
     const Stopwatch fit_clock;
@@ -446,6 +464,8 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
 
     const Stopwatch eval_clock;
     evaluate_with_progress(deformation, x_eval, result.displacement, "evaluate");
+    if (fit && c.jump_smoothing)
+        result.jump_smoothing = smooth_jumps_logged(mesh, p.points, p.values, result.displacement);
     keep_planes(result.displacement, c);
     coupled_mean(c.cyclic_pairs, result.displacement);
     result.evaluate_seconds = eval_clock.seconds();

@@ -15,6 +15,7 @@
 #include "meshmorph/deform/space_deformation.h"
 #include "meshmorph/morph/constraint_set.h"
 #include "meshmorph/morph/decomposition.h"
+#include "meshmorph/morph/jump_smoothing.h"
 
 namespace meshmorph::morph
 {
@@ -34,8 +35,9 @@ struct PointMorph
     //! round-off of an ill-conditioned direct solve, or the greedy tolerance.
     double max_fit_residual = 0.0;
     double relative_fit_residual = 0.0;
-    bool snapped = false; //!< constrained points were set to their prescriptions
-    FitReport report;     //!< of the final fit
+    bool snapped = false;         //!< constrained points were set to their prescriptions
+    FitReport report;             //!< of the final fit
+    JumpSmoothing jump_smoothing; //!< the band around jumps (serial morphs)
     double fit_seconds = 0.0;
     double evaluate_seconds = 0.0;
 };

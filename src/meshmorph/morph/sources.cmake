@@ -27,6 +27,7 @@ set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/cyclic_coupling.cpp
     meshmorph/morph/duplicate_points.cpp
     meshmorph/morph/distributed_constraints.cpp
+    meshmorph/morph/jump_smoothing.cpp
     meshmorph/morph/point_morph.cpp
     meshmorph/morph/morph_steps.cpp
     meshmorph/morph/local_untangle.cpp
