@@ -5,7 +5,8 @@
 # with -morph, a morph of every such mesh judged by OpenFOAM's checkMesh.
 # Usage: checkmesh_sweep.sh [-cases REGEX] [-out DIR] [-all] [-jobs N] [-keep] [-list]
 #                           [-mesh-timeout S] [-check-timeout S] [-checker PATH]
-#                           [-morph [-morph-mesh PATH]] [-help]
+#                           [-morph [-morph-mesh PATH] [-morph-keys ENTRIES] [-fail-on-silent]]
+#                           [-help]
 #
 #   -morph        the morph sweep instead of the checker comparison: on every mesh the
 #                 smallest wall patch is scaled by 1% about its centre, everything else
@@ -17,6 +18,7 @@
 #   -morph-mesh PATH  morphMesh to test (default build/release/applications/...); the
 #                 Python module beside it (build/<preset>/python) reads the meshes
 #   -fail-on-silent  with -morph: exit 1 when any mesh ends silent or crashed (CI's subset)
+#   -morph-keys ENTRIES  with -morph: more top-level morphDict entries, e.g. "jumpSmoothing yes;"
 #
 #   -cases REGEX  only the tutorials whose path (relative to the tutorials directory,
 #                 e.g. incompressible/icoFoam/cavity/cavity) matches REGEX (extended, as [[ =~ ]])
@@ -77,7 +79,7 @@ usage_error() {
     exit 2
 }
 
-cases_regex='' out_dir='' all=0 jobs=1 keep=0 list=0 morph=0 fail_on_silent=0
+cases_regex='' out_dir='' all=0 jobs=1 keep=0 list=0 morph=0 fail_on_silent=0 morph_keys=
 morph_mesh=$repo_dir/build/release/applications/morphMesh/morphMesh
 mesh_timeout='' check_timeout=600 checker=$repo_dir/build/release/applications/checkMeshQuality/checkMeshQuality
 while [[ $# -gt 0 ]]; do
@@ -97,6 +99,7 @@ while [[ $# -gt 0 ]]; do
     -checker) [[ $# -ge 2 ]] || usage_error "-checker needs a PATH"; checker=$2; shift ;;
     -morph) morph=1 ;;
     -fail-on-silent) fail_on_silent=1 ;;
+    -morph-keys) [[ $# -ge 2 ]] || usage_error "-morph-keys needs ENTRIES"; morph_keys=$2; shift ;;
     -morph-mesh) [[ $# -ge 2 ]] || usage_error "-morph-mesh needs a PATH"; morph_mesh=$2; shift ;;
     *) usage_error "unknown option '$1'" ;;
     esac
@@ -477,7 +480,8 @@ run_case() {
         [[ -z $region ]] || args+=(-region "$region")
         if has_time_mesh "$copy/$case_rel" "$region"; then args+=(-latestTime); fi
         if [[ $morph == 1 ]]; then
-            local margs=("$copy/$case_rel" "$mesh_dir" --morph-mesh "$morph_mesh" --timeout "$check_timeout")
+            local margs=("$copy/$case_rel" "$mesh_dir" --morph-mesh "$morph_mesh" --timeout "$check_timeout"
+                         --keys "$morph_keys")
             [[ -z $region ]] || margs+=(--region "$region")
             if has_time_mesh "$copy/$case_rel" "$region"; then margs+=(--latest-time); fi
             local verdict
@@ -534,6 +538,7 @@ grep '^skip' <<<"$work_list" | cut -f2- >"$out_dir/skipped.tsv" || true
 {
     echo "tutorials	$tutorials"
     if [[ $morph == 1 ]]; then echo "morphMesh	$morph_mesh"; else echo "checker	$checker"; fi
+    [[ -z $morph_keys ]] || echo "morphKeys	$morph_keys"
     echo "options	${cases_regex:+-cases $cases_regex }$([[ $all == 1 ]] && echo -all)"
     echo "started	$(date -u +%Y-%m-%dT%H:%M:%SZ)"
 } >"$out_dir/sweep.tsv"

@@ -112,12 +112,13 @@ def wedge_axis_point(case, centre):
     return on_axis
 
 
-def morph_dict(patch, centre, axis):
+def morph_dict(patch, centre, axis, keys=""):
     factor = [1.01, 1.01, 1.01]
     if axis is not None:
         factor[axis] = 1.0
     vec = lambda v: "(" + " ".join(repr(float(x)) for x in v) + ")"  # noqa: E731
     return ("FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n"
+            + (keys + "\n" if keys else "") +
             "boundary\n{\n"
             f"    \"{patch}\" {{ type scale; origin {vec(centre)}; factor {vec(factor)}; }}\n"
             "}\n")
@@ -131,6 +132,7 @@ def main():
     ap.add_argument("--region", default="")
     ap.add_argument("--latest-time", action="store_true")
     ap.add_argument("--timeout", type=float, default=600)
+    ap.add_argument("--keys", default="", help="more top-level morphDict entries")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     result = {"case": a.case, "region": a.region}
@@ -164,7 +166,7 @@ def main():
                   instance=instance, two_d=axis is not None)
     dict_path = os.path.abspath(os.path.join(a.out, "morphDict"))
     with open(dict_path, "w") as f:
-        f.write(morph_dict(patch, centre, axis))
+        f.write(morph_dict(patch, centre, axis, a.keys))
     json_path = os.path.join(a.out, "morph.json")
     morph = [a.morph_mesh, "-case", a.case, "-dict", dict_path, "-json", json_path] + region
     if a.latest_time:

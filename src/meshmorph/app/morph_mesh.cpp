@@ -155,14 +155,12 @@ int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostr
     return exit_ok;
 }
 
-} // namespace
-
-int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::ostream& err)
+//! morphMesh's options and exit statuses: -help prints them.
+Options morph_mesh_options()
 {
-    const log::SinkScope log_to(log::stream_sink(out, err));
     const std::vector<OptionSpec> vtk =
         vtk_option_specs("morphMesh", "the displacement and quality");
-    Options options(
+    return Options(
         "morphMesh",
         "Morphs the polyMesh of an OpenFOAM case with a space deformation (RBF by default,\n"
         "IDW, DM-FFD or FFD) fitted to the boundary and handle prescriptions of\n"
@@ -214,6 +212,35 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
                         "written (see -force)"},
          {exit_fit_failed, "the deformation could not be fitted; nothing written"},
          {exit_internal_error, "unexpected internal error"}});
+}
+
+//! With -json, the report written before the run starts: until the run ends it says it has
+//! not, so an interrupted run (SIGINT, SIGKILL) leaves no earlier report saying
+//! `written: true`. \return false (after saying why) if the file cannot be written.
+bool write_unfinished_report(const fs::path& json_path)
+{
+    const nlohmann::json unfinished = {
+        {"written", false},
+        {"exitStatus", nullptr},
+        {"error", "the run did not finish (interrupted, killed, or still running)"}};
+    try
+    {
+        io::write_file_atomic(json_path, unfinished.dump(2) + "\n");
+    }
+    catch (const Error& e)
+    {
+        log::error() << "-json: " << e.what() << ". Nothing written.";
+        return false;
+    }
+    return true;
+}
+
+} // namespace
+
+int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::ostream& err)
+{
+    const log::SinkScope log_to(log::stream_sink(out, err));
+    Options options = morph_mesh_options();
     if (const std::optional<int> code = parse_command_line(options, argc, argv, out))
         return *code;
     // -parallel: MPI for the whole run; only the master prints and writes the report.
@@ -248,24 +275,8 @@ int run_morph_mesh(int argc, const char* const argv[], std::ostream& out, std::o
             log::error() << "could not write " << json_path.string() << ": " << e.what();
         }
     };
-    // Until the run ends, the report says it has not: an interrupted run (SIGINT, SIGKILL)
-    // leaves no earlier report saying `written: true`.
-    if (!json_path.empty() && master)
-    {
-        const nlohmann::json unfinished = {
-            {"written", false},
-            {"exitStatus", nullptr},
-            {"error", "the run did not finish (interrupted, killed, or still running)"}};
-        try
-        {
-            io::write_file_atomic(json_path, unfinished.dump(2) + "\n");
-        }
-        catch (const Error& e)
-        {
-            log::error() << "-json: " << e.what() << ". Nothing written.";
-            return exit_input_error;
-        }
-    }
+    if (!json_path.empty() && master && !write_unfinished_report(json_path))
+        return exit_input_error;
     return run_guarded([&] { return morph_mesh_main(options, json_path, report_out); }, true,
                        report_failure);
 }
