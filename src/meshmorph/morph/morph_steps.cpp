@@ -242,6 +242,45 @@ void measure_constraint_error(const Constraints& c, const Points& x0, PointMorph
     m.relative_constraint_error = m.max_constraint_error / std::max(m.max_prescribed, 1e-12 * diag);
 }
 
+namespace
+{
+
+//! One step's fit and evaluation; the record's fit figures set.
+PointMorph fit_step(const PolyMesh& current, const Constraints& step, const DeformationMaker& make,
+                    bool fit, const Decomposition* decomposition, StepRecord& record)
+{
+    std::unique_ptr<SpaceDeformation> deformation =
+        make(bounding_corners(current.points, decomposition));
+    PointMorph m = morph_points(current, step, *deformation, fit, false, decomposition);
+    record.centres = m.report.num_centres;
+    record.max_global_residual =
+        m.report.max_fitted_residual / std::max(m.report.max_displacement, 1e-300);
+    record.jump_constraints = m.report.jump_constraints;
+    record.jump_smoothed_points = m.jump_smoothing.band_points;
+    record.fit_seconds = m.fit_seconds;
+    record.evaluate_seconds = m.evaluate_seconds;
+    // The fitted field is spent when this returns: its memory (the greedy fit's factor, the
+    // IDW tree: ~45 MB on the motorBike) goes to the check's geometry, which would otherwise
+    // take fresh pages from the system (first touches cost ~2 ms per MB on a virtual machine).
+    return m;
+}
+
+//! The trial's check: its geometry, pyramid errors and invalid cells (in the record), after
+//! the repair when `untangle` and it made cells invalid that were not before.
+void check_step(PolyMesh& current, const CompactList& cell_faces, const InvalidCells& before,
+                bool untangle, OriginalState& original, const parallel::Communicator& comm,
+                StepRecord& record, MeshGeometry& geometry, std::vector<char>& pyramid_errors)
+{
+    const Stopwatch check_clock;
+    geometry = compute_geometry(current, cell_faces);
+    record.invalid = global_invalid_cells(current, geometry, comm, pyramid_errors);
+    record.check_seconds = comm.max(check_clock.seconds());
+    if (untangle && record.invalid.worse_than(before))
+        repair(current, cell_faces, geometry, pyramid_errors, original, record, comm);
+}
+
+} // namespace
+
 SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
                             const Constraints& c, const StepSettings& settings,
                             const DeformationMaker& make, bool fit,
@@ -281,32 +320,16 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         else
             record.to = stuck ? 1.0 : std::min(1.0, done + length);
         const Constraints step = step_constraints(c, x0, current.points, record.to);
-        std::unique_ptr<SpaceDeformation> deformation =
-            make(bounding_corners(current.points, decomposition));
-        PointMorph m = morph_points(current, step, *deformation, fit, false, decomposition);
-        record.centres = m.report.num_centres;
-        record.max_global_residual =
-            m.report.max_fitted_residual / std::max(m.report.max_displacement, 1e-300);
-        record.jump_constraints = m.report.jump_constraints;
-        record.jump_smoothed_points = m.jump_smoothing.band_points;
-        record.fit_seconds = m.fit_seconds;
-        record.evaluate_seconds = m.evaluate_seconds;
-        // The fitted field is spent: its memory (the greedy fit's factor, the IDW tree: ~45 MB
-        // on the motorBike) goes to the check's geometry below, which would otherwise take
-        // fresh pages from the system (first touches cost ~2 ms per MB on a virtual machine).
-        deformation.reset();
+        PointMorph m = fit_step(current, step, make, fit, decomposition, record);
         // The check before the morph may still read the mesh: in place, wait for it before
         // the mesh's points change.
         const InvalidCells before = invalid_before();
         add_rows(current.points, m.displacement, 1.0, other);
         std::swap(current.points, other); // current: the trial; other: the accepted state
-        const Stopwatch check_clock;
-        MeshGeometry geometry = compute_geometry(current, cell_faces);
+        MeshGeometry geometry;
         std::vector<char> pyramid_errors;
-        record.invalid = global_invalid_cells(current, geometry, comm, pyramid_errors);
-        record.check_seconds = comm.max(check_clock.seconds());
-        if (settings.untangle && record.invalid.worse_than(before))
-            repair(current, cell_faces, geometry, pyramid_errors, original, record, comm);
+        check_step(current, cell_faces, before, settings.untangle, original, comm, record, geometry,
+                   pyramid_errors);
         const bool failed = record.invalid.worse_than(before);
         const bool redo = failed && is_auto && !stuck && length > shortest * 1.5;
         record.accepted = !redo;
