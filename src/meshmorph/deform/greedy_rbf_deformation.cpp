@@ -599,6 +599,45 @@ std::vector<Eigen::Index> spread_round(std::vector<Eigen::Index> cand, const Eig
     return kept;
 }
 
+//! |model - data| at every constraint, 0 at the jump constraints (never fitted); their
+//! number left out of `n_fitted`.
+Eigen::VectorXd fitted_residuals(const Points& got, const Eigen::MatrixXd& H,
+                                 const CentreMarks& marks, Eigen::Index& n_fitted)
+{
+    Eigen::VectorXd err = (Eigen::MatrixXd(got) - H).rowwise().norm();
+    n_fitted = 0;
+    for (Eigen::Index i = 0; i < err.size(); ++i)
+        if (marks.jump[std::size_t(i)])
+            err[i] = 0.0;
+        else
+            ++n_fitted;
+    return err;
+}
+
+//! The next round's centres among the candidates: a spread batch (GreedySettings::spread)
+//! or the largest residuals, at most `room` of them.
+std::vector<Eigen::Index> next_batch(std::vector<Eigen::Index> cand, const Eigen::VectorXd& err,
+                                     double max_err, double max_disp, const GreedySettings& s,
+                                     const Points& X, const IncrementalSystem& system,
+                                     Eigen::Index centres, Eigen::Index room)
+{
+    // Automatic: half the centres, at most 4096 a round (the new rows and columns of the
+    // factor are r x b and b x b: 4096 keeps them below ~0.7 GB at r = 20000).
+    const Eigen::Index b =
+        s.batch_size > 0 ? s.batch_size : std::clamp<Eigen::Index>(centres / 2, 1, 4096);
+    if (!(s.spread > 0.0))
+    {
+        keep_largest_residuals(cand, err, std::min({b, Eigen::Index(cand.size()), room}));
+        return cand;
+    }
+    std::vector<Eigen::Index> taken(system.unisolvent());
+    taken.insert(taken.end(), system.selected().begin(), system.selected().end());
+    // Above the max tolerance while it is not met; then (the RMS one is not) any.
+    const double floor = max_err > s.tolerance * max_disp ? s.tolerance * max_disp : 0.0;
+    const double unit = s.tolerance > 0.0 ? s.tolerance * max_disp : max_disp;
+    return spread_round(std::move(cand), err, floor, unit, X, taken, std::min(b, room), s.spread);
+}
+
 } // namespace
 
 void GreedyRbfDeformation::prepare(const Eigen::Ref<const Points>& constraints,
@@ -697,13 +736,8 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
     {
         set_model(H);
         d.model.evaluate(Xphys, got);
-        Eigen::VectorXd err = (Eigen::MatrixXd(got) - H).rowwise().norm();
         Eigen::Index n_fitted = 0;
-        for (Eigen::Index i = 0; i < N; ++i)
-            if (marks.jump[std::size_t(i)])
-                err[i] = 0.0;
-            else
-                ++n_fitted;
+        const Eigen::VectorXd err = fitted_residuals(got, H, marks, n_fitted);
         const double max_err = err.maxCoeff();
         const double rms =
             std::sqrt(err.squaredNorm() / double(std::max<Eigen::Index>(n_fitted, 1)));
@@ -748,23 +782,8 @@ Eigen::Index GreedyRbfDeformation::refine(const Points& Xphys, const Eigen::Matr
         const Eigen::Index centres = p + system.size();
         if (centres >= budget)
             return iterations;
-        // Automatic: half the centres, at most 4096 a round (the new rows and columns of the
-        // factor are r x b and b x b: 4096 keeps them below ~0.7 GB at r = 20000).
-        const Eigen::Index b =
-            s.batch_size > 0 ? s.batch_size : std::clamp<Eigen::Index>(centres / 2, 1, 4096);
-        if (s.spread > 0.0)
-        {
-            std::vector<Eigen::Index> taken(system.unisolvent());
-            taken.insert(taken.end(), system.selected().begin(), system.selected().end());
-            // Above the max tolerance while it is not met; then (the RMS one is not) any.
-            const double floor = max_err > s.tolerance * max_disp ? s.tolerance * max_disp : 0.0;
-            const double unit = s.tolerance > 0.0 ? s.tolerance * max_disp : max_disp;
-            cand = spread_round(std::move(cand), err, floor, unit, d.merged.centres, taken,
-                                std::min(b, budget - centres), s.spread);
-        }
-        else
-            keep_largest_residuals(cand, err,
-                                   std::min({b, Eigen::Index(cand.size()), budget - centres}));
+        cand = next_batch(std::move(cand), err, max_err, max_disp, s, d.merged.centres, system,
+                          centres, budget - centres);
         for (Eigen::Index j : cand)
             marks.is_centre[std::size_t(j)] = 1;
         add_centres(system, cand, marks);
