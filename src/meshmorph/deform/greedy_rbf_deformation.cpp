@@ -390,22 +390,16 @@ void keep_largest_residuals(std::vector<Eigen::Index>& cand, const Eigen::Vector
     cand.resize(std::size_t(b));
 }
 
-//! Marks the constraints on a near-discontinuity of the data (jump_band, jump_points) and
-//! returns the band. Pairs farther apart than twice its width cannot jump; nor are pairs
-//! farther apart than 1/20 of the constraints' extent looked at (a change over such a
-//! distance is no near-discontinuity).
+//! Marks the constraints on a near-discontinuity of the data (detail::jump_constraints) and
+//! returns the band.
 detail::JumpBand mark_jumps(const Points& X, const Eigen::MatrixXd& H, const GreedySettings& s,
                             CentreMarks& marks, Index& count)
 {
-    count = 0;
-    if (X.rows() < 2)
-        return {};
-    const detail::JumpBand band = detail::jump_band(X, H, s.jump_slope, s.jump_width);
-    if (!(band.slope > 0.0))
-        return band;
-    const double extent = (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
-    const double reach = std::min(2.0 * band.width, extent / 20.0);
-    marks.jump = detail::jump_points(X, H, band.slope, reach, count);
+    detail::JumpBand band;
+    std::vector<char> jump =
+        detail::jump_constraints(X, H, s.jump_slope, s.jump_width, band, count);
+    if (!jump.empty())
+        marks.jump = std::move(jump);
     return band;
 }
 

@@ -183,4 +183,18 @@ JumpBand jump_band(const Points& x, const Eigen::MatrixXd& values, double max_sl
     return band;
 }
 
+std::vector<char> jump_constraints(const Points& x, const Eigen::MatrixXd& values, double max_slope,
+                                   double min_width, JumpBand& band, Index& count)
+{
+    count = 0;
+    band = {};
+    if (x.rows() < 2)
+        return {};
+    band = jump_band(x, values, max_slope, min_width);
+    if (!(band.slope > 0.0))
+        return {};
+    const double extent = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
+    return jump_points(x, values, band.slope, std::min(2.0 * band.width, extent / 20.0), count);
+}
+
 } // namespace meshmorph::detail

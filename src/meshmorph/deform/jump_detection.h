@@ -45,4 +45,12 @@ struct JumpBand
 JumpBand jump_band(const Points& x, const Eigen::MatrixXd& values, double max_slope,
                    double min_width);
 
+//! The constraints on a jump as a fit leaves them out: jump_points with the slope of
+//! jump_band(x, values, max_slope, min_width). Pairs farther apart than twice the band's
+//! width cannot jump; nor are pairs farther apart than 1/20 of the points' extent looked at
+//! (a change over such a distance is no near-discontinuity). \return the flags (empty when
+//! there is no band or fewer than two points); the band in `band`, the count in `count`.
+std::vector<char> jump_constraints(const Points& x, const Eigen::MatrixXd& values, double max_slope,
+                                   double min_width, JumpBand& band, Index& count);
+
 } // namespace meshmorph::detail

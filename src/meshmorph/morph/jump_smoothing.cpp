@@ -84,20 +84,16 @@ std::vector<Index> jump_seeds(const PolyMesh& mesh, const std::vector<Index>& co
                               const Points& values, double& width)
 {
     width = 0.0;
-    if (constrained.size() < 2)
-        return {};
     Points x(values.rows(), 3);
     for (std::size_t i = 0; i < constrained.size(); ++i)
         x.row(Eigen::Index(i)) = mesh.points.row(constrained[i]);
     const GreedySettings defaults;
-    const detail::JumpBand band =
-        detail::jump_band(x, values, defaults.jump_slope, defaults.jump_width);
-    if (!(band.slope > 0.0))
-        return {};
-    const double extent = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
+    detail::JumpBand band;
     Index count = 0;
-    const std::vector<char> jump = detail::jump_points(
-        x, values, band.slope, std::min(2.0 * band.width, extent / 20.0), count);
+    const std::vector<char> jump =
+        detail::jump_constraints(x, values, defaults.jump_slope, defaults.jump_width, band, count);
+    if (jump.empty())
+        return {};
     std::vector<Index> seeds;
     for (std::size_t i = 0; i < constrained.size(); ++i)
         if (jump[i] != 0)
