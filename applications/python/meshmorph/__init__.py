@@ -21,8 +21,9 @@ InputError, IoError and SolverError with the applications' messages. See docs/py
 from ._requirements import core_not_loading, missing_numpy
 
 # Raised here, so that the traceback is one line of this file above the message.
-if missing_numpy():
-    raise ImportError(missing_numpy())
+_problem = missing_numpy()
+if _problem:
+    raise ImportError(_problem)
 try:
     from ._core import (Case, DesignStudy, Error, InputError, IoError, ParseError,  # noqa: F401
                         SolverError, setup_design)
