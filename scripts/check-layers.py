@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The include graph of src/meshmorph keeps its floors (README, "The library").
+"""The include graph of src/meshmorph keeps its floors (docs/library.md).
 
 check-layers.py [SRC]   (SRC: the src/ directory; default: the one beside this script)
 

@@ -171,7 +171,7 @@ fs::path copy_case(const std::string& name, const std::string& scratch)
 }
 
 //! Without checkMesh's AMI lines (-allGeometry's writeAMIWeightsSums and the AMI
-//! construction it triggers), which checkMeshQuality does not print (README).
+//! construction it triggers), which checkMeshQuality does not print (docs/checkMeshQuality.md).
 std::vector<std::string> without_ami_lines(std::vector<std::string> block)
 {
     std::erase_if(block, [](const std::string& line)

@@ -7,7 +7,7 @@
 //! (handle_selection.h) resolved by the same rule, and the merge: handles override boundary
 //! prescriptions, since they are the explicit, local request (the number of overridden
 //! boundary points is reported). A dictionary that asks for motion but resolves to none is
-//! an error. The rules are documented for users in tutorials/README.md and `morphMesh -help`.
+//! an error. The rules are documented for users in docs/morphDict.md and `morphMesh -help`.
 #pragma once
 
 #include <optional>

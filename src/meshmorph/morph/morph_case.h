@@ -3,7 +3,7 @@
 //! morphDict, build the constraints, check the mesh, fit and evaluate in steps, check again,
 //! refuse or write (morph_case). morphMesh is this call plus its options and report.
 //!
-//! Decisions (documented for users in `morphMesh -help` and tutorials/README.md):
+//! Decisions (documented for users in `morphMesh -help`, docs/morphMesh.md and docs/morphDict.md):
 //! - Exactness: rbf and idw interpolate every constraint (point_morph.h); nothing is
 //!   snapped after the evaluation.
 //! - Steps: the motion is applied in refitted fractions, halved on new invalid cells

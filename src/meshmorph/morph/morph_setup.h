@@ -2,7 +2,7 @@
 //! \file The morphDict prescriptions as plain data (MorphSetup): the `boundary` entries,
 //! the `handles` and the `conflicts` rule, read by read_morph_setup() or filled directly by
 //! tests. constraints.h turns them into point constraints; the rules are documented there
-//! and for users in tutorials/README.md and `morphMesh -help`.
+//! and for users in docs/morphDict.md and `morphMesh -help`.
 #pragma once
 
 #include <functional>
