@@ -16,10 +16,19 @@
 # Prints and writes DIR/design.md.
 #
 #   design_motorbike.sh [-cache DIR] [-morphMesh PATH] [-out DIR] [-lattice]
+#                       [-results FILE | -no-results]
+#
+# -results FILE: also write design.md's table with the run's context (date, machine, OS,
+# commit, OpenFOAM, this command line) to FILE (benchmarks/results.sh); -no-results: write no
+# such file. Default: benchmarks/results/design_motorbike.md, written only by a full run,
+# i.e. with -lattice (the run the docs quote); none when MESHMORPH_NO_RESULTS=1.
 set -euo pipefail
 script_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$script_dir/../.." && pwd)
 source "$script_dir/natural_morph.sh"
+# shellcheck source=SCRIPTDIR/../results.sh
+source "$root/benchmarks/results.sh"   # results_init, results_write, ...
+results_init "$@"
 
 cache=$root/build/cases/motorBike-full
 morph_mesh=$root/build/release/applications/morphMesh/morphMesh
@@ -31,10 +40,13 @@ while [[ $# -gt 0 ]]; do
         -morphMesh) morph_mesh=$2; shift 2 ;;
         -out) out=$2; shift 2 ;;
         -lattice) lattice=true; shift ;;
-        *) echo "usage: design_motorbike.sh [-cache DIR] [-morphMesh PATH] [-out DIR] [-lattice]" >&2; exit 2 ;;
+        -results) results_file "${2:?-results needs a file}"; shift 2 ;;
+        -no-results) results_off; shift ;;
+        *) echo "usage: design_motorbike.sh [-cache DIR] [-morphMesh PATH] [-out DIR] [-lattice] [-results FILE | -no-results]" >&2; exit 2 ;;
     esac
 done
 morph_mesh=$(realpath "$morph_mesh")
+$lattice || results_partial "no -lattice"
 export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
 rm -rf "$out" && mkdir -p "$out"
 say() { echo "design_motorbike.sh: $*"; }
@@ -56,7 +68,7 @@ timed() {
 
 say "1. the peer: moveMesh and a one-off morphMesh of the 5% lift"
 bash "$script_dir/motorbike_vs_movemesh.sh" -cache "$cache" -morphMesh "$morph_mesh" \
-    -lifts 0.05 -out "$out/peer" >"$out/peer.log" 2>&1 || { tail -20 "$out/peer.log"; exit 1; }
+    -lifts 0.05 -out "$out/peer" -no-results >"$out/peer.log" 2>&1 || { tail -20 "$out/peer.log"; exit 1; }
 peer_row() { awk -F, -v t="$1" '$7 == t { print $9, $11 }' "$out/peer/results.csv"; }
 read -r movemesh_wall movemesh_rss <<<"$(peer_row moveMesh)"
 read -r oneoff_wall oneoff_rss <<<"$(peer_row morphMesh)"
@@ -189,3 +201,6 @@ fi
     echo
     grep -E "^Timings|Mesh OK|Failed" "$out/log.variant.all.1" || true
 } | tee "$out/design.md"
+results_body "$out/design.md" |
+    results_write -openfoam -meta "OMP_NUM_THREADS: ${OMP_NUM_THREADS:-unset}" \
+        design_motorbike "Design variables on the full motorBike"

@@ -9,6 +9,7 @@
 #
 # Usage: motorbike_vs_movemesh.sh [-cache DIR] [-morphMesh PATH] [-lifts "0.05 0.09 0.135"]
 #                                 [-scaling [-factors "1 1.26 1.59 2"]] [-rbf "KEYS"] [-out DIR]
+#                                 [-results FILE | -no-results]
 # See usage() below. The two tools, per lift f (lift = f x 1.3516 m), each in a copy of the
 # mesh (constant/polyMesh, system, 0) under OUT/runs/<run>/<tool>, log in log.<tool>:
 #   moveMesh   constant/dynamicMeshDict: displacementLaplacian, inverseDistance diffusivity
@@ -42,6 +43,9 @@ root=$(cd "$script_dir/../.." && pwd)
 foam_script_name=motorbike_vs_movemesh.sh
 # shellcheck source=SCRIPTDIR/../../scripts/openfoam/lib.sh
 source "$root/scripts/openfoam/lib.sh"   # die, need_tool, run_step, copy_tutorial, set_control
+# shellcheck source=SCRIPTDIR/../results.sh
+source "$root/benchmarks/results.sh"     # results_init, results_write, ...
+results_init "$@"
 
 # Height of the bike in motorBike.obj (z from -4.232e-05 to 1.35152).
 bike_height=1.35156232
@@ -52,6 +56,7 @@ usage() {
     cat <<EOF
 usage: $foam_script_name [-cache DIR] [-morphMesh PATH] [-lifts "F ..."] [-scaling]
                           [-factors "K ..."] [-rbf "KEYS"] [-keys "ENTRIES"] [-out DIR]
+                          [-results FILE | -no-results]
 
   -cache DIR        the full motorBike case (scripts/openfoam/motorbike.sh DIR full); built
                     there when missing (minutes), reused when present, never modified
@@ -74,6 +79,12 @@ usage: $foam_script_name [-cache DIR] [-morphMesh PATH] [-lifts "F ..."] [-scali
                     "jumpSmoothing yes;" (default: none)
   -out DIR          results: results.{md,csv,json} (lifts) or scaling.{md,csv,json,png},
                     and the runs in DIR/runs (default $root/build/bench/motorbike)
+  -results FILE     also write the Markdown table with the run's context (date, machine,
+                    OS, commit, OpenFOAM, this command line) to FILE (benchmarks/results.sh)
+  -no-results       write no such file. Default: benchmarks/results/motorbike_vs_movemesh.md
+                    (the lift study) or motorbike_vs_movemesh_scaling.md (-scaling), written
+                    only by a full run: the default -lifts (or -factors), no -rbf or -keys,
+                    morphMesh found; none when MESHMORPH_NO_RESULTS=1 (tests, quick runs)
   -help             this text
 EOF
     exit "${1:-2}"
@@ -100,6 +111,8 @@ while [[ $# -gt 0 ]]; do
         -rbf)       [[ $# -ge 2 ]] || usage; rbf_keys=$2; shift 2 ;;
         -keys)      [[ $# -ge 2 ]] || usage; extra_keys=$2; shift 2 ;;
         -out)       [[ $# -ge 2 ]] || usage; out=$2; shift 2 ;;
+        -results)   [[ $# -ge 2 ]] || usage; results_file "$2"; shift 2 ;;
+        -no-results) results_off; shift ;;
         -help|--help|-h) usage 0 ;;
         *) echo "$foam_script_name: unknown option '$1'" >&2; usage ;;
     esac
@@ -109,6 +122,14 @@ for f in $lifts $factors; do
     is_number "$f" || die "not a positive number: '$f' (in -lifts or -factors)"
 done
 [[ -n "${lifts// /}" ]] || die "-lifts is empty"
+# shellcheck disable=SC2086,SC2116 # word lists, compared word by word
+if $scaling; then
+    [[ $(echo $factors) == "1 1.26 1.59 2" ]] || results_partial "-factors \"$factors\""
+else
+    [[ $(echo $lifts) == "0.05 0.09 0.135" ]] || results_partial "-lifts \"$lifts\""
+fi
+[[ -z $rbf_keys ]] || results_partial "-rbf \"$rbf_keys\""
+[[ -z $extra_keys ]] || results_partial "-keys \"$extra_keys\""
 cache=$(realpath -m "$cache")
 if [[ $morph_mesh == */* ]]; then
     morph_mesh=$(realpath -m "$morph_mesh")
@@ -755,6 +776,7 @@ tools=(moveMesh morphMesh)
 if [[ ! -x "$morph_mesh" ]]; then
     say "WARNING: morphMesh not found at $morph_mesh (build it or pass -morphMesh): only moveMesh runs"
     tools=(moveMesh)
+    results_partial "no morphMesh at $morph_mesh"
 fi
 mkdir -p "$out/runs"
 build_full_case "$cache"
@@ -774,6 +796,9 @@ if ! $scaling; then
         done
     done
     report "$csv" "$out/results" "morphMesh vs moveMesh: motorBike bike lifted"
+    results_body "$out/results.md" |
+        results_write -openfoam -meta "OMP_NUM_THREADS: ${OMP_NUM_THREADS:-unset}" \
+            motorbike_vs_movemesh "morphMesh vs moveMesh: motorBike bike lifted"
 else
     need_tool surfaceFeatureExtract blockMesh snappyHexMesh
     "$python" -c 'import matplotlib' 2>/dev/null ||
@@ -796,4 +821,7 @@ else
         done
     done
     report "$csv" "$out/scaling" "morphMesh vs moveMesh: mesh size scaling (bike lifted 5%)" plot
+    results_body "$out/scaling.md" |
+        results_write -openfoam -meta "OMP_NUM_THREADS: ${OMP_NUM_THREADS:-unset}" \
+            motorbike_vs_movemesh_scaling "morphMesh vs moveMesh: mesh size scaling (bike lifted 5%)"
 fi

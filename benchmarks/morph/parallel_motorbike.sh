@@ -8,6 +8,7 @@
 # -meshQuality, same run, same ranks), reports compared line by line.
 #
 #   parallel_motorbike.sh -bin DIR -out DIR [-case DIR] [-runs "1x1 1x2 2x1"]
+#                         [-results FILE | -no-results]
 #
 # -bin: the build's applications directory (holding morphMesh/ and checkMeshQuality/).
 # -case: the meshed motorBike (default build/cases/motorBike-full, made by
@@ -15,9 +16,16 @@
 # morphMesh with T OpenMP threads, Rx T runs mpirun -np R morphMesh -parallel on the case
 # decomposed by decomposePar (method simple); the first entry must be serial. Writes
 # DIR/summary.md.
+# -results FILE: also write summary.md with the run's context (date, machine, OS, commit,
+# OpenFOAM, this command line) to FILE (benchmarks/results.sh); -no-results: write no such
+# file. Default: benchmarks/results/parallel_motorbike.md, written only by a full run: the
+# default -runs, every run succeeded; none when MESHMORPH_NO_RESULTS=1 (tests, quick runs).
 set -u
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 source_dir=$(cd "$here/../.." && pwd)
+# shellcheck source=SCRIPTDIR/../results.sh
+source "$source_dir/benchmarks/results.sh"   # results_init, results_write, ...
+results_init "$@"
 bin="" out="" case_dir="$source_dir/build/cases/motorBike-full" runs="1x1 1x2 2x1"
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -25,11 +33,15 @@ while [ $# -gt 0 ]; do
         -out) out=$2; shift 2 ;;
         -case) case_dir=$2; shift 2 ;;
         -runs) runs=$2; shift 2 ;;
-        -help|-h) sed -n '3,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -results) results_file "${2:?-results needs a file}"; shift 2 ;;
+        -no-results) results_off; shift ;;
+        -help|-h) sed -n '3,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
             *) echo "parallel_motorbike.sh: unknown option '$1'" >&2; exit 2 ;;
     esac
 done
 [ -n "$bin" ] && [ -n "$out" ] || { echo "parallel_motorbike.sh: -bin and -out are required" >&2; exit 2; }
+# shellcheck disable=SC2086,SC2116 # a word list, compared word by word
+[ "$(echo $runs)" = "1x1 1x2 2x1" ] || results_partial "-runs \"$runs\""
 [ -f "$case_dir/constant/polyMesh/owner" ] || [ -f "$case_dir/constant/polyMesh/owner.gz" ] ||
     { echo "no mesh in $case_dir (run benchmarks/io/make_motorbike.sh)" >&2; exit 2; }
 export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
@@ -51,7 +63,7 @@ for run in $runs; do
     log=$out/log.$run
     rm -rf "$work"/processor*/[1-9]* "$work"/[1-9]*
     if [ "$ranks" = 1 ]; then
-        OMP_NUM_THREADS=$threads /usr/bin/time -v -o "$out/time.$run.0" "$morph" -case "$work" > "$log" 2>&1 || { echo "$run failed (see $log)"; continue; }
+        OMP_NUM_THREADS=$threads /usr/bin/time -v -o "$out/time.$run.0" "$morph" -case "$work" > "$log" 2>&1 || { echo "$run failed (see $log)"; results_partial "$run failed"; continue; }
         cp "$work/1/polyMesh/points" "$out/serial_points"
     else
         if [ $decomposed != "$ranks" ]; then
@@ -62,7 +74,7 @@ for run in $runs; do
         fi
         mpirun -np "$ranks" --oversubscribe -x OMP_NUM_THREADS="$threads" sh -c \
             "/usr/bin/time -v -o '$out/time.$run.'\$OMPI_COMM_WORLD_RANK '$morph' -case '$work' -parallel" > "$log" 2>&1 ||
-            { echo "$run failed (see $log)"; continue; }
+            { echo "$run failed (see $log)"; results_partial "$run failed"; continue; }
     fi
     mem=""
     for r in $(seq 0 $((ranks - 1))); do mem="$mem${mem:+ / }$(peak_mb "$out/time.$run.$r")"; done
@@ -137,3 +149,5 @@ for n in (10e6, 50e6):
           f"{fixed + per_cell * n / 64:.0f} | {fit * scale:.1f} | {evaluate * (n / 64) / cells:.2f} |")
 PY
 cat "$out/summary.md"
+results_write -openfoam parallel_motorbike "morphMesh on the full motorBike, serial and -parallel" \
+    "$out/summary.md"

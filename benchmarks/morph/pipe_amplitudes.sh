@@ -5,7 +5,7 @@
 #
 # Usage: pipe_amplitudes.sh [-out DIR] [-morphMesh PATH] [-search coarse|full]
 #                           [-factor F] [-meshes "hex tet"] [-motions "squeeze shift"]
-#                           [-casesOnly] [-help]
+#                           [-casesOnly] [-results FILE | -no-results] [-help]
 #   -out DIR          results and scratch cases (default build/bench/pipe); the script
 #                     replaces its own cases/ and runs/ there and writes results.md,
 #                     trials.tsv and verify.txt
@@ -19,6 +19,12 @@
 #   -meshes, -motions restrict the runs (default all)
 #   -casesOnly        only make the meshes (OUT/cases/<mesh>, checked by checkMesh) and stop
 #                     (benchmarks/paper/deformationBenchmarks -quick uses them)
+#   -results FILE     also write results.md's table with the run's context (date, machine,
+#                     OS, commit, OpenFOAM, this command line) to FILE (benchmarks/results.sh)
+#   -no-results       write no such file. Default: benchmarks/results/pipe_amplitudes.md
+#                     (pipe_amplitudes_full_search.md with -search full), written only by a
+#                     full run: both meshes, both motions, -factor 1.5, morphMesh found; never
+#                     with -casesOnly or when MESHMORPH_NO_RESULTS=1 (tests, quick runs)
 #
 # Meshes (both a pipe of radius R = 0.5 and length 2 along z, patches inlet, outlet, wall):
 #   hex  tutorials/pipe's blockMesh O-grid (system/blockMeshDict, run by OpenFOAM's blockMesh)
@@ -52,6 +58,9 @@ here="$root/benchmarks/morph"
 foam_script_name=pipe_amplitudes.sh
 # shellcheck source=scripts/openfoam/lib.sh
 source "$root/scripts/openfoam/lib.sh"   # die, need_tool, set_patch_type
+# shellcheck source=benchmarks/results.sh
+source "$root/benchmarks/results.sh"     # results_init, results_write, ...
+results_init "$@"
 export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
 
 usage() { sed -n '3,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d; s/^# \{0,1\}//'; }
@@ -72,6 +81,8 @@ while [[ $# -gt 0 ]]; do
         -meshes) meshes=${2:?-meshes needs a list}; shift 2 ;;
         -motions) motions=${2:?-motions needs a list}; shift 2 ;;
         -casesOnly) cases_only=1; shift ;;
+        -results) results_file "${2:?-results needs a file}"; shift 2 ;;
+        -no-results) results_off; shift ;;
         -h | -help | --help) usage; exit 0 ;;
         *) echo "$foam_script_name: unknown argument '$1'" >&2; usage >&2; exit 2 ;;
     esac
@@ -81,6 +92,10 @@ for m in $meshes; do [[ $m == hex || $m == tet ]] || die "unknown mesh '$m' (hex
 for m in $motions; do [[ $m == squeeze || $m == shift ]] || die "unknown motion '$m'"; done
 awk -v f="$factor" 'BEGIN { exit !(f + 0 > 0) }' || die "-factor must be a positive number"
 [[ $morph == /* ]] || morph="$PWD/$morph"   # morphMesh runs inside the case directories
+[[ " $meshes " == *" hex "* && " $meshes " == *" tet "* ]] || results_partial "-meshes \"$meshes\""
+[[ " $motions " == *" squeeze "* && " $motions " == *" shift "* ]] || results_partial "-motions \"$motions\""
+awk -v f="$factor" 'BEGIN { exit !(f + 0 == 1.5) }' || results_partial "-factor $factor"
+[[ -x $morph ]] || results_partial "no morphMesh at $morph"
 
 python=${PYTHON:-/usr/bin/python3}
 "$python" -c 'import numpy' 2>/dev/null || die "$python cannot import numpy (apt-get install python3-numpy)"
@@ -459,3 +474,8 @@ echo
 cat "$md"
 echo
 log "wrote $md"
+# results.md without its title and the reproduction recipe (this machine's paths).
+results_body "$md" | sed '/^Reproduce one trial/,$d' |
+    results_write -openfoam -meta "gmsh: $(gmsh --version 2>&1 | head -n 1)" \
+        "pipe_amplitudes$([[ $search == full ]] && echo _full_search)" \
+        "Pipe wall amplitudes: moveMesh's breaking point and morphMesh at ${factor}x"

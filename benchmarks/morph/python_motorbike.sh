@@ -15,10 +15,19 @@
 # Prints and writes OUT/python.md.
 #
 #   python_motorbike.sh [-case DIR] [-build DIR] [-out DIR] [-cache DIR] [-setup]
+#                       [-results FILE | -no-results]
+#
+# -results FILE: also write python.md with the run's context (date, machine, OS, commit, this
+# command line) to FILE (benchmarks/results.sh); -no-results: write no such file. Default:
+# benchmarks/results/python_motorbike.md (every run measures the whole set; the options only
+# say where things are); none when MESHMORPH_NO_RESULTS=1 (tests, quick runs).
 set -euo pipefail
 script_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$script_dir/../.." && pwd)
 source "$script_dir/natural_morph.sh"
+# shellcheck source=SCRIPTDIR/../results.sh
+source "$root/benchmarks/results.sh"   # results_init, results_write, ...
+results_init "$@"
 cache=$root/build/cases/motorBike-full
 case_dir=$root/build/bench/design/design
 build=$root/build/release
@@ -31,7 +40,9 @@ while [[ $# -gt 0 ]]; do
         -out) out=$2; shift 2 ;;
         -cache) cache=$2; shift 2 ;;
         -setup) setup=true; shift ;;
-        *) echo "usage: python_motorbike.sh [-case DIR] [-build DIR] [-out DIR] [-cache DIR] [-setup]" >&2; exit 2 ;;
+        -results) results_file "${2:?-results needs a file}"; shift 2 ;;
+        -no-results) results_off; shift ;;
+        *) echo "usage: python_motorbike.sh [-case DIR] [-build DIR] [-out DIR] [-cache DIR] [-setup] [-results FILE | -no-results]" >&2; exit 2 ;;
     esac
 done
 [ -f "$case_dir/constant/designBasis" ] ||
@@ -121,3 +132,6 @@ print(f"| Python: write() | {natural_write_s:.3f} |")
 print(f"\nPoints file written by Python identical to morphMesh's: {natural_same}; "
       f"refused: {morph_report['refused']}, max constraint error {morph_report['maxConstraintError']:.3g}")
 PY
+results_body "$out/python.md" |
+    results_write -meta "OMP_NUM_THREADS: ${OMP_NUM_THREADS:-unset}" \
+        python_motorbike "$(sed -n '1s/^# //p' "$out/python.md")"

@@ -15,11 +15,20 @@
 # displacement (docs/same-result.md states the tolerance these are held to).
 #
 # Usage: same_result.sh [-release DIR] [-ci DIR] [-motorBike CASE] [-out DIR]
+#                       [-results FILE | -no-results]
 #   -release, -ci  build directories (default build/release, build/ci); each needs morphMesh
 #   -motorBike     the full motorBike case (default build/cases/motorBike-full; skipped if absent)
-#   -out           work directory (default build/same_result)
+#   -out           work directory (default build/same_result; the table also in table.md)
+#   -results FILE  also write the table with the run's context (date, machine, OS, commit,
+#                  this command line) to FILE (benchmarks/results.sh)
+#   -no-results    write no such file. Default: benchmarks/results/same_result.md, written
+#                  only by a full run (the motorBike case included); none when
+#                  MESHMORPH_NO_RESULTS=1 (tests, quick runs)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+# shellcheck source=SCRIPTDIR/../results.sh
+source "$root/benchmarks/results.sh"   # results_init, results_write, ...
+results_init "$@"
 # shellcheck source=natural_morph.sh
 source "$root/benchmarks/morph/natural_morph.sh"
 release=$root/build/release ci=$root/build/ci motorbike=$root/build/cases/motorBike-full
@@ -30,7 +39,9 @@ while [[ $# -gt 0 ]]; do
         -ci) ci=$2; shift 2 ;;
         -motorBike) motorbike=$2; shift 2 ;;
         -out) out=$2; shift 2 ;;
-        -help|-h) sed -n '3,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -results) results_file "${2:?-results needs a file}"; shift 2 ;;
+        -no-results) results_off; shift ;;
+        -help|-h) sed -n '3,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "same_result.sh: unknown option '$1' (try -help)" >&2; exit 2 ;;
     esac
 done
@@ -81,6 +92,7 @@ if [[ -f $motorbike/constant/polyMesh/faces ]]; then
     cases="$cases motorBike"
 else
     echo "same_result.sh: no motorBike mesh at $motorbike (skipped; scripts/openfoam/motorbike.sh $motorbike full)"
+    results_partial "no motorBike mesh"
 fi
 
 for c in $cases; do
@@ -96,7 +108,7 @@ for c in $cases; do
     done
 done
 
-/usr/bin/python3 - "$out" "$root/scripts/parallel" <<'PY'
+/usr/bin/python3 - "$out" "$root/scripts/parallel" <<'PY' | tee "$out/table.md"
 import json, sys
 out = sys.argv[1]
 sys.path.insert(0, sys.argv[2])
@@ -124,3 +136,4 @@ print()
 for case, rel in worst.items():
     print(f"{case}: largest difference {rel:.2e} of the largest prescribed displacement")
 PY
+results_write same_result "The same morph on every build and thread count" "$out/table.md"

@@ -6,7 +6,7 @@
 # Usage: checkmesh_sweep.sh [-cases REGEX] [-out DIR] [-all] [-jobs N] [-keep] [-list]
 #                           [-mesh-timeout S] [-check-timeout S] [-checker PATH]
 #                           [-morph [-morph-mesh PATH] [-morph-keys ENTRIES] [-fail-on-silent]]
-#                           [-help]
+#                           [-results FILE | -no-results] [-help]
 #
 #   -morph        the morph sweep instead of the checker comparison: on every mesh the
 #                 smallest wall patch is scaled by 1% about its centre, everything else
@@ -34,6 +34,12 @@
 #                 per-case limits in seconds: meshing (default 600, 1800 with -all) and
 #                 each checker run (default 600)
 #   -checker PATH checkMeshQuality to test (default build/release/applications/...)
+#   -results FILE also write summary.md with the run's context (date, machine, OS, commit,
+#                 OpenFOAM, this command line) to FILE (benchmarks/results.sh)
+#   -no-results   write no such file. Default: benchmarks/results/checkmesh_sweep.md, or
+#                 morph_sweep.md with -morph (checkmesh_sweep_all.md, morph_sweep_all.md
+#                 with -all), written only when the sweep ran over every case: no -cases
+#                 filter and no -morph-keys; none when MESHMORPH_NO_RESULTS=1 (tests)
 #
 # Cheap meshes (always): system/blockMeshDict or constant/polyMesh/blockMeshDict (blockMesh),
 # system/<region>/blockMeshDict with constant/<region>/ (blockMesh -region),
@@ -68,6 +74,9 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 script_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo_dir=$(cd "$script_dir/../.." && pwd)
 python=/usr/bin/python3
+# shellcheck source=benchmarks/results.sh
+source "$repo_dir/benchmarks/results.sh"   # results_init, results_write, ...
+results_init "$@"
 
 usage() {
     sed -n '3,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "${BASH_SOURCE[0]}"
@@ -75,7 +84,7 @@ usage() {
 usage_error() {
     echo "$foam_script_name: error: $*" >&2
     echo "usage: $foam_script_name [-cases REGEX] [-out DIR] [-all] [-jobs N] [-keep] [-list]" \
-         "[-mesh-timeout S] [-check-timeout S] [-checker PATH] [-help]" >&2
+         "[-mesh-timeout S] [-check-timeout S] [-checker PATH] [-results FILE | -no-results] [-help]" >&2
     exit 2
 }
 
@@ -101,11 +110,15 @@ while [[ $# -gt 0 ]]; do
     -fail-on-silent) fail_on_silent=1 ;;
     -morph-keys) [[ $# -ge 2 ]] || usage_error "-morph-keys needs ENTRIES"; morph_keys=$2; shift ;;
     -morph-mesh) [[ $# -ge 2 ]] || usage_error "-morph-mesh needs a PATH"; morph_mesh=$2; shift ;;
+    -results) [[ $# -ge 2 ]] || usage_error "-results needs a FILE"; results_file "$2"; shift ;;
+    -no-results) results_off ;;
     *) usage_error "unknown option '$1'" ;;
     esac
     shift
 done
 [[ -n $mesh_timeout ]] || mesh_timeout=$((all ? 1800 : 600))
+[[ -z $cases_regex ]] || results_partial "-cases \"$cases_regex\""
+[[ -z $morph_keys ]] || results_partial "-morph-keys \"$morph_keys\""
 if [[ -z $out_dir ]]; then
     out_dir=$repo_dir/build/bench/checkmesh-sweep
     [[ $morph == 0 ]] || out_dir=$repo_dir/build/bench/morph-sweep
@@ -570,12 +583,26 @@ while [[ $running -gt 0 ]]; do
 done
 echo "finished	$(date -u +%Y-%m-%dT%H:%M:%SZ)" >>"$out_dir/sweep.tsv"
 
+# write_results: summary.md, with the run's context, to benchmarks/results/ (results.sh).
+write_results() {
+    [[ -f $out_dir/summary.md ]] || return 0
+    local name=checkmesh_sweep
+    [[ $morph == 0 ]] || name=morph_sweep
+    [[ $all == 0 ]] || name+=_all
+    results_body "$out_dir/summary.md" |
+        results_write -openfoam "$name" "$(sed -n '1s/^# //p' "$out_dir/summary.md")"
+}
+
 if [[ $morph == 1 ]]; then
     summary_args=("$out_dir")
     [[ $fail_on_silent == 0 ]] || summary_args+=(--fail-on-silent)
-    "$python" "$script_dir/morph_sweep_summary.py" "${summary_args[@]}" ||
+    summary_rc=0
+    "$python" "$script_dir/morph_sweep_summary.py" "${summary_args[@]}" || summary_rc=$?
+    write_results   # silent or crashed meshes are results too
+    [[ $summary_rc == 0 ]] ||
         die "silent or crashed meshes (or morph_sweep_summary.py failed): see $out_dir/summary.md"
     exit 0
 fi
 "$python" "$script_dir/compare_checkmesh.py" summary "$out_dir" ||
     die "compare_checkmesh.py summary failed"
+write_results

@@ -60,7 +60,7 @@ struct GreedySettings
     //!   0.029 and 0.054). With the floor the band is 0.0635 m on the motorBike (the moving
     //!   box's diagonal: 2.54 m) up to a 9% lift: 1395 centres at every such lift, and the
     //!   fit scales with the motion. A band of 0.034 m (1/75) ran out of budget on the finer
-    //!   x2 mesh; 1/40 converges there (1588 centres). docs/morph-method.md has the study.
+    //!   x2 mesh; 1/40 converges there (1588 centres). docs/morph-method.md gives the reasons.
     double jump_slope = 2.0;
     double jump_width = 0.025;
 };
