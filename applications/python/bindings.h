@@ -66,8 +66,9 @@ py::object to_python(const nlohmann::json& j);
 //! The keyword arguments every opening of a case takes, for the docstrings.
 inline constexpr const char* case_arguments_doc =
     "case: the case directory (default '.'); region: a region of a multi-region case; "
-    "time: the time to read the mesh of (a name or number; default: the earliest, as "
-    "morphMesh), latest_time: read the newest time instead; dict: the morphDict to use "
+    "time: the time to read the mesh of (a name or number; default: the mesh the case starts "
+    "from, the first time that is not a motion result, else constant, as morphMesh), "
+    "latest_time: read the newest time instead; dict: the morphDict to use "
     "(relative to the case); method: override the dictionary's method (rbf, dmffd, ffd, "
     "idw); force: write results although they have new invalid cells (morphMesh -force).";
 

@@ -198,20 +198,27 @@ void bind_case(py::module_& m)
              py::arg("time") = py::none(), py::arg("latest_time") = false,
              py::arg("dict") = py::none(), py::arg("method") = py::none(), py::arg("force") = false,
              py::arg("scaled_jacobian") = false, case_doc.c_str())
-        .def_property_readonly("case_dir", [](const PyCase& c) { return c.session->case_dir(); })
-        .def_property_readonly("region",
-                               [](const PyCase& c) { return c.session->options().region; })
+        .def_property_readonly(
+            "case_dir", [](const PyCase& c) { return c.session->case_dir(); },
+            "The case directory.")
+        .def_property_readonly(
+            "region", [](const PyCase& c) { return c.session->options().region; },
+            "The region ('' for the default region).")
         .def_property_readonly(
             "time", [](const PyCase& c) { return c.session->foam().time; },
             "The time the mesh was read at.")
         .def_property_readonly(
             "instance", [](const PyCase& c) { return c.session->foam().points_instance; },
             "The instance the points were read from.")
-        .def_property_readonly("n_points",
-                               [](const PyCase& c) { return c.session->mesh().n_points(); })
-        .def_property_readonly("n_faces",
-                               [](const PyCase& c) { return c.session->mesh().n_faces(); })
-        .def_property_readonly("n_cells", [](const PyCase& c) { return c.session->mesh().n_cells; })
+        .def_property_readonly(
+            "n_points", [](const PyCase& c) { return c.session->mesh().n_points(); },
+            "Number of points.")
+        .def_property_readonly(
+            "n_faces", [](const PyCase& c) { return c.session->mesh().n_faces(); },
+            "Number of faces.")
+        .def_property_readonly(
+            "n_cells", [](const PyCase& c) { return c.session->mesh().n_cells; },
+            "Number of cells.")
         .def_property_readonly(
             "initial_points",
             [](const py::object& self)

@@ -183,7 +183,9 @@ void bind_design(py::module_& m)
         .def_property_readonly(
             "bounds", [](const PyStudy& s) { return s.study->header().bounds; },
             "Per variable (lo, hi) or None.")
-        .def_property_readonly("setup_file", [](const PyStudy& s) { return s.study->basis_file(); })
+        .def_property_readonly(
+            "setup_file", [](const PyStudy& s) { return s.study->basis_file(); },
+            "The set-up file (constant[/<region>]/designBasis) the study reads.")
         .def_property_readonly(
             "initial_points",
             [](const py::object& self)

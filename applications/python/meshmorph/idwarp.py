@@ -19,6 +19,9 @@ class USMesh:
     warpMesh, getSolverGrid/getWarpGrid, warpDeriv."""
 
     def __init__(self, options=None, case=".", surface_patches=None, **case_kwargs):
+        """Open a case as IDWarp's USMesh opens a grid: options["gridFile"] (or case) is
+        the case directory; the surface is the points of surface_patches (default: every
+        wall patch); case_kwargs go to Case (region, time, dict, ...)."""
         options = dict(options or {})
         case = options.pop("gridFile", case)
         self.case = Case(case, **case_kwargs)
