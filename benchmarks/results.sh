@@ -111,8 +111,19 @@ results_os() {
     echo "${name:-$(uname -s)}$version, Linux $(uname -r)"
 }
 
+# results_commit: the commit, and when the tree has uncommitted changes to tracked files,
+# which (the first five), so that a "-dirty" figure can be traced.
 results_commit() {
-    git -C "$results_root" describe --always --dirty 2>/dev/null || echo "unknown (not a git checkout)"
+    local described changed
+    described=$(git -C "$results_root" describe --always --dirty 2>/dev/null) ||
+        { echo "unknown (not a git checkout)"; return 0; }
+    changed=$(git -C "$results_root" status --porcelain --untracked-files=no 2>/dev/null |
+              awk '{ print $NF }' | head -5 | paste -sd, - | sed 's/,/, /g')
+    if [[ $described == *-dirty && -n $changed ]]; then
+        echo "$described (uncommitted changes to: $changed)"
+    else
+        echo "$described"
+    fi
 }
 
 # results_openfoam: the OpenFOAM version, from Debian's package, else the environment, else
