@@ -12,6 +12,8 @@ set(MESHMORPH_DEFORM_SOURCES
     meshmorph/deform/dmffd_deformation.cpp
     meshmorph/deform/jump_detection.cpp
     meshmorph/deform/row_panel_factor.cpp
+    meshmorph/deform/greedy_system.cpp
+    meshmorph/deform/greedy_centres.cpp
     meshmorph/deform/greedy_rbf_deformation.cpp
     meshmorph/deform/handle_basis.cpp
     meshmorph/deform/idw_split.cpp
