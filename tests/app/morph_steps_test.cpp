@@ -129,8 +129,8 @@ fs::path bent_venturi_case(const std::string& name, const std::string& extra)
 //! The bent venturi with a smaller bend (offset 0.8), whose one-step repair is not
 //! borderline. The repair is a greedy hill-climb: near the edge of what it can do, its
 //! outcome follows the round-off of its input. With offset 1.0 (2e-13 apart between
-//! OpenBLAS kernels before the repair) it repaired every cell under 10 of 13 kernels and
-//! left 1 to 53 invalid under the others; with 0.75 and 0.85 it failed under all of them.
+//! OpenBLAS kernels before the repair) it repaired every cell under 9 of 13 kernels and
+//! left 1 to 58 invalid under the others; with 0.75 and 0.85 it failed under all of them.
 //! With 0.8 it repaired all 108 cells within one layer under each of the 13 kernels, in
 //! the ci and release builds and with 1, 2 and 4 threads, moving the same 531 points.
 fs::path repairable_venturi_case(const std::string& name, const std::string& extra)
