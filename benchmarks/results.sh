@@ -14,6 +14,9 @@
 #   results_write [-openfoam] [-meta "Key: value"]... NAME TITLE [BODY_FILE]
 #                             writes the file: TITLE, the context, then BODY_FILE (or stdin)
 #                             verbatim; -openfoam adds OpenFOAM's version, -meta more lines
+#   results_write_report [-openfoam] [-meta LINE]... NAME REPORT
+#                             the same for a script's own Markdown REPORT: its "# title"
+#                             line is the TITLE, the rest the table
 #   results_body FILE         FILE without its leading "# title" line and the blank lines
 #                             after it (for a script's own report, whose title results_write
 #                             replaces)
@@ -66,12 +69,12 @@ results_body() {
     awk 'NR == 1 && /^# / { skip = 1; next } skip && /^[[:space:]]*$/ { next } { skip = 0; print }' "$1"
 }
 
-# results_destination NAME: the file results_write would write ("" for none); the reason
-# for none in results_why.
+# results_destination NAME: sets results_dest to the file results_write writes ("" for
+# none) and results_why to the reason when there is none.
 results_destination() {
-    results_why=""
+    results_dest="" results_why=""
     case $results_mode in
-        file) echo "$results_target"; return 0 ;;
+        file) results_dest=$results_target; return 0 ;;
         off) results_why="-no-results"; return 0 ;;
     esac
     if [[ ${MESHMORPH_NO_RESULTS:-0} == 1 ]]; then
@@ -80,7 +83,7 @@ results_destination() {
         results_why="not a full run: $(printf '%s; ' "${results_partial_reasons[@]}")"
         results_why=${results_why%; }
     else
-        echo "${MESHMORPH_RESULTS_DIR:-$results_root/benchmarks/results}/$1.md"
+        results_dest="${MESHMORPH_RESULTS_DIR:-$results_root/benchmarks/results}/$1.md"
     fi
 }
 
@@ -160,10 +163,9 @@ results_write() {
         esac
     done
     local name=${1:?results_write: needs NAME} title=${2:?results_write: needs TITLE} body=${3:--}
-    local dest
-    dest=$(results_destination "$name")
+    results_destination "$name"
+    local dest=$results_dest
     if [[ -z $dest ]]; then
-        results_destination "$name" >/dev/null   # sets results_why in this shell
         echo "results: no results file written: $results_why" \
              "(-results FILE writes one)" >&2
         [[ $body == - ]] && cat >/dev/null
@@ -186,6 +188,7 @@ results_write() {
         echo "- OS: $(results_os)"
         echo "- Commit: $(results_commit)"
         if ((openfoam)); then echo "- OpenFOAM: $(results_openfoam)"; fi
+        echo "- OMP_NUM_THREADS: ${OMP_NUM_THREADS:-unset}"
         local line
         for line in "${meta[@]}"; do echo "- $line"; done
         echo "- Command: \`$results_command\`"
@@ -198,4 +201,16 @@ results_write() {
     chmod 644 "$tmp"
     mv -f -- "$tmp" "$dest" || { rm -f -- "$tmp"; echo "results: error: cannot write $dest" >&2; return 1; }
     echo "results: wrote $dest" >&2
+}
+
+# results_write_report [-openfoam] [-meta LINE]... NAME REPORT: results_write of a script's
+# own Markdown report, its "# title" line as the title and the rest as the table.
+results_write_report() {
+    local options=()
+    while [[ $1 == -openfoam || $1 == -meta ]]; do
+        if [[ $1 == -meta ]]; then options+=("$1" "$2"); shift 2; else options+=("$1"); shift; fi
+    done
+    local name=${1:?results_write_report: needs NAME} report=${2:?results_write_report: needs REPORT}
+    results_body "$report" |
+        results_write "${options[@]}" "$name" "$(sed -n '1s/^# //p' "$report")"
 }

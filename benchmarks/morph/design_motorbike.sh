@@ -202,5 +202,4 @@ fi
     grep -E "^Timings|Mesh OK|Failed" "$out/log.variant.all.1" || true
 } | tee "$out/design.md"
 results_body "$out/design.md" |
-    results_write -openfoam -meta "OMP_NUM_THREADS: ${OMP_NUM_THREADS:-unset}" \
-        design_motorbike "Design variables on the full motorBike"
+    results_write -openfoam design_motorbike "Design variables on the full motorBike"

@@ -796,9 +796,7 @@ if ! $scaling; then
         done
     done
     report "$csv" "$out/results" "morphMesh vs moveMesh: motorBike bike lifted"
-    results_body "$out/results.md" |
-        results_write -openfoam -meta "OMP_NUM_THREADS: ${OMP_NUM_THREADS:-unset}" \
-            motorbike_vs_movemesh "morphMesh vs moveMesh: motorBike bike lifted"
+    results_write_report -openfoam motorbike_vs_movemesh "$out/results.md"
 else
     need_tool surfaceFeatureExtract blockMesh snappyHexMesh
     "$python" -c 'import matplotlib' 2>/dev/null ||
@@ -821,7 +819,5 @@ else
         done
     done
     report "$csv" "$out/scaling" "morphMesh vs moveMesh: mesh size scaling (bike lifted 5%)" plot
-    results_body "$out/scaling.md" |
-        results_write -openfoam -meta "OMP_NUM_THREADS: ${OMP_NUM_THREADS:-unset}" \
-            motorbike_vs_movemesh_scaling "morphMesh vs moveMesh: mesh size scaling (bike lifted 5%)"
+    results_write_report -openfoam motorbike_vs_movemesh_scaling "$out/scaling.md"
 fi

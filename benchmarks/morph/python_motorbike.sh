@@ -132,6 +132,4 @@ print(f"| Python: write() | {natural_write_s:.3f} |")
 print(f"\nPoints file written by Python identical to morphMesh's: {natural_same}; "
       f"refused: {morph_report['refused']}, max constraint error {morph_report['maxConstraintError']:.3g}")
 PY
-results_body "$out/python.md" |
-    results_write -meta "OMP_NUM_THREADS: ${OMP_NUM_THREADS:-unset}" \
-        python_motorbike "$(sed -n '1s/^# //p' "$out/python.md")"
+results_write_report python_motorbike "$out/python.md"

@@ -589,8 +589,7 @@ write_results() {
     local name=checkmesh_sweep
     [[ $morph == 0 ]] || name=morph_sweep
     [[ $all == 0 ]] || name+=_all
-    results_body "$out_dir/summary.md" |
-        results_write -openfoam "$name" "$(sed -n '1s/^# //p' "$out_dir/summary.md")"
+    results_write_report -openfoam "$name" "$out_dir/summary.md"
 }
 
 if [[ $morph == 1 ]]; then

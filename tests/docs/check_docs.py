@@ -41,15 +41,19 @@ def github_slug(heading):
     return text.replace(" ", "-")
 
 
-def anchors(path):
-    """The anchors of a Markdown file's headings (outside code blocks)."""
-    found, in_code = set(), False
-    for line in path.read_text().splitlines():
+def prose_lines(path):
+    """(line number, line) of a Markdown file, outside its ``` code blocks."""
+    in_code = False
+    for number, line in enumerate(path.read_text().splitlines(), 1):
         if line.startswith("```"):
             in_code = not in_code
-        elif not in_code and line.startswith("#"):
-            found.add(github_slug(line.lstrip("#")))
-    return found
+        elif not in_code:
+            yield number, line
+
+
+def anchors(path):
+    """The anchors of a Markdown file's headings."""
+    return {github_slug(line.lstrip("#")) for _, line in prose_lines(path) if line.startswith("#")}
 
 
 def check_readme(src):
@@ -135,12 +139,7 @@ def check_keywords(src):
 def check_links(src):
     errors = []
     for page in pages(src):
-        in_code = False
-        for number, line in enumerate(page.read_text().splitlines(), 1):
-            if line.startswith("```"):
-                in_code = not in_code
-            if in_code:
-                continue
+        for number, line in prose_lines(page):
             for target in LINK.findall(line):
                 if re.match(r"^[a-z]+:", target):
                     continue

@@ -46,7 +46,8 @@ def test_the_readme_first_morph_runs_as_written_and_leaves_a_checked_mesh(tmp_pa
     (tmp_path / "tutorials").symlink_to(SOURCE / "tutorials")
     (tmp_path / "build").mkdir()
     (tmp_path / "build" / "release").symlink_to(BUILD.resolve())
-    application("morphMesh"), application("checkMeshQuality")   # built, or the test fails
+    for app in ("morphMesh", "checkMeshQuality"):
+        application(app)   # built, or the test fails naming it
 
     script = readme_code("## A first morph", "sh")
     done = subprocess.run(["bash", "-e", "-c", script], cwd=tmp_path, capture_output=True,
