@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // meshmorph.DesignStudy and meshmorph.setup_design: the design/ module (morphMesh
 // -variables, -variant, -sensitivity) with numpy arrays in and out.
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/design/design_setup.h"
 #include "meshmorph/design/design_variant.h"
+#include "meshmorph/design/valid_step.h"
 #include "numpy_arrays.h"
 
 namespace meshmorph::python
@@ -91,6 +93,31 @@ py::array_t<double> displaced_points(PyStudy& s, const py::handle& a)
     Points x = without_gil(
         *s.busy, [&] { return Points(s.study->initial_points() + s.study->combine(amplitudes)); });
     return points_array(std::move(x));
+}
+
+py::object max_valid_step(PyStudy& s, const py::handle& a, const py::handle& p,
+                          const py::object& limit, const py::object& max_non_orthogonality)
+{
+    const double theta =
+        max_non_orthogonality.is_none() ? 90.0 : max_non_orthogonality.cast<double>();
+    const std::vector<double> amplitudes = amplitudes_from(s, a);
+    const std::vector<double> direction = reals_from(p, "direction");
+    const double end =
+        limit.is_none() ? std::numeric_limits<double>::infinity() : limit.cast<double>();
+    const nlohmann::json report =
+        without_gil(*s.busy,
+                    [&]
+                    {
+                        s.last.reset(); // the mesh holds the step
+                        const design::ValidStep r =
+                            design::largest_valid_step(*s.study, amplitudes, direction, end, theta);
+                        return app::valid_step_json(*s.study, amplitudes, direction, r);
+                    });
+    py::dict out = to_python(report);
+    for (const char* key : {"step", "invalidAbove", "estimate"}) // JSON's null: unbounded
+        if (out[key].is_none())
+            out[key] = py::float_(std::numeric_limits<double>::infinity());
+    return out;
 }
 
 py::array_t<double> transpose_product(PyStudy& s, const py::handle& g)
@@ -214,6 +241,16 @@ void bind_design(py::module_& m)
             py::arg("a"),
             "Whether the variant a has no more negative-volume cells or wrongly oriented face "
             "pyramids than x0: the cheap test for a line search (no other check, no report).")
+        .def("max_valid_step", &max_valid_step, py::arg("a"), py::arg("direction"), py::kw_only(),
+             py::arg("limit") = py::none(), py::arg("max_non_orthogonality") = py::none(),
+             "The largest step t (up to `limit` and the variables' bounds) such that a + t * "
+             "direction is valid, for a line search: each cell's volume along the direction is "
+             "a cubic in t, whose first root estimates the first inversion; the step returned "
+             "is confirmed by is_valid. With max_non_orthogonality (degrees), checkMesh's maximum "
+             "non-orthogonality stays at or below it too. Returns morphMesh -variant -direction's "
+             "JSON report as "
+             "a dict (step, invalidAbove, estimate: inf when unbounded; limitedBy: "
+             "'inversion', 'bounds', 'limit', 'none' or 'nonOrthogonality').")
         .def("transpose_product", &transpose_product, py::arg("dJdx"),
              "dJ/da_j = sum_i dJ/dx_i . F_j(i) for a gradient dJ/dx with respect to the points "
              "((n, 3) or flat 3n); morphMesh -sensitivity's product.")

@@ -11,6 +11,7 @@
 #      which the one-off morph also made; and all six), time and memory per variant
 #      including the check and writing the points; the lift variant against the one-off
 #      morph's points (largest difference / lift);
+#   3c. the largest valid step along three directions (-variant A -direction P);
 #   4. optionally (-lattice) a lattice of 100 variables around the bike: set-up, variant and
 #      gradient times, peak memory, size of the set-up file.
 # Prints and writes DIR/design.md.
@@ -149,6 +150,27 @@ doe_wall=$wall doe_rss=$rss
 doe_valid=$(/usr/bin/python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['rows']; print(sum(1 for x in r if x['valid'] and x['written']), 'of', len(r))" "$out/doe.json")
 say "   $doe_valid written and valid in $doe_wall s ($doe_rss MB)"
 
+say "3c. the largest valid step along a direction (a line search's question)"
+step_rows=()
+run_step_search() { # <name> <start> <direction>: one search, its row in step_rows
+    timed "$out/log.step.$1" "$morph_mesh" -case "$case" -variant "$2" -direction "$3" -json "$out/step.$1.json"
+    local row
+    row=$(/usr/bin/python3 - "$out/step.$1.json" "$2" "$3" "$wall" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+f = lambda v: "inf" if v is None else "%.6g" % v
+print(f"| from {sys.argv[2]} along {sys.argv[3]} | {f(j['step'])} | {j['limitedBy']} "
+      f"{j['boundVariable']} | {f(j['invalidAbove'])} | {f(j['estimate'])} | {j['checks']} | "
+      f"{j['seconds']:.2f} | {sys.argv[4]} |")
+PY
+)
+    step_rows+=("$row")
+    say "   $row"
+}
+run_step_search rider "(0 0 0 0 0 0)" "(0 0 0 0 -1 0)"
+run_step_search all "(0 0 0 0 0 0)" "(1 2 1 0.05 -0.05 1)"
+run_step_search fairing "(0.5 1 0 0 0 0)" "(0 0 0 0 0 1)"
+
 if $lattice; then
     say "4. a lattice of 100 variables"
     lcase=$out/lattice
@@ -196,6 +218,13 @@ fi
         echo "| lattice -variant | $lattice_variant_wall | $lattice_variant_rss | | |"
         echo "| lattice -sensitivity | $lattice_sens_wall | $lattice_sens_rss | | |"
     fi
+    echo
+    echo "Largest valid step (-variant A -direction P; the step confirmed by the variant check,"
+    echo "the estimate the cubic volumes' first root; search and run wall time in seconds):"
+    echo
+    echo "| search | step | limited by | invalid above | estimate | checks | search [s] | run [s] |"
+    echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
+    printf '%s\n' "${step_rows[@]}"
     echo
     echo "Lift variant against the one-off morph of the same lift: $(cat "$out/agreement.txt")"
     echo

@@ -387,6 +387,57 @@ TEST_F(DesignVariables, a_variant_that_inverts_cells_is_refused_and_names_the_va
     EXPECT_FALSE(fs::exists(*dir_ / "1"));
 }
 
+TEST_F(DesignVariables, a_step_search_finds_the_largest_valid_lift_and_the_check_confirms_it)
+{
+    // From a small design, along the lift (bounded by 3, where cells invert: the test above).
+    const std::vector<double> start = amplitudes(0.2, 0.1, 0.5, 0.01);
+    const fs::path json = *dir_ / "step.json";
+    const test::MorphRun r = test::run_morph_mesh(
+        {"-case", dir_->string(), "-variant", amplitude_list(start), "-direction",
+         amplitude_list(amplitudes(1, 0, 0, 0)), "-json", json.string()});
+    ASSERT_EQ(r.code, 0) << r.log;
+    EXPECT_NE(r.log.find("Largest valid step: "), std::string::npos) << r.log;
+    EXPECT_FALSE(fs::exists(*dir_ / "1")) << "a step search writes no mesh";
+    const nlohmann::json j = nlohmann::json::parse(read_text(json));
+    ASSERT_EQ(j["limitedBy"], "inversion") << j.dump(1);
+    const double t = j["step"].get<double>(), above = j["invalidAbove"].get<double>();
+    EXPECT_GT(t, 0.0);
+    EXPECT_LT(start[0] + t, 3.0);
+    EXPECT_LE((above - t) / above, 1.0001e-4) << j.dump(1); // the bracket's width
+    EXPECT_NEAR(j["estimate"].get<double>() / t, 1.0, 0.02) << j.dump(1);
+    // The variant at the step is written; just above it, refused.
+    std::vector<double> at = start, beyond = start;
+    at[0] += t;
+    beyond[0] += above;
+    EXPECT_EQ(test::run_morph_mesh(
+                  {"-case", dir_->string(), "-variant", amplitude_list(at), "-noOverwrite"})
+                  .code,
+              0);
+    fs::remove_all(*dir_ / "1");
+    EXPECT_EQ(
+        test::run_morph_mesh({"-case", dir_->string(), "-variant", amplitude_list(beyond)}).code,
+        3);
+    // -stepLimit below the inversion is the answer; -direction needs -variant.
+    const test::MorphRun limited = test::run_morph_mesh(
+        {"-case", dir_->string(), "-variant", amplitude_list(start), "-direction",
+         amplitude_list(amplitudes(1, 0, 0, 0)), "-stepLimit", "0.25", "-json", json.string()});
+    ASSERT_EQ(limited.code, 0) << limited.log;
+    EXPECT_EQ(nlohmann::json::parse(read_text(json))["step"].get<double>(), 0.25);
+    EXPECT_EQ(nlohmann::json::parse(read_text(json))["limitedBy"], "limit");
+    // A non-orthogonality limit below the start's maximum is refused, saying so.
+    const test::MorphRun strict = test::run_morph_mesh(
+        {"-case", dir_->string(), "-variant", amplitude_list(start), "-direction",
+         amplitude_list(amplitudes(1, 0, 0, 0)), "-maxNonOrtho", "1"});
+    EXPECT_EQ(strict.code, 2) << strict.log;
+    EXPECT_NE(strict.log.find("already above the limit of 1 degrees"), std::string::npos)
+        << strict.log;
+    const test::MorphRun alone = test::run_morph_mesh(
+        {"-case", dir_->string(), "-direction", amplitude_list(amplitudes(1, 0, 0, 0))});
+    EXPECT_EQ(alone.code, 2) << alone.log;
+    EXPECT_FALSE(fs::exists(*dir_ / "1"));
+    EXPECT_NE(alone.log.find("-direction goes with -variant"), std::string::npos) << alone.log;
+}
+
 TEST_F(DesignVariables, bad_amplitudes_and_foreign_files_are_refused_and_leave_the_case_alone)
 {
     const auto refused = [&](const std::vector<std::string>& args, const std::string& words)

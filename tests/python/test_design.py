@@ -185,3 +185,61 @@ def test_idwarp_aliases(design_pipe):
     assert np.array_equal(mesh.warpDeriv(dXv), study.transpose_product(dXv.reshape(-1, 3)))
     with pytest.raises(meshmorph.InputError):
         mesh.setSurfaceCoordinates(target[:-1])
+
+
+def test_max_valid_step_is_confirmed_by_the_check_and_stops_at_the_first_inversion(design_pipe):
+    meshmorph.setup_design(design_pipe)
+    study = meshmorph.DesignStudy(design_pipe)
+    start = 0.2 * A
+    # The lattice's control points pushed in alternate directions (unbounded variables).
+    direction = np.zeros_like(A)
+    direction[3:7] = [1.0, -1.0, 1.0, -1.0]
+    r = study.max_valid_step(start, direction)
+    assert r["limitedBy"] == "inversion" and not r["written"], r
+    t, above = r["step"], r["invalidAbove"]
+    assert 0 < t < above and (above - t) / above <= 1.0001e-4, r
+    assert study.is_valid(start + t * direction)
+    assert not study.is_valid(start + above * direction)
+    # The cubics' estimate is where the check found the inversion, within 2%.
+    assert abs(r["estimate"] / t - 1) < 0.02, r
+    # A limit below the inversion is the answer, checked once more.
+    limited = study.max_valid_step(start, direction, limit=0.5 * t)
+    assert limited["limitedBy"] == "limit" and limited["step"] == 0.5 * t, limited
+
+
+def test_max_valid_step_keeps_a_non_orthogonality_limit(design_pipe):
+    meshmorph.setup_design(design_pipe)
+    study = meshmorph.DesignStudy(design_pipe)
+    start = 0.2 * A
+    direction = np.zeros_like(A)
+    direction[3:7] = [1.0, -1.0, 1.0, -1.0]
+    valid = study.max_valid_step(start, direction)
+    assert valid["maxNonOrthogonality"] is None, valid
+    non_ortho = lambda t: study.evaluate(start + t * direction)["after"]["maxNonOrthogonality"]
+    # (At the valid step a cell is about to invert: its faces are near 180 degrees.)
+    theta = 0.5 * (non_ortho(0) + min(non_ortho(valid["step"]), 90.0))
+    r = study.max_valid_step(start, direction, max_non_orthogonality=theta)
+    assert r["limitedBy"] == "nonOrthogonality", r
+    assert 0 < r["step"] < r["invalidAbove"] < valid["step"], r
+    assert (r["invalidAbove"] - r["step"]) / r["invalidAbove"] <= 1.0001e-4, r
+    assert r["maxNonOrthogonality"] == non_ortho(r["step"]) <= theta < non_ortho(r["invalidAbove"])
+    with pytest.raises(meshmorph.InputError, match="already above the limit"):
+        study.max_valid_step(start, direction, max_non_orthogonality=0.5 * non_ortho(0))
+
+
+def test_max_valid_step_stops_at_a_bound_and_refuses_a_bad_search(design_pipe):
+    meshmorph.setup_design(design_pipe)
+    study = meshmorph.DesignStudy(design_pipe)
+    lift = np.zeros_like(A)
+    lift[0] = 1.0
+    r = study.max_valid_step(np.zeros_like(A), lift)  # lift is bounded by (-2, 2)
+    assert r["limitedBy"] == "bounds" and r["boundVariable"] == "lift", r
+    assert r["step"] == 2.0 and r["invalidAbove"] == float("inf"), r
+    twist = np.zeros_like(A)
+    twist[2] = 1.0
+    with pytest.raises(meshmorph.InputError, match="direction is zero"):
+        study.max_valid_step(A, np.zeros_like(A))
+    with pytest.raises(meshmorph.InputError, match="components"):
+        study.max_valid_step(A, twist[:3])
+    with pytest.raises(meshmorph.InputError, match="limit must be positive"):
+        study.max_valid_step(A, twist, limit=0)

@@ -3,6 +3,8 @@
 // log lines and JSON.
 #include "meshmorph/app/design_commands.h"
 
+#include <cmath>
+#include <limits>
 #include <ostream>
 
 #include <nlohmann/json.hpp>
@@ -15,6 +17,7 @@
 #include "meshmorph/design/design_sensitivity.h"
 #include "meshmorph/design/design_setup.h"
 #include "meshmorph/design/design_variant.h"
+#include "meshmorph/design/valid_step.h"
 #include "meshmorph/io/foam_file.h"
 #include "meshmorph/parallel/communicator.h"
 #include "meshmorph/quality/quality_json.h"
@@ -44,6 +47,13 @@ void check_design_options(const Options& options)
                              " is not available with the design commands yet");
     if (options.found("method") && !options.found("variables"))
         throw UsageError("-method goes with -variables (a variant uses its set-up's method)");
+    if (options.found("direction") && !options.found("variant"))
+        throw UsageError("-direction goes with -variant (the design the step search starts "
+                         "from)");
+    for (const char* o : {"stepLimit", "maxNonOrtho"})
+        if (options.found(o) && !options.found("direction"))
+            throw UsageError(std::string("-") + o +
+                             " goes with -direction (it limits the step search)");
 }
 
 //! Write the report `j` to `path` (none if empty; the master only); say so unless `quiet`.
@@ -109,6 +119,50 @@ int run_variant(const morph::MorphOptions& morph, const std::string& text,
         << format_seconds(r.combine_seconds) << ", check " << format_seconds(r.check_seconds)
         << ", write " << format_seconds(r.write_seconds) << "\n";
     return status;
+}
+
+//! A step for the JSON: null when unbounded (JSON has no infinity).
+nlohmann::json step_json(double t)
+{
+    return std::isfinite(t) ? nlohmann::json(t) : nlohmann::json(nullptr);
+}
+
+std::string limit_text(const design::ValidStep& r)
+{
+    if (r.limited_by == "inversion")
+        return "a cell inverts by " + format_scalar(r.invalid_above, 6);
+    if (r.limited_by == "bounds")
+        return r.bound_variable + " reaches its bound";
+    if (r.limited_by == "limit")
+        return "the step limit";
+    if (r.limited_by == "nonOrthogonality")
+        return "the maximum non-orthogonality passes the limit by " +
+               format_scalar(r.invalid_above, 6);
+    return "nothing inverts along the direction, and no variable along it is bounded";
+}
+
+//! -variant A -direction P: the largest valid step along P from A; writes no mesh.
+int run_step_search(const morph::MorphOptions& morph, const Options& options,
+                    const fs::path& json_path, std::ostream& out)
+{
+    const std::vector<double> a = design::parse_amplitudes(*options.get("variant"));
+    const std::vector<double> p = design::parse_amplitudes(*options.get("direction"));
+    const double limit =
+        options.get_scalar("stepLimit").value_or(std::numeric_limits<double>::infinity());
+    design::DesignStudy study(morph);
+    log::info() << "Step search along -direction from -variant (" << study.names().size()
+                << " variables)";
+    const design::ValidStep r = design::largest_valid_step(
+        study, a, p, limit, options.get_scalar("maxNonOrtho").value_or(90.0));
+    log::info() << "Estimated first inversion (cubic pyramid volumes): "
+                << (std::isfinite(r.estimate) ? format_scalar(r.estimate, 6) : "none");
+    nlohmann::json j = valid_step_json(study, a, p, r);
+    j["exitStatus"] = exit_ok;
+    write_json(json_path, j, out);
+    out << "\nLargest valid step: " << (std::isfinite(r.step) ? format_scalar(r.step, 6) : "inf")
+        << " (" << limit_text(r) << "; " << r.checks << " checks, " << format_seconds(r.seconds)
+        << " s). Nothing written.\n";
+    return exit_ok;
 }
 
 int run_variants(const morph::MorphOptions& morph, const fs::path& table, const fs::path& json_path,
@@ -226,10 +280,38 @@ nlohmann::json variant_json(const design::DesignStudy& study, const design::Vari
     return j;
 }
 
+nlohmann::json valid_step_json(const design::DesignStudy& study, const std::vector<double>& a,
+                               const std::vector<double>& direction, const design::ValidStep& r)
+{
+    nlohmann::json amplitudes, along;
+    for (std::size_t j = 0; j < a.size(); ++j)
+    {
+        amplitudes[study.names()[j]] = a[j];
+        along[study.names()[j]] = direction[j];
+    }
+    return {{"setupReused", true},
+            {"setupFile", study.basis_file().string()},
+            {"written", false},
+            {"amplitudes", amplitudes},
+            {"direction", along},
+            {"step", step_json(r.step)},
+            {"invalidAbove", step_json(r.invalid_above)},
+            {"estimate", step_json(r.estimate)},
+            {"limitedBy", r.limited_by},
+            {"boundVariable", r.bound_variable},
+            {"maxNonOrthogonality", r.max_non_orthogonality}, // NaN (null): not asked for
+            {"checks", r.checks},
+            {"seconds", r.seconds}};
+}
+
 bool is_design_command(const Options& options)
 {
     for (const char* c : commands)
         if (options.found(c))
+            return true;
+    // The step search's options alone: check_design_options says which command they need.
+    for (const char* o : {"direction", "stepLimit", "maxNonOrtho"})
+        if (options.found(o))
             return true;
     return false;
 }
@@ -240,6 +322,8 @@ int run_design_command(const Options& options, const morph::MorphOptions& morph,
     check_design_options(options);
     if (options.found("variables"))
         return run_setup(morph, json_path, out);
+    if (options.found("direction"))
+        return run_step_search(morph, options, json_path, out);
     if (const std::optional<std::string> v = options.get("variant"))
         return run_variant(morph, *v, json_path, out);
     if (const std::optional<std::string> t = options.get("variants"))

@@ -12,6 +12,7 @@
 #include "meshmorph/app/options.h"
 #include "meshmorph/design/design_setup.h"
 #include "meshmorph/design/design_variant.h"
+#include "meshmorph/design/valid_step.h"
 #include "meshmorph/morph/morph_result.h"
 
 namespace meshmorph::app
@@ -26,6 +27,14 @@ nlohmann::json setup_json(const design::DesignSetupResult& r);
 //! relativeConstraintError, maxDisplacement, timings {combine, check, write}, after; when
 //! refused also refusal and backOff.
 nlohmann::json variant_json(const design::DesignStudy& study, const design::VariantResult& r);
+
+//! The JSON of -variant A -direction P (a step search; no mesh written): setupReused,
+//! setupFile, written (false), amplitudes and direction {name: value}, step, invalidAbove
+//! and estimate (null: unbounded), limitedBy ("inversion", "bounds", "limit", "none" or
+//! "nonOrthogonality"), maxNonOrthogonality at the step (null unless -maxNonOrtho),
+//! boundVariable, checks, seconds.
+nlohmann::json valid_step_json(const design::DesignStudy& study, const std::vector<double>& a,
+                               const std::vector<double>& direction, const design::ValidStep& r);
 
 //! Whether the command line asks for a design-study command.
 bool is_design_command(const Options& options);

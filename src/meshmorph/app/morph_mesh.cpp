@@ -199,6 +199,13 @@ Options morph_mesh_options()
          {"variant", "(a1 a2 ...)",
           "Write the design with these amplitudes (one per design variable) from the set-up: "
           "no fit"},
+         {"direction", "(p1 p2 ...)",
+          "With -variant: print the largest valid step t along this direction (the design "
+          "a + t p checked; nothing written)"},
+         {"stepLimit", "T", "With -direction: search steps up to T (default: the bounds)"},
+         {"maxNonOrtho", "DEG",
+          "With -direction: also keep checkMesh's maximum non-orthogonality at or below DEG "
+          "degrees"},
          {"variants", "FILE",
           "Write every row of amplitudes in FILE (a design-of-experiments table) to its own "
           "time directory"},

@@ -10,5 +10,6 @@ meshmorph_add_component(core
         meshmorph/core/triangle_surface.cpp
         meshmorph/core/memory_budget.cpp
         meshmorph/core/number_format.cpp
+        meshmorph/core/cubic_first_root.cpp
         # (one file per line)
     DEPENDS Eigen3::Eigen OpenMP::OpenMP_CXX)

@@ -78,6 +78,8 @@ public:
     const Points& points() const { return case_.foam.mesh.points; }
     //! The set-up's points x0.
     const Points& initial_points() const { return x0_; }
+    //! The cells' faces of the study's mesh (meshmorph::cell_faces), computed once.
+    const CompactList& faces_of_cells() const { return cell_faces_; }
     //! The instance after `instance` (the next time), for a new variant.
     std::string next_instance(const std::string& instance) const;
 

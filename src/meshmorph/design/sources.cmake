@@ -14,6 +14,7 @@ set(MESHMORPH_DESIGN_SOURCES
     meshmorph/design/design_setup.cpp
     meshmorph/design/amplitude_table.cpp
     meshmorph/design/design_variant.cpp
+    meshmorph/design/valid_step.cpp
     meshmorph/design/design_sensitivity.cpp)
 meshmorph_add_component(design
     SOURCES ${MESHMORPH_DESIGN_SOURCES}

@@ -20,6 +20,7 @@ set(MESHMORPH_QUALITY_SOURCES
     meshmorph/quality/face_flatness.cpp
     meshmorph/quality/face_orthogonality.cpp
     meshmorph/quality/face_pyramids.cpp
+    meshmorph/quality/inversion_step.cpp
     meshmorph/quality/face_skewness.cpp
     meshmorph/quality/face_tets.cpp
     meshmorph/quality/face_twist.cpp

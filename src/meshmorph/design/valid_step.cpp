@@ -1,0 +1,230 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The largest valid step: the bounds, the cubics' estimate, then the check around it.
+#include "meshmorph/design/valid_step.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
+#include "meshmorph/core/number_format.h"
+#include "meshmorph/core/stopwatch.h"
+#include "meshmorph/parallel/communicator.h"
+#include "meshmorph/quality/inversion_step.h"
+
+namespace meshmorph::design
+{
+
+namespace
+{
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+
+void check_direction(const DesignStudy& study, const std::vector<double>& p, double limit)
+{
+    if (p.size() != study.names().size())
+        throw InvalidInput("the direction has " + std::to_string(p.size()) +
+                           " components, the set-up has " + std::to_string(study.names().size()) +
+                           " design variables");
+    for (std::size_t j = 0; j < p.size(); ++j)
+        if (!std::isfinite(p[j]))
+            throw InvalidInput("the direction's component for " + study.names()[j] +
+                               " is not finite");
+    if (std::all_of(p.begin(), p.end(), [](double v) { return v == 0.0; }))
+        throw InvalidInput("the direction is zero: no step to search");
+    if (!(limit > 0.0))
+        throw InvalidInput("the step limit must be positive (it is " + format_scalar(limit, 6) +
+                           ")");
+}
+
+//! The step at which a + t p first reaches a variable's bound (+infinity: never); `name`
+//! receives that variable.
+double bound_step(const DesignStudy& study, const std::vector<double>& a,
+                  const std::vector<double>& p, std::string& name)
+{
+    double step = infinity;
+    for (std::size_t j = 0; j < p.size(); ++j)
+    {
+        const auto& b = study.header().bounds[j];
+        if (!b || p[j] == 0.0)
+            continue;
+        const double t = ((p[j] > 0.0 ? b->second : b->first) - a[j]) / p[j];
+        if (t < step)
+        {
+            step = std::max(t, 0.0);
+            name = study.names()[j];
+        }
+    }
+    return step;
+}
+
+//! a + t p, kept within the bounds (the step to a bound lands on it, not a rounding past it).
+std::vector<double> stepped(const DesignStudy& study, const std::vector<double>& a,
+                            const std::vector<double>& p, double t)
+{
+    std::vector<double> x(a.size());
+    for (std::size_t j = 0; j < a.size(); ++j)
+    {
+        x[j] = a[j] + t * p[j];
+        if (const auto& b = study.header().bounds[j])
+            x[j] = std::clamp(x[j], b->first, b->second);
+    }
+    return x;
+}
+
+//! The cubics' first inversion along p from the variant a (the study's mesh holds a).
+double estimated_inversion(DesignStudy& study, const std::vector<double>& p, double limit)
+{
+    const Points dx = study.combine(p);
+    const double local =
+        first_inversion_step(study.design_case().foam.mesh, study.faces_of_cells(), dx, limit);
+    return study.design_case().parallel ? parallel::Communicator::world().min(local) : local;
+}
+
+//! Narrow the bracket: valid at r.step, invalid at r.invalid_above.
+void bisect(const std::function<bool(double)>& valid, ValidStep& r)
+{
+    while (r.invalid_above - r.step > valid_step_tolerance * r.invalid_above)
+    {
+        const double mid = 0.5 * (r.step + r.invalid_above);
+        (valid(mid) ? r.step : r.invalid_above) = mid;
+    }
+}
+
+//! Bracket the first invalid step near the estimate t (0 < t < end): step outwards from it
+//! in growing increments until the check changes its verdict or `end` is reached.
+void bracket(const std::function<bool(double)>& valid, double t, double end, ValidStep& r)
+{
+    double increment = valid_step_tolerance * t;
+    if (valid(t))
+    {
+        r.step = t;
+        // (Capped: a bracket 4^30 estimates wide means the estimate was far off; the step
+        // found is still confirmed valid.)
+        for (int k = 0; k < 30 && r.step < end; ++k)
+        {
+            const double next = std::min(r.step + increment, end);
+            if (!valid(next))
+            {
+                r.invalid_above = next;
+                return;
+            }
+            r.step = next;
+            increment *= 4.0;
+        }
+        return; // valid up to the end
+    }
+    r.invalid_above = t;
+    for (double below = t - increment; below > 0.0; below = r.invalid_above - increment)
+    {
+        if (valid(below))
+        {
+            r.step = below;
+            return;
+        }
+        r.invalid_above = below;
+        increment *= 4.0;
+    }
+    r.step = 0.0; // valid at the start
+}
+
+//! Keep the step where the check's maximum non-orthogonality is at most `theta` degrees.
+void limit_non_orthogonality(DesignStudy& study, const std::vector<double>& a,
+                             const std::vector<double>& p, double theta, ValidStep& r)
+{
+    double at_step = 0.0;
+    const auto within = [&](double t)
+    {
+        ++r.checks;
+        const VariantResult v = study.evaluate(stepped(study, a, p, t), false);
+        at_step = v.after.max_non_orthogonality;
+        return !v.refused && at_step <= theta;
+    };
+    if (!within(0.0))
+        throw InvalidInput("the start's maximum non-orthogonality (" + format_scalar(at_step, 4) +
+                           " degrees) is already above the limit of " + format_scalar(theta, 4) +
+                           " degrees: search from a better design or raise the limit");
+    double lo = 0.0, hi = infinity;
+    if (std::isfinite(r.step))
+        for (int k = 1; k <= 8 && !std::isfinite(hi); ++k) // samples up to the valid step
+        {
+            const double t = r.step * k / 8.0;
+            (within(t) ? lo : hi) = t;
+        }
+    else
+        for (double t = 1.0; t < 1e300 && !std::isfinite(hi); t *= 2.0) // no end: double
+            (within(t) ? lo : hi) = t;
+    if (!std::isfinite(hi))
+    {
+        r.max_non_orthogonality = at_step; // the last sample, lo: within the limit
+        return;
+    }
+    while (hi - lo > valid_step_tolerance * hi)
+    {
+        const double mid = 0.5 * (lo + hi);
+        (within(mid) ? lo : hi) = mid;
+    }
+    within(lo);
+    r.step = lo;
+    r.invalid_above = hi;
+    r.max_non_orthogonality = at_step;
+    r.limited_by = "nonOrthogonality";
+    r.bound_variable.clear();
+}
+
+} // namespace
+
+ValidStep largest_valid_step(DesignStudy& study, const std::vector<double>& a,
+                             const std::vector<double>& direction, double limit,
+                             double max_non_orthogonality)
+{
+    const Stopwatch clock;
+    study.check_amplitudes(a);
+    check_direction(study, direction, limit);
+    if (!(max_non_orthogonality > 0.0))
+        throw InvalidInput("the non-orthogonality limit must be above 0 degrees (it is " +
+                           format_scalar(max_non_orthogonality, 4) + ")");
+    ValidStep r;
+    const auto valid = [&](double t)
+    {
+        ++r.checks;
+        return study.is_valid(stepped(study, a, direction, t));
+    };
+    if (!valid(0.0))
+        throw InvalidInput("the start of the step search is not valid (it has more "
+                           "negative-volume cells or wrongly oriented face pyramids than the "
+                           "set-up's mesh): search from a valid design");
+    const double to_bound = bound_step(study, a, direction, r.bound_variable);
+    const double end = std::min(limit, to_bound);
+    r.limited_by = !std::isfinite(end) ? "none" : to_bound <= limit ? "bounds" : "limit";
+    if (r.limited_by != "bounds")
+        r.bound_variable.clear();
+    r.estimate = estimated_inversion(study, direction, end);
+    r.step = 0.0;
+    r.invalid_above = infinity;
+    if (r.estimate < end)
+        bracket(valid, r.estimate, end, r);
+    else if (std::isfinite(end) && valid(end))
+        r.step = end;
+    else if (std::isfinite(end))
+        r.invalid_above = end; // the estimate missed an inversion: search all of [0, end]
+    if (std::isfinite(r.invalid_above))
+    {
+        bisect(valid, r);
+        r.limited_by = "inversion";
+        r.bound_variable.clear();
+    }
+    else if (!std::isfinite(end) && !std::isfinite(r.estimate))
+        r.step = infinity; // no bound, no limit, and nothing inverts along p (by the cubics)
+    if (max_non_orthogonality < 90.0)
+        limit_non_orthogonality(study, a, direction, max_non_orthogonality, r);
+    r.seconds = clock.seconds();
+    // Leave the study's mesh at the step found (as is_valid does).
+    if (std::isfinite(r.step))
+        study.is_valid(stepped(study, a, direction, r.step));
+    return r;
+}
+
+} // namespace meshmorph::design
