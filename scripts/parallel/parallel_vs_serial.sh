@@ -12,7 +12,8 @@
 # writes `value nonuniform 0;` for a processor that holds none of the inlet's points (with
 # -method simple along the pipe, every processor but the first).
 # -design: the design commands instead of a morph, on tutorials/designVariables (11
-# variables): -variables, -variant and -sensitivity (a dJ/dx over every point, which
+# variables): -variables, -variant, -variant -direction (the largest valid step, the same
+# serially and in parallel) and -sensitivity (a dJ/dx over every point, which
 # decomposePar splits) serially and under mpirun; the variant's points compared as above,
 # and dJ/da to 1e-12 relative.
 # -bin: the directory holding morphMesh. Exit 0 when the results agree, 77 when OpenFOAM or
@@ -96,6 +97,8 @@ morph() {
         run "$name.variables" "$@" -variables
         run "$name.variant" "$@" -variant "$amplitudes"
         run "$name.sensitivity" "$@" -sensitivity 0/dJdx -json "$out/$name.json"
+        run "$name.step" "$@" -variant "(0.16 0.06 0.2 0 0 0 0 0 0 0 0)" \
+            -direction "(0 0 0 1 -1 1 -1 0 0 0 0)" -json "$out/$name.step.json"
     else
         run "$name" "$@"
     fi
@@ -126,4 +129,12 @@ s, p = (json.load(open(f))["dJda"] for f in sys.argv[1:3])
 worst = max(abs(s[k] - p[k]) / max(1.0, abs(s[k])) for k in s)
 print(f"dJ/da of {len(s)} variables, -parallel against serial: largest relative difference {worst:.3g}")
 sys.exit(0 if worst < 1e-12 and s.keys() == p.keys() else 1)
+PY
+/usr/bin/python3 - "$out/serial.step.json" "$out/parallel.step.json" <<'PY'
+import json, sys
+s, p = (json.load(open(f)) for f in sys.argv[1:3])
+print(f"largest valid step: serial {s['step']!r} ({s['limitedBy']}), -parallel {p['step']!r} "
+      f"({p['limitedBy']})")
+same = all(s[k] == p[k] for k in ("step", "invalidAbove", "estimate", "limitedBy"))
+sys.exit(0 if same and s["limitedBy"] == "inversion" else 1)
 PY

@@ -22,7 +22,8 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 
 double estimate(const PolyMesh& mesh, const Points& dx, double limit = inf)
 {
-    return first_inversion_step(mesh, cell_faces(mesh), dx, limit);
+    const CompactList cf = cell_faces(mesh);
+    return first_inversion_step(mesh, cf, compute_geometry(mesh, cf), dx, limit);
 }
 
 //! The checker's first invalid step along dx, by bisection to 1e-12 (the test's reference).
@@ -82,8 +83,8 @@ TEST(InversionStep, translations_and_linearised_rotations_never_invert)
 
 TEST(InversionStep, is_close_to_the_checkers_verdict_for_a_point_pushed_through_its_cells)
 {
-    // One interior point of a 4^3 box pushed diagonally: its cells' faces warp, so the
-    // point-average centres differ from checkMesh's weighted ones.
+    // One interior point of a 4^3 box pushed diagonally: its cells' faces warp, and
+    // checkMesh's weighted centres move other than linearly.
     const PolyMesh box = test::make_box_mesh(4, 4, 4);
     Points dx = Points::Zero(box.n_points(), 3);
     Index moved = -1;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The first non-positive step of a cubic: split at the critical points, bisect the first
+// The first non-positive step of a cubic: split at the critical points, solve on the first
 // monotone piece whose end is non-positive.
 #include "meshmorph/core/cubic_first_root.h"
 
@@ -60,15 +60,33 @@ double root_bound(const Cubic& p)
     return 1.0 + ratio;
 }
 
-//! p(lo) > 0 >= p(hi), p monotone on [lo, hi]: the last positive t found by bisection.
+//! p(lo) > 0 >= p(hi), p monotone on [lo, hi]: the first non-positive t, by the Illinois
+//! variant of regula falsi (superlinear; the bracket always holds the root, so it cannot
+//! miss it as Newton's method could), to a relative 1e-13.
 double bisect(const Cubic& p, double lo, double hi)
 {
+    double f_lo = evaluate_cubic(p, lo), f_hi = evaluate_cubic(p, hi);
+    int side = 0; // which end was kept last: halve its value when kept twice (Illinois)
     for (int i = 0; i < 200 && hi - lo > 1e-13 * hi; ++i)
     {
-        const double mid = 0.5 * (lo + hi);
-        if (mid <= lo || mid >= hi)
-            break;
-        (evaluate_cubic(p, mid) > 0.0 ? lo : hi) = mid;
+        double t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+        if (!(t > lo && t < hi))
+            t = 0.5 * (lo + hi);
+        const double f = evaluate_cubic(p, t);
+        if (f > 0.0)
+        {
+            lo = t, f_lo = f;
+            if (side == -1)
+                f_hi *= 0.5;
+            side = -1;
+        }
+        else
+        {
+            hi = t, f_hi = f;
+            if (side == 1)
+                f_lo *= 0.5;
+            side = 1;
+        }
     }
     return hi;
 }

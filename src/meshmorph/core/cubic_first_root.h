@@ -13,9 +13,9 @@ namespace meshmorph
 using Cubic = std::array<double, 4>;
 
 //! \brief The smallest t in (0, limit] with p(t) <= 0, to a relative 1e-13, found on the
-//! cubic's monotone pieces (split at the roots of p') by bisection, so a root that a coarse
-//! sampling would step over is not missed. \param limit may be +infinity (the roots then
-//! lie within Cauchy's bound). \pre p(0) = c0 > 0. \return +infinity if there is none.
+//! cubic's monotone pieces (split at the roots of p') by a bracketing solver (Illinois), so
+//! a root that a coarse sampling would step over is not missed. \param limit may be +infinity (the
+//! roots then lie within Cauchy's bound). \pre p(0) = c0 > 0. \return +infinity if there is none.
 double first_nonpositive_step(const Cubic& p, double limit);
 
 //! p(t), by Horner's rule.

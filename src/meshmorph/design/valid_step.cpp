@@ -6,11 +6,13 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <utility>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/core/number_format.h"
 #include "meshmorph/core/stopwatch.h"
+#include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/parallel/communicator.h"
 #include "meshmorph/quality/inversion_step.h"
 
@@ -74,14 +76,49 @@ std::vector<double> stepped(const DesignStudy& study, const std::vector<double>&
     return x;
 }
 
-//! The cubics' first inversion along p from the variant a (the study's mesh holds a).
-double estimated_inversion(DesignStudy& study, const std::vector<double>& p, double limit)
+//! The cubics' model of the first inversion along dx = sum_j p_j F_j, from the design in
+//! the study's mesh. The first estimate visits every cell; it keeps as candidates the cells
+//! estimated to invert within 4 times the first estimate, and later estimates (from a later
+//! step, with checkMesh's centres there) revisit only those: a cell estimated far later is
+//! unlikely to be first, and if it is, the check of the estimate says so.
+class InversionModel
 {
-    const Points dx = study.combine(p);
-    const double local =
-        first_inversion_step(study.design_case().foam.mesh, study.faces_of_cells(), dx, limit);
-    return study.design_case().parallel ? parallel::Communicator::world().min(local) : local;
-}
+public:
+    InversionModel(const DesignStudy& study, Points dx) : study_(study), dx_(std::move(dx)) {}
+
+    //! The first estimate, over all cells; sets the candidates.
+    double first(double limit)
+    {
+        const std::vector<double> steps =
+            cell_inversion_steps(mesh(), study_.faces_of_cells(), geometry(), dx_, limit, nullptr);
+        double t = steps.empty() ? infinity : *std::min_element(steps.begin(), steps.end());
+        t = reduced(t);
+        for (std::size_t c = 0; c < steps.size(); ++c)
+            if (steps[c] <= 4.0 * t)
+                candidates_.push_back(Index(c));
+        return t;
+    }
+
+    //! An estimate from the design now in the study's mesh, over the candidates.
+    double again(double limit)
+    {
+        const std::vector<double> steps = cell_inversion_steps(
+            mesh(), study_.faces_of_cells(), geometry(), dx_, limit, &candidates_);
+        return reduced(steps.empty() ? infinity : *std::min_element(steps.begin(), steps.end()));
+    }
+
+private:
+    const PolyMesh& mesh() const { return study_.design_case().foam.mesh; }
+    MeshGeometry geometry() const { return compute_geometry(mesh(), study_.faces_of_cells()); }
+    double reduced(double local) const
+    {
+        return study_.design_case().parallel ? parallel::Communicator::world().min(local) : local;
+    }
+
+    const DesignStudy& study_;
+    Points dx_;
+    std::vector<Index> candidates_;
+};
 
 //! Narrow the bracket: valid at r.step, invalid at r.invalid_above.
 void bisect(const std::function<bool(double)>& valid, ValidStep& r)
@@ -93,41 +130,45 @@ void bisect(const std::function<bool(double)>& valid, ValidStep& r)
     }
 }
 
-//! Bracket the first invalid step near the estimate t (0 < t < end): step outwards from it
-//! in growing increments until the check changes its verdict or `end` is reached.
-void bracket(const std::function<bool(double)>& valid, double t, double end, ValidStep& r)
+//! From a valid r.step, step on in growing increments (the first `increment`) until the
+//! check fails (r.invalid_above) or `end` is reached (capped: 4^30 increments).
+void grow_bracket(const std::function<bool(double)>& valid, double increment, double end,
+                  ValidStep& r)
 {
-    double increment = valid_step_tolerance * t;
-    if (valid(t))
+    for (int k = 0; k < 30 && r.step < end; ++k)
     {
-        r.step = t;
-        // (Capped: a bracket 4^30 estimates wide means the estimate was far off; the step
-        // found is still confirmed valid.)
-        for (int k = 0; k < 30 && r.step < end; ++k)
+        const double next = std::min(r.step + increment, end);
+        if (!valid(next))
         {
-            const double next = std::min(r.step + increment, end);
-            if (!valid(next))
-            {
-                r.invalid_above = next;
-                return;
-            }
-            r.step = next;
-            increment *= 4.0;
-        }
-        return; // valid up to the end
-    }
-    r.invalid_above = t;
-    for (double below = t - increment; below > 0.0; below = r.invalid_above - increment)
-    {
-        if (valid(below))
-        {
-            r.step = below;
+            r.invalid_above = next;
             return;
         }
-        r.invalid_above = below;
+        r.step = next;
         increment *= 4.0;
     }
-    r.step = 0.0; // valid at the start
+}
+
+//! March towards the first inversion from a valid r.step: check the cubics' estimate; where
+//! it is valid, estimate again from there, with checkMesh's centres at that step (the cubic
+//! is exact at its start, so each estimate is closer than the last). Stops at an invalid
+//! estimate (r.invalid_above), at `end`, or when the next estimate is within the bracket's
+//! tolerance of the step. \return the last estimate.
+double march(InversionModel& model, const std::function<bool(double)>& valid, double estimate,
+             double end, ValidStep& r)
+{
+    for (int k = 0; k < 12 && estimate < end; ++k)
+    {
+        if (!valid(estimate))
+        {
+            r.invalid_above = estimate;
+            break;
+        }
+        r.step = estimate; // (the study's mesh now holds it: the next estimate starts there)
+        estimate = r.step + model.again(end - r.step);
+        if (estimate - r.step <= valid_step_tolerance * r.step)
+            break; // the model puts the inversion within the bracket's width
+    }
+    return estimate;
 }
 
 //! Keep the step where the check's maximum non-orthogonality is at most `theta` degrees.
@@ -201,23 +242,28 @@ ValidStep largest_valid_step(DesignStudy& study, const std::vector<double>& a,
     r.limited_by = !std::isfinite(end) ? "none" : to_bound <= limit ? "bounds" : "limit";
     if (r.limited_by != "bounds")
         r.bound_variable.clear();
-    r.estimate = estimated_inversion(study, direction, end);
+    InversionModel model(study, study.combine(direction)); // the points' rates along p
+    r.estimate = model.first(end);                         // (the mesh holds a: valid(0))
     r.step = 0.0;
     r.invalid_above = infinity;
-    if (r.estimate < end)
-        bracket(valid, r.estimate, end, r);
-    else if (std::isfinite(end) && valid(end))
-        r.step = end;
-    else if (std::isfinite(end))
-        r.invalid_above = end; // the estimate missed an inversion: search all of [0, end]
+    const double last = march(model, valid, r.estimate, end, r);
+    if (!std::isfinite(r.invalid_above)) // not bracketed yet
+    {
+        if (last < end) // converged just below a crossing, or out of marches
+            grow_bracket(valid, valid_step_tolerance * std::max(r.step, r.estimate), end, r);
+        else if (std::isfinite(end) && valid(end))
+            r.step = end;
+        else if (std::isfinite(end))
+            r.invalid_above = end; // the estimates missed an inversion: bisect [step, end]
+        else
+            r.step = infinity; // no bound, no limit, and nothing inverts along p (by the cubics)
+    }
     if (std::isfinite(r.invalid_above))
     {
         bisect(valid, r);
         r.limited_by = "inversion";
         r.bound_variable.clear();
     }
-    else if (!std::isfinite(end) && !std::isfinite(r.estimate))
-        r.step = infinity; // no bound, no limit, and nothing inverts along p (by the cubics)
     if (max_non_orthogonality < 90.0)
         limit_non_orthogonality(study, a, direction, max_non_orthogonality, r);
     r.seconds = clock.seconds();

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //! \file The largest valid step along a search direction, for an optimiser's line search. A
 //! variant is linear in its amplitudes, so along a + t p every point moves on a straight
-//! line and every face pyramid's volume is a cubic in t (quality/inversion_step.h): its first
-//! root estimates where the first cell inverts. The step returned is then confirmed by the
-//! variant check itself (DesignStudy::is_valid: no more negative-volume cells or wrongly
-//! oriented face pyramids than the set-up's mesh), with the bracket around the estimate
-//! narrowed by bisection.
+//! line and every face pyramid's volume is close to a cubic in t (quality/inversion_step.h):
+//! its first root estimates where the first cell inverts. The search checks the estimate
+//! with the variant check itself (DesignStudy::is_valid: no more negative-volume cells or
+//! wrongly oriented face pyramids than the set-up's mesh), estimates again from each valid
+//! estimate (closer each time: the cubic is exact at its start), and bisects the bracket
+//! around the crossing.
 #pragma once
 
 #include <limits>
@@ -25,7 +26,8 @@ struct ValidStep
     //! The smallest step found invalid (+infinity when none was met: `step` is then the
     //! bound or the limit).
     double invalid_above = 0.0;
-    //! The cubics' estimate of the first inversion (+infinity: none within the search).
+    //! The cubics' first estimate of the first inversion, from a (+infinity: none within the
+    //! search).
     double estimate = 0.0;
     //! "inversion" (a cell inverts just above `step`), "bounds" (a variable reaches its
     //! bound at `step`; the variable is named in `bound_variable`), "limit" (the caller's) or
@@ -47,7 +49,7 @@ struct ValidStep
 inline constexpr double valid_step_tolerance = 1e-4;
 
 //! \brief The largest t in [0, min(limit, bounds)] such that a + s p is valid for s = t
-//! (confirmed by the check) and, by the cubics' estimate, for every s below it.
+//! (confirmed by the check; the steps below it are not each checked).
 //! \param max_non_orthogonality below 90 degrees: also keep checkMesh's maximum
 //! non-orthogonality at or below it (the full check at 8 steps up to the valid step, then
 //! bisection between the last step within it and the first beyond; it assumes the maximum

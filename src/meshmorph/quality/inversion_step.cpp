@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "meshmorph/core/cubic_first_root.h"
 #include "meshmorph/mesh/foam_vector.h"
@@ -33,36 +34,30 @@ MovingPoint moving_point(const PolyMesh& mesh, const Points& dx, Index p)
     return {mesh.points.row(p).transpose(), dx.row(p).transpose()};
 }
 
-//! The average of face f's points (a linear function of t).
-MovingPoint face_average(const PolyMesh& mesh, const Points& dx, Index f)
+//! Face f's centre: checkMesh's at t = 0, moving with the average of its points' rates.
+MovingPoint face_centre(const PolyMesh& mesh, const MeshGeometry& g, const Points& dx, Index f)
 {
-    MovingPoint c;
+    Vector3 rate = Vector3::Zero();
     const auto face = mesh.faces[f];
     for (Index p : face)
-    {
-        c.at += mesh.points.row(p).transpose();
-        c.rate += dx.row(p).transpose();
-    }
-    const double n = double(face.size());
-    return {c.at / n, c.rate / n};
+        rate += dx.row(p).transpose();
+    return {g.face_centres.row(f).transpose(), rate / double(face.size())};
 }
 
-//! The average of a cell's face averages.
-MovingPoint cell_average(const PolyMesh& mesh, const Points& dx, std::span<const Index> faces)
+//! Cell c's centre: checkMesh's at t = 0, moving with the average of its faces' rates.
+MovingPoint cell_centre(const PolyMesh& mesh, const MeshGeometry& g, const Points& dx, Index c,
+                        std::span<const Index> faces)
 {
-    MovingPoint c;
+    Vector3 rate = Vector3::Zero();
     for (Index f : faces)
-    {
-        const MovingPoint fa = face_average(mesh, dx, f);
-        c.at += fa.at;
-        c.rate += fa.rate;
-    }
-    const double n = double(std::max<std::size_t>(faces.size(), 1));
-    return {c.at / n, c.rate / n};
+        rate += face_centre(mesh, g, dx, f).rate;
+    return {g.cell_centres.row(c).transpose(),
+            rate / double(std::max<std::size_t>(faces.size(), 1))};
 }
 
-//! Twice face f's area vector about its point average `centre`: sum over its edges (a, b)
-//! of (a - centre) x (b - centre), quadratic in t.
+//! Twice face f's area vector: the sum over its edges (a, b) of (a - centre) x (b - centre),
+//! quadratic in t. The sum does not depend on `centre` (the loop is closed), so it is
+//! checkMesh's; a point near the face keeps the products small (no cancellation).
 QuadraticVector twice_area_vector(const PolyMesh& mesh, const Points& dx, Index f,
                                   const MovingPoint& centre)
 {
@@ -126,17 +121,17 @@ Cubic without_round_off(Cubic c, const CellScales& s)
 
 //! The first step in (0, limit] at which cell c or one of its face pyramids, positive at
 //! t = 0, reaches zero volume.
-double cell_inversion_step(const PolyMesh& mesh, const CompactList& cell_faces, const Points& dx,
-                           Index c, double limit)
+double cell_inversion_step(const PolyMesh& mesh, const CompactList& cell_faces,
+                           const MeshGeometry& g, const Points& dx, Index c, double limit)
 {
     const std::span<const Index> faces = cell_faces[c];
-    const MovingPoint centre = cell_average(mesh, dx, faces);
+    const MovingPoint centre = cell_centre(mesh, g, dx, c, faces);
     const CellScales scales = cell_scales(mesh, dx, faces, centre);
     double first = std::numeric_limits<double>::infinity();
     Cubic volume{0.0, 0.0, 0.0, 0.0};
     for (Index f : faces)
     {
-        const MovingPoint fa = face_average(mesh, dx, f);
+        const MovingPoint fa = face_centre(mesh, g, dx, f);
         const MovingPoint w{fa.at - centre.at, fa.rate - centre.rate};
         const Cubic pyramid = without_round_off(
             pyramid_volume(w, twice_area_vector(mesh, dx, f, fa), mesh.owner[f] == c ? 1.0 : -1.0),
@@ -154,17 +149,26 @@ double cell_inversion_step(const PolyMesh& mesh, const CompactList& cell_faces, 
 
 } // namespace
 
-double first_inversion_step(const PolyMesh& mesh, const CompactList& cell_faces, const Points& dx,
-                            double limit)
+std::vector<double> cell_inversion_steps(const PolyMesh& mesh, const CompactList& cell_faces,
+                                         const MeshGeometry& geometry, const Points& dx,
+                                         double limit, const std::vector<Index>* cells)
 {
-    double first = std::numeric_limits<double>::infinity();
-    const Index n_cells = cell_faces.size();
-#pragma omp parallel for schedule(dynamic, detail::loop_piece)                                     \
-    reduction(min                                                                                  \
-              : first) if (n_cells > detail::parallel_threshold)
-    for (Index c = 0; c < n_cells; ++c)
-        first = std::min(first, cell_inversion_step(mesh, cell_faces, dx, c, limit));
-    return first;
+    const Index n = cells != nullptr ? Index(cells->size()) : cell_faces.size();
+    std::vector<double> steps(std::size_t(n), std::numeric_limits<double>::infinity());
+#pragma omp parallel for schedule(dynamic, detail::loop_piece) if (n > detail::parallel_threshold)
+    for (Index k = 0; k < n; ++k)
+        steps[std::size_t(k)] = cell_inversion_step(
+            mesh, cell_faces, geometry, dx, cells != nullptr ? (*cells)[std::size_t(k)] : k, limit);
+    return steps;
+}
+
+double first_inversion_step(const PolyMesh& mesh, const CompactList& cell_faces,
+                            const MeshGeometry& geometry, const Points& dx, double limit)
+{
+    const std::vector<double> steps =
+        cell_inversion_steps(mesh, cell_faces, geometry, dx, limit, nullptr);
+    return steps.empty() ? std::numeric_limits<double>::infinity()
+                         : *std::min_element(steps.begin(), steps.end());
 }
 
 } // namespace meshmorph
