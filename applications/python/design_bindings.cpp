@@ -220,10 +220,13 @@ void bind_design(py::module_& m)
             "(n, 3) read-only view (no copy) of the set-up's points x0.")
         .def("points", &displaced_points, py::arg("a"),
              "x0 + sum_j a_j F_j as a new (n, 3) array (no check, nothing kept): the variant's "
-             "points, bit for bit those evaluate(a) checks and morphMesh -variant writes.")
+             "points, bit for bit those evaluate(a) checks and morphMesh -variant writes "
+             "unless they untangle it (their report's 'untangle').")
         .def("evaluate", &evaluate, py::arg("a"), py::kw_only(), py::arg("back_off") = false,
-             "Build and check the variant a (checkMesh's metrics; refused when it has new "
-             "invalid cells); returns morphMesh -variant's JSON report as a dict. back_off=True "
+             "Build and check the variant a (checkMesh's metrics; new invalid cells are "
+             "untangled as a one-off morph does, unless the morphDict says 'untangle no'; refused "
+             "when some remain); returns morphMesh -variant's JSON report as a dict. "
+             "back_off=True "
              "names the variable whose removal repairs a refused variant (one check per "
              "variable). write() writes it.")
         .def(
@@ -240,7 +243,8 @@ void bind_design(py::module_& m)
             },
             py::arg("a"),
             "Whether the variant a has no more negative-volume cells or wrongly oriented face "
-            "pyramids than x0: the cheap test for a line search (no other check, no report).")
+            "pyramids than x0: the cheap test for a line search (no other check, no report; "
+            "the linear combination, without evaluate's untangling).")
         .def("max_valid_step", &max_valid_step, py::arg("a"), py::arg("direction"), py::kw_only(),
              py::arg("limit") = py::none(), py::arg("max_non_orthogonality") = py::none(),
              "The largest step t (up to `limit` and the variables' bounds) such that a + t * "

@@ -12,6 +12,7 @@
 #      including the check and writing the points; the lift variant against the one-off
 #      morph's points (largest difference / lift);
 #   3c. the largest valid step along three directions (-variant A -direction P);
+#   3d. three variants past the rider's first inversion, untangled (or refused);
 #   4. optionally (-lattice) a lattice of 100 variables around the bike: set-up, variant and
 #      gradient times, peak memory, size of the set-up file.
 # Prints and writes DIR/design.md.
@@ -171,6 +172,30 @@ run_step_search rider "(0 0 0 0 0 0)" "(0 0 0 0 -1 0)"
 run_step_search all "(0 0 0 0 0 0)" "(1 2 1 0.05 -0.05 1)"
 run_step_search fairing "(0.5 1 0 0 0 0)" "(0 0 0 0 0 1)"
 
+say "3d. variants past the first inversion (the rider's control point at -1, past 0.959): untangled"
+untangle_rows=()
+run_untangled() { # <name> <amplitudes>: one variant, its row in untangle_rows
+    timed "$out/log.untangle.$1" "$morph_mesh" -case "$case" -variant "$2" -json "$out/untangle.$1.json"
+    local row
+    row=$(/usr/bin/python3 - "$out/untangle.$1.json" "$2" "$wall" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+u = j.get("untangle", {})
+print(f"| {sys.argv[2]} | {'valid, written' if j['valid'] else 'refused: ' + j['refusal']} | "
+      f"{u.get('invalidBefore', 0)} | {u.get('invalidAfter', 0)} | {u.get('pointsMoved', 0)} | "
+      f"{u.get('maxMove', 0):.3g} | {u.get('seconds', 0):.2f} | {sys.argv[3]} |")
+PY
+)
+    untangle_rows+=("$row")
+    say "   $row"
+    local written # the time directory it wrote, removed (the next variants reuse the name)
+    written=$(/usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print(j['outputInstance'] if j['written'] and j['outputInstance'] else '')" "$out/untangle.$1.json")
+    [ -z "$written" ] || rm -rf "${case:?}/$written"
+}
+run_untangled rider1 "(0 0 0 0 -1 0)"
+run_untangled rider105 "(0 0 0 0 -1.05 0)"
+run_untangled rider12 "(0 0 0 0 -1.2 0)"
+
 if $lattice; then
     say "4. a lattice of 100 variables"
     lcase=$out/lattice
@@ -225,6 +250,13 @@ fi
     echo "| search | step | limited by | invalid above | estimate | checks | search [s] | run [s] |"
     echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
     printf '%s\n' "${step_rows[@]}"
+    echo
+    echo "Variants past the first inversion, untangled (invalid before/after: new invalid cells"
+    echo "of the linear combination and after the repair; max move in metres):"
+    echo
+    echo "| amplitudes | verdict | invalid before | invalid after | points moved | max move | untangle [s] | run [s] |"
+    echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
+    printf '%s\n' "${untangle_rows[@]}"
     echo
     echo "Lift variant against the one-off morph of the same lift: $(cat "$out/agreement.txt")"
     echo

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include <unistd.h>
 
@@ -370,26 +371,49 @@ TEST_F(DesignVariables, variants_of_a_table_go_to_their_own_time_directories_wit
         fs::remove_all(*dir_ / std::to_string(row));
 }
 
-TEST_F(DesignVariables, a_variant_that_inverts_cells_is_refused_and_names_the_variable_to_back_off)
+TEST_F(DesignVariables, a_variant_that_folds_cells_is_untangled_and_stays_exact)
 {
-    // The core lifted by 3 x 0.1 = 0.3 of the pipe's 0.5 radius in one linear step.
-    const fs::path json = *dir_ / "refused.json";
+    // The core lifted by 3 x 0.1 = 0.3 of the pipe's 0.5 radius in one linear step folds a
+    // few cells around the handle; the one-off morph's untangling repairs them.
+    const fs::path json = *dir_ / "untangled.json";
     const test::MorphRun r =
         test::run_morph_mesh({"-case", dir_->string(), "-variant",
                               amplitude_list(amplitudes(3.0, 0, 0, 0.01)), "-json", json.string()});
+    ASSERT_EQ(r.code, 0) << r.log;
+    EXPECT_NE(r.log.find("Untangled "), std::string::npos) << r.log;
+    const nlohmann::json j = nlohmann::json::parse(read_text(json));
+    EXPECT_TRUE(j["valid"].get<bool>() && j["written"].get<bool>()) << j.dump(1);
+    EXPECT_GT(j["untangle"]["invalidBefore"].get<int>(), 0) << j["untangle"];
+    EXPECT_EQ(j["untangle"]["invalidAfter"].get<int>(), 0) << j["untangle"];
+    EXPECT_GT(j["untangle"]["pointsMoved"].get<int>(), 0) << j["untangle"];
+    EXPECT_LT(j["relativeConstraintError"].get<double>(), 1e-9) << j.dump(1); // handle exact
+    EXPECT_EQ(j["after"]["negativeVolumeCells"].get<int>(), 0);
+    EXPECT_EQ(j["after"]["incorrectlyOrientedFacePyramids"].get<int>(), 0);
+    fs::remove_all(*dir_ / "1");
+}
+
+TEST_F(DesignVariables, a_variant_the_untangling_cannot_repair_is_refused_naming_the_variable)
+{
+    // The lift above with the wall squeezed by 80% of its radius onto the core.
+    const fs::path json = *dir_ / "refused.json";
+    const test::MorphRun r = test::run_morph_mesh({"-case", dir_->string(), "-variant",
+                                                   amplitude_list(amplitudes(3.0, 8.0, 0, 0.01)),
+                                                   "-json", json.string()});
     if (r.code == 0)
         GTEST_FAIL() << "expected a refusal\n" << r.log;
     EXPECT_EQ(r.code, 3) << r.log;
     const nlohmann::json j = nlohmann::json::parse(read_text(json));
     EXPECT_FALSE(j["written"].get<bool>());
-    EXPECT_EQ(j["backOff"].get<std::string>().rfind("lift", 0), 0u) << j["backOff"];
-    EXPECT_NE(r.log.find("back off lift"), std::string::npos) << r.log;
+    EXPECT_GT(j["untangle"]["invalidAfter"].get<int>(), 0) << j["untangle"];
+    EXPECT_NE(j["refusal"].get<std::string>().find("after untangling"), std::string::npos);
+    EXPECT_EQ(j["backOff"].get<std::string>().rfind("squeeze", 0), 0u) << j["backOff"];
+    EXPECT_NE(r.log.find("back off squeeze"), std::string::npos) << r.log;
     EXPECT_FALSE(fs::exists(*dir_ / "1"));
 }
 
 TEST_F(DesignVariables, a_step_search_finds_the_largest_valid_lift_and_the_check_confirms_it)
 {
-    // From a small design, along the lift (bounded by 3, where cells invert: the test above).
+    // From a small design, along the lift (bounded by 3, where cells fold: the tests above).
     const std::vector<double> start = amplitudes(0.2, 0.1, 0.5, 0.01);
     const fs::path json = *dir_ / "step.json";
     const test::MorphRun r = test::run_morph_mesh(
@@ -405,18 +429,26 @@ TEST_F(DesignVariables, a_step_search_finds_the_largest_valid_lift_and_the_check
     EXPECT_LT(start[0] + t, 3.0);
     EXPECT_LE((above - t) / above, 1.0001e-4) << j.dump(1); // the bracket's width
     EXPECT_NEAR(j["estimate"].get<double>() / t, 1.0, 0.02) << j.dump(1);
-    // The variant at the step is written; just above it, refused.
+    // The linear combination at the step is valid; just above it, it folds cells (which
+    // -variant then untangles).
     std::vector<double> at = start, beyond = start;
     at[0] += t;
     beyond[0] += above;
-    EXPECT_EQ(test::run_morph_mesh(
-                  {"-case", dir_->string(), "-variant", amplitude_list(at), "-noOverwrite"})
-                  .code,
-              0);
-    fs::remove_all(*dir_ / "1");
-    EXPECT_EQ(
-        test::run_morph_mesh({"-case", dir_->string(), "-variant", amplitude_list(beyond)}).code,
-        3);
+    const fs::path variant_json = *dir_ / "step_variant.json";
+    for (const auto& [a, folds] : {std::pair{at, false}, std::pair{beyond, true}})
+    {
+        const test::MorphRun v =
+            test::run_morph_mesh({"-case", dir_->string(), "-variant", amplitude_list(a), "-json",
+                                  variant_json.string()});
+        EXPECT_EQ(v.code, 0) << v.log;
+        const nlohmann::json vj = nlohmann::json::parse(read_text(variant_json));
+        EXPECT_EQ(vj.contains("untangle"), folds) << vj.dump(1);
+        if (folds && vj.contains("untangle"))
+        {
+            EXPECT_GT(vj["untangle"]["invalidBefore"].get<int>(), 0);
+        }
+        fs::remove_all(*dir_ / "1");
+    }
     // -stepLimit below the inversion is the answer; -direction needs -variant.
     const test::MorphRun limited = test::run_morph_mesh(
         {"-case", dir_->string(), "-variant", amplitude_list(start), "-direction",

@@ -243,3 +243,36 @@ def test_max_valid_step_stops_at_a_bound_and_refuses_a_bad_search(design_pipe):
         study.max_valid_step(A, twist[:3])
     with pytest.raises(meshmorph.InputError, match="limit must be positive"):
         study.max_valid_step(A, twist, limit=0)
+
+
+def test_a_variant_that_folds_a_few_cells_is_untangled_exactly_unless_the_dict_says_no(
+        design_pipe):
+    meshmorph.setup_design(design_pipe)
+    study = meshmorph.DesignStudy(design_pipe)
+    start = 0.2 * A
+    direction = np.zeros_like(A)
+    direction[3:7] = [1.0, -1.0, 1.0, -1.0]
+    # Just past the first inversion along the direction: the linear combination folds cells.
+    step = study.max_valid_step(start, direction)
+    folded = start + 1.02 * step["invalidAbove"] * direction
+    assert not study.is_valid(folded)
+    report = study.evaluate(folded)
+    repair = report["untangle"]
+    assert repair["invalidBefore"] > 0 and repair["invalidAfter"] == 0, repair
+    assert 0 < repair["pointsMoved"] and repair["maxMove"] > 0, repair
+    assert report["valid"] and report["after"]["negativeVolumeCells"] == 0, report
+    assert report["after"]["incorrectlyOrientedFacePyramids"] == 0, report
+    assert report["relativeConstraintError"] < 1e-9, report  # prescribed points stay exact
+    written = meshmorph.Case(design_pipe, time=study.write().parent.parent.name).initial_points
+    linear = study.points(folded)
+    moved = np.linalg.norm(written - linear, axis=1)
+    assert np.count_nonzero(moved) == repair["pointsMoved"], repair
+    assert moved.max() == pytest.approx(repair["maxMove"], rel=1e-12)
+    # A valid variant needs no repair and reports none.
+    assert "untangle" not in study.evaluate(start)
+
+    dict_path = design_pipe / "system" / "morphDict"
+    dict_path.write_text(dict_path.read_text() + "\nuntangle no;\n")
+    meshmorph.setup_design(design_pipe)
+    strict = meshmorph.DesignStudy(design_pipe).evaluate(folded)
+    assert not strict["valid"] and "untangle" not in strict, strict

@@ -272,6 +272,12 @@ nlohmann::json variant_json(const design::DesignStudy& study, const design::Vari
         {"timings",
          {{"combine", r.combine_seconds}, {"check", r.check_seconds}, {"write", r.write_seconds}}},
         {"after", quality_json(r.after)}};
+    if (r.repair.tried)
+        j["untangle"] = {{"invalidBefore", r.repair.invalid_before},
+                         {"invalidAfter", r.repair.invalid_after},
+                         {"pointsMoved", r.repair.points_moved},
+                         {"maxMove", r.repair.max_move},
+                         {"seconds", r.repair.seconds}};
     if (r.refused)
     {
         j["refusal"] = r.refusal;

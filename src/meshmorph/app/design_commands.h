@@ -25,7 +25,8 @@ nlohmann::json setup_json(const design::DesignSetupResult& r);
 //! The JSON of one variant: setupReused, setupFile, amplitudes {name: a}, valid, written,
 //! outputInstance, path, maxPrescribedDisplacement, maxConstraintError,
 //! relativeConstraintError, maxDisplacement, timings {combine, check, write}, after; when
-//! refused also refusal and backOff.
+//! the linear combination had new invalid cells untangle {invalidBefore, invalidAfter,
+//! pointsMoved, maxMove, seconds}; when refused also refusal and backOff.
 nlohmann::json variant_json(const design::DesignStudy& study, const design::VariantResult& r);
 
 //! The JSON of -variant A -direction P (a step search; no mesh written): setupReused,

@@ -10,6 +10,7 @@
 #include "meshmorph/io/foam_file.h"
 #include "meshmorph/morph/deformation_dict.h"
 #include "meshmorph/morph/distributed_case.h"
+#include "meshmorph/morph/morph_steps.h"
 #include "meshmorph/parallel/collective.h"
 
 namespace meshmorph::design
@@ -59,6 +60,7 @@ DesignCase read_design_case(const morph::MorphOptions& options)
     dc.setup = morph::read_morph_setup(parsed);
     dc.settings = morph::read_deformation_settings(parsed, options.method);
     dc.variables = read_design_variables(parsed);
+    dc.untangle = morph::read_step_settings(parsed).untangle;
     if (dc.variables.empty())
         throw InvalidInput(dc.dict_path.string() +
                            ": no designVariables (see tutorials/designVariables)");

@@ -28,6 +28,7 @@ struct DesignCase
     morph::MorphSetup setup;
     morph::DeformationSettings settings;
     DesignVariables variables;
+    bool untangle = true; //!< morphDict `untangle`: repair a variant's new invalid cells
     io::FoamPolyMesh foam;
     bool parallel = false;
     morph::Decomposition decomposition; //!< -parallel: this rank's part

@@ -222,15 +222,56 @@ void DesignStudy::measure_misfit(const Points& d, const ConstraintMisfit& misfit
     r.relative_constraint_error = r.max_prescribed > 0 ? error / r.max_prescribed : 0.0;
 }
 
+bool DesignStudy::has_new_invalid_cells(const QualityReport& report) const
+{
+    const InvalidCells invalid{report.negative_volume_cells,
+                               report.incorrectly_oriented_face_pyramids};
+    return invalid.worse_than(
+        {header().negative_volume_cells_before, header().wrong_pyramids_before});
+}
+
+std::vector<char> DesignStudy::prescribed_points()
+{
+    std::vector<char> prescribed(std::size_t(header().n_points), 0);
+    reader_->rewind();
+    VariableBlock block;
+    for (std::size_t j = 0; j < names().size(); ++j)
+    {
+        reader_->next(block);
+        for (Index i : block.constrained)
+            prescribed[std::size_t(i)] = 1;
+    }
+    return prescribed;
+}
+
+void DesignStudy::repair_variant(VariantResult& r, MeshGeometry& geometry)
+{
+    if (!repairer_)
+        repairer_.emplace(case_.foam.mesh, cell_faces_, x0_, prescribed_points(), case_.parts());
+    r.repair = repairer_->repair(case_.foam.mesh, geometry);
+    // Checked as a fresh read of the written points would be.
+    geometry = compute_geometry(case_.foam.mesh, cell_faces_);
+    r.after = check_variant(geometry);
+    r.max_displacement = morph::max_norm(case_.foam.mesh.points - x0_);
+    if (case_.parallel)
+        r.max_displacement = parallel::Communicator::world().max(r.max_displacement);
+    log::info() << "Untangled " << r.repair.invalid_before
+                << " invalid cells of the linear combination: moved " << r.repair.points_moved
+                << " interior points by at most " << format_scalar(r.repair.max_move, 4) << ", "
+                << r.repair.invalid_after << " still invalid (" << format_seconds(r.repair.seconds)
+                << " s)";
+}
+
 bool DesignStudy::refuse(const std::vector<double>& amplitudes, VariantResult& r,
                          bool search_back_off)
 {
     const InvalidCells invalid{r.after.negative_volume_cells,
                                r.after.incorrectly_oriented_face_pyramids};
-    if (!invalid.worse_than(
-            {header().negative_volume_cells_before, header().wrong_pyramids_before}))
+    if (!has_new_invalid_cells(r.after))
         return false;
     r.refusal = refusal_text(invalid, header());
+    if (r.repair.tried)
+        r.refusal += " after untangling";
     if (options_.force)
     {
         log::warning() << "-force: writing although " << r.refusal;
@@ -262,7 +303,10 @@ VariantResult DesignStudy::evaluate(const std::vector<double>& amplitudes, bool 
     r.combine_seconds = stage.seconds();
 
     stage.restart();
-    r.after = check_variant(compute_geometry(moved, cell_faces_));
+    MeshGeometry geometry = compute_geometry(moved, cell_faces_);
+    r.after = check_variant(geometry);
+    if (case_.untangle && has_new_invalid_cells(r.after))
+        repair_variant(r, geometry);
     r.check_seconds = stage.seconds();
     refuse(amplitudes, r, search_back_off);
     return r;

@@ -12,6 +12,7 @@
 
 #include "meshmorph/design/design_basis.h"
 #include "meshmorph/design/design_case.h"
+#include "meshmorph/design/variant_repair.h"
 #include "meshmorph/morph/morph_result.h"
 #include "meshmorph/quality/quality_report.h"
 
@@ -27,6 +28,7 @@ struct VariantResult
     double relative_constraint_error = 0.0;
     double max_displacement = 0.0;
     QualityReport after;
+    VariantRepair repair; //!< the untangling of its new invalid cells, if it had any
     bool refused = false;
     std::string refusal;
     std::string back_off; //!< refused: the variable whose removal repairs most
@@ -65,12 +67,15 @@ public:
     //! \brief Build, check and (unless refused, or with force) write one variant to
     //! `instance` (the mesh's own with -overwrite): evaluate, then write.
     VariantResult apply(const std::vector<double>& amplitudes, const std::string& instance);
-    //! \brief Build and check one variant in memory (points(): its points); r.refused when it
-    //! has new invalid cells (unless force), and then, if search_back_off, r.back_off names
-    //! the variable whose removal repairs most (one check per variable). Writes nothing.
+    //! \brief Build and check one variant in memory (points(): its points). New invalid
+    //! cells are untangled (r.repair; unless morphDict `untangle no`) and the variant checked
+    //! again; r.refused when some remain (unless force), and then, if search_back_off,
+    //! r.back_off names the variable whose removal repairs most (one check per variable,
+    //! without untangling). Writes nothing.
     VariantResult evaluate(const std::vector<double>& amplitudes, bool search_back_off = true);
     //! \brief Whether variant a has no more negative-volume cells or wrongly oriented face
     //! pyramids than x0: the two checks alone, for line searches (points() then holds it).
+    //! The linear combination's verdict: no untangling (evaluate may still repair it).
     bool is_valid(const std::vector<double>& amplitudes);
     //! \brief Write the points of the last evaluated variant to `instance`, atomically.
     void write(VariantResult& r, const std::string& instance);
@@ -92,6 +97,13 @@ public:
 private:
     Eigen::VectorXd ownership_weights() const;
     void measure_misfit(const Points& d, const ConstraintMisfit& misfit, VariantResult& r) const;
+    //! Whether a report has more invalid cells than the set-up's mesh.
+    bool has_new_invalid_cells(const QualityReport& report) const;
+    //! Untangle the variant in the study's mesh (morphDict `untangle`, as a one-off morph
+    //! does) and check it again; `geometry` is the variant's on entry.
+    void repair_variant(VariantResult& r, MeshGeometry& geometry);
+    //! Per point, 1 when some design variable prescribes it (read from the set-up once).
+    std::vector<char> prescribed_points();
     //! Whether the variant in the study's mesh is refused (new invalid cells, no force).
     bool refuse(const std::vector<double>& amplitudes, VariantResult& r, bool search_back_off);
     std::string back_off(const Points& moved, const std::vector<double>& a, Index invalid);
@@ -108,6 +120,7 @@ private:
     //! The first variant's report, for its topology part and corners (check_variant).
     std::optional<QualityReport> topology_;
     Points x0_; //!< the set-up's points (the study's mesh holds the last variant's)
+    std::optional<VariantRepairer> repairer_; //!< made when a variant first needs it
     double read_seconds_ = 0.0;
 };
 

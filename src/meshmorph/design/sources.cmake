@@ -15,6 +15,7 @@ set(MESHMORPH_DESIGN_SOURCES
     meshmorph/design/amplitude_table.cpp
     meshmorph/design/design_variant.cpp
     meshmorph/design/valid_step.cpp
+    meshmorph/design/variant_repair.cpp
     meshmorph/design/design_sensitivity.cpp)
 meshmorph_add_component(design
     SOURCES ${MESHMORPH_DESIGN_SOURCES}
