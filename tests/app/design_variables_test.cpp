@@ -392,9 +392,11 @@ TEST_F(DesignVariables, a_variant_that_folds_cells_is_untangled_and_stays_exact)
     fs::remove_all(*dir_ / "1");
 }
 
-TEST_F(DesignVariables, a_variant_the_untangling_cannot_repair_is_refused_naming_the_variable)
+TEST_F(DesignVariables, a_variant_folding_too_many_cells_to_untangle_is_refused_at_once)
 {
-    // The lift above with the wall squeezed by 80% of its radius onto the core.
+    // The lift above with the wall squeezed by 80% of its radius onto the core: 40% of the
+    // cells fold, far more than a local repair is for. Refused without trying, naming the
+    // variable to back off.
     const fs::path json = *dir_ / "refused.json";
     const test::MorphRun r = test::run_morph_mesh({"-case", dir_->string(), "-variant",
                                                    amplitude_list(amplitudes(3.0, 8.0, 0, 0.01)),
@@ -402,12 +404,15 @@ TEST_F(DesignVariables, a_variant_the_untangling_cannot_repair_is_refused_naming
     if (r.code == 0)
         GTEST_FAIL() << "expected a refusal\n" << r.log;
     EXPECT_EQ(r.code, 3) << r.log;
+    EXPECT_EQ(r.log.find("Untangled "), std::string::npos) << r.log;
     const nlohmann::json j = nlohmann::json::parse(read_text(json));
     EXPECT_FALSE(j["written"].get<bool>());
-    EXPECT_GT(j["untangle"]["invalidAfter"].get<int>(), 0) << j["untangle"];
-    EXPECT_NE(j["refusal"].get<std::string>().find("after untangling"), std::string::npos);
-    EXPECT_EQ(j["backOff"].get<std::string>().rfind("squeeze", 0), 0u) << j["backOff"];
-    EXPECT_NE(r.log.find("back off squeeze"), std::string::npos) << r.log;
+    const std::string skipped = j["untangle"]["skipped"].get<std::string>();
+    EXPECT_NE(skipped.find("more than 5% of the 2240 cells"), std::string::npos) << skipped;
+    EXPECT_NE(j["refusal"].get<std::string>().find("not untangled"), std::string::npos);
+    // (Without the lift, the squeeze alone is valid: a scaling about the axis.)
+    EXPECT_EQ(j["backOff"].get<std::string>().rfind("lift", 0), 0u) << j["backOff"];
+    EXPECT_NE(r.log.find("back off lift"), std::string::npos) << r.log;
     EXPECT_FALSE(fs::exists(*dir_ / "1"));
 }
 

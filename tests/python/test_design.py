@@ -187,13 +187,18 @@ def test_idwarp_aliases(design_pipe):
         mesh.setSurfaceCoordinates(target[:-1])
 
 
-def test_max_valid_step_is_confirmed_by_the_check_and_stops_at_the_first_inversion(design_pipe):
+@pytest.fixture
+def bump_search(design_pipe):
+    """A study of the set-up pipe, a start design and a direction along which cells invert:
+    the lattice's control points pushed in alternate directions (unbounded variables)."""
     meshmorph.setup_design(design_pipe)
-    study = meshmorph.DesignStudy(design_pipe)
-    start = 0.2 * A
-    # The lattice's control points pushed in alternate directions (unbounded variables).
     direction = np.zeros_like(A)
     direction[3:7] = [1.0, -1.0, 1.0, -1.0]
+    return meshmorph.DesignStudy(design_pipe), 0.2 * A, direction
+
+
+def test_max_valid_step_is_confirmed_by_the_check_and_stops_at_the_first_inversion(bump_search):
+    study, start, direction = bump_search
     r = study.max_valid_step(start, direction)
     assert r["limitedBy"] == "inversion" and not r["written"], r
     t, above = r["step"], r["invalidAbove"]
@@ -207,12 +212,8 @@ def test_max_valid_step_is_confirmed_by_the_check_and_stops_at_the_first_inversi
     assert limited["limitedBy"] == "limit" and limited["step"] == 0.5 * t, limited
 
 
-def test_max_valid_step_keeps_a_non_orthogonality_limit(design_pipe):
-    meshmorph.setup_design(design_pipe)
-    study = meshmorph.DesignStudy(design_pipe)
-    start = 0.2 * A
-    direction = np.zeros_like(A)
-    direction[3:7] = [1.0, -1.0, 1.0, -1.0]
+def test_max_valid_step_keeps_a_non_orthogonality_limit(bump_search):
+    study, start, direction = bump_search
     valid = study.max_valid_step(start, direction)
     assert valid["maxNonOrthogonality"] is None, valid
     non_ortho = lambda t: study.evaluate(start + t * direction)["after"]["maxNonOrthogonality"]
@@ -246,12 +247,8 @@ def test_max_valid_step_stops_at_a_bound_and_refuses_a_bad_search(design_pipe):
 
 
 def test_a_variant_that_folds_a_few_cells_is_untangled_exactly_unless_the_dict_says_no(
-        design_pipe):
-    meshmorph.setup_design(design_pipe)
-    study = meshmorph.DesignStudy(design_pipe)
-    start = 0.2 * A
-    direction = np.zeros_like(A)
-    direction[3:7] = [1.0, -1.0, 1.0, -1.0]
+        design_pipe, bump_search):
+    study, start, direction = bump_search
     # Just past the first inversion along the direction: the linear combination folds cells.
     step = study.max_valid_step(start, direction)
     folded = start + 1.02 * step["invalidAbove"] * direction

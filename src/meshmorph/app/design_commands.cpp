@@ -272,6 +272,8 @@ nlohmann::json variant_json(const design::DesignStudy& study, const design::Vari
         {"timings",
          {{"combine", r.combine_seconds}, {"check", r.check_seconds}, {"write", r.write_seconds}}},
         {"after", quality_json(r.after)}};
+    if (!r.repair.skipped.empty())
+        j["untangle"] = {{"skipped", r.repair.skipped}};
     if (r.repair.tried)
         j["untangle"] = {{"invalidBefore", r.repair.invalid_before},
                          {"invalidAfter", r.repair.invalid_after},

@@ -26,7 +26,8 @@ nlohmann::json setup_json(const design::DesignSetupResult& r);
 //! outputInstance, path, maxPrescribedDisplacement, maxConstraintError,
 //! relativeConstraintError, maxDisplacement, timings {combine, check, write}, after; when
 //! the linear combination had new invalid cells untangle {invalidBefore, invalidAfter,
-//! pointsMoved, maxMove, seconds}; when refused also refusal and backOff.
+//! pointsMoved, maxMove, seconds} (or {skipped: why} when the damage was too wide to
+//! repair locally); when refused also refusal and backOff.
 nlohmann::json variant_json(const design::DesignStudy& study, const design::VariantResult& r);
 
 //! The JSON of -variant A -direction P (a step search; no mesh written): setupReused,

@@ -244,6 +244,21 @@ std::vector<char> DesignStudy::prescribed_points()
     return prescribed;
 }
 
+bool DesignStudy::worth_untangling(VariantResult& r) const
+{
+    const Index added = r.after.negative_volume_cells - header().negative_volume_cells_before +
+                        r.after.incorrectly_oriented_face_pyramids - header().wrong_pyramids_before;
+    const Index cells = morph::global_count(case_.decomposition, case_.foam.mesh.n_cells, false);
+    if (double(added) <= max_untangled_fraction * double(cells))
+        return true;
+    r.repair.skipped = "not untangled: " + std::to_string(added) +
+                       " new invalid cells and face pyramids, more than " +
+                       format_scalar(100.0 * max_untangled_fraction, 3) + "% of the " +
+                       std::to_string(cells) + " cells (the local repair is for a few)";
+    log::info() << "The variant is " << r.repair.skipped;
+    return false;
+}
+
 void DesignStudy::repair_variant(VariantResult& r, MeshGeometry& geometry)
 {
     if (!repairer_)
@@ -272,6 +287,8 @@ bool DesignStudy::refuse(const std::vector<double>& amplitudes, VariantResult& r
     r.refusal = refusal_text(invalid, header());
     if (r.repair.tried)
         r.refusal += " after untangling";
+    else if (!r.repair.skipped.empty())
+        r.refusal += "; " + r.repair.skipped;
     if (options_.force)
     {
         log::warning() << "-force: writing although " << r.refusal;
@@ -305,7 +322,7 @@ VariantResult DesignStudy::evaluate(const std::vector<double>& amplitudes, bool 
     stage.restart();
     MeshGeometry geometry = compute_geometry(moved, cell_faces_);
     r.after = check_variant(geometry);
-    if (case_.untangle && has_new_invalid_cells(r.after))
+    if (case_.untangle && has_new_invalid_cells(r.after) && worth_untangling(r))
         repair_variant(r, geometry);
     r.check_seconds = stage.seconds();
     refuse(amplitudes, r, search_back_off);

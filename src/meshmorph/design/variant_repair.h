@@ -9,6 +9,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "meshmorph/core/poly_mesh.h"
@@ -18,10 +19,12 @@
 namespace meshmorph::design
 {
 
-//! What the repair of one variant did (tried false: it was not needed or is switched off).
+//! What the repair of one variant did (tried false: it was not needed, is switched off, or
+//! was skipped: `skipped` says why).
 struct VariantRepair
 {
     bool tried = false;
+    std::string skipped;
     Index invalid_before = 0; //!< new invalid cells of the linear combination
     Index invalid_after = 0;  //!< those still invalid after the repair
     Index points_moved = 0;   //!< interior points the repair moved
