@@ -222,12 +222,16 @@ void DesignStudy::measure_misfit(const Points& d, const ConstraintMisfit& misfit
     r.relative_constraint_error = r.max_prescribed > 0 ? error / r.max_prescribed : 0.0;
 }
 
-bool DesignStudy::has_new_invalid_cells(const QualityReport& report) const
+bool DesignStudy::has_new_invalid_cells(const InvalidCells& invalid) const
 {
-    const InvalidCells invalid{report.negative_volume_cells,
-                               report.incorrectly_oriented_face_pyramids};
     return invalid.worse_than(
         {header().negative_volume_cells_before, header().wrong_pyramids_before});
+}
+
+bool DesignStudy::has_new_invalid_cells(const QualityReport& report) const
+{
+    return has_new_invalid_cells(
+        InvalidCells{report.negative_volume_cells, report.incorrectly_oriented_face_pyramids});
 }
 
 std::vector<char> DesignStudy::prescribed_points()
@@ -354,7 +358,7 @@ bool DesignStudy::is_valid(const std::vector<double>& amplitudes)
     now.negative_volume_cells =
         static_cast<Index>(comm.sum(std::int64_t(now.negative_volume_cells)));
     now.wrong_pyramids = static_cast<Index>(comm.sum(std::int64_t(now.wrong_pyramids)));
-    return !now.worse_than({header().negative_volume_cells_before, header().wrong_pyramids_before});
+    return !has_new_invalid_cells(now);
 }
 
 void DesignStudy::write(VariantResult& r, const std::string& instance)

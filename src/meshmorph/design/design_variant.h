@@ -14,6 +14,7 @@
 #include "meshmorph/design/design_case.h"
 #include "meshmorph/design/variant_repair.h"
 #include "meshmorph/morph/morph_result.h"
+#include "meshmorph/quality/cell_validity.h"
 #include "meshmorph/quality/quality_report.h"
 
 namespace meshmorph::design
@@ -103,7 +104,8 @@ public:
 private:
     Eigen::VectorXd ownership_weights() const;
     void measure_misfit(const Points& d, const ConstraintMisfit& misfit, VariantResult& r) const;
-    //! Whether a report has more invalid cells than the set-up's mesh.
+    //! Whether counts (or a report's) are higher than the set-up mesh's.
+    bool has_new_invalid_cells(const InvalidCells& invalid) const;
     bool has_new_invalid_cells(const QualityReport& report) const;
     //! Whether the variant's new invalid cells are few enough for the local repair (at most
     //! max_untangled_fraction of the cells); if not, r.repair.skipped says so.

@@ -120,13 +120,13 @@ private:
     std::vector<Index> candidates_;
 };
 
-//! Narrow the bracket: valid at r.step, invalid at r.invalid_above.
-void bisect(const std::function<bool(double)>& valid, ValidStep& r)
+//! Narrow a bracket: `accepted` holds at lo, not at hi; to valid_step_tolerance.
+void bisect(const std::function<bool(double)>& accepted, double& lo, double& hi)
 {
-    while (r.invalid_above - r.step > valid_step_tolerance * r.invalid_above)
+    while (hi - lo > valid_step_tolerance * hi)
     {
-        const double mid = 0.5 * (r.step + r.invalid_above);
-        (valid(mid) ? r.step : r.invalid_above) = mid;
+        const double mid = 0.5 * (lo + hi);
+        (accepted(mid) ? lo : hi) = mid;
     }
 }
 
@@ -175,13 +175,16 @@ double march(InversionModel& model, const std::function<bool(double)>& valid, do
 void limit_non_orthogonality(DesignStudy& study, const std::vector<double>& a,
                              const std::vector<double>& p, double theta, ValidStep& r)
 {
-    double at_step = 0.0;
+    double at_step = 0.0, at_lo = 0.0; // the maximum at the last step checked, at lo
     const auto within = [&](double t)
     {
         ++r.checks;
         const VariantResult v = study.evaluate(stepped(study, a, p, t), false);
         at_step = v.after.max_non_orthogonality;
-        return !v.refused && at_step <= theta;
+        const bool accepted = !v.refused && at_step <= theta;
+        if (accepted)
+            at_lo = at_step; // (an accepted step always becomes lo)
+        return accepted;
     };
     if (!within(0.0))
         throw InvalidInput("the start's maximum non-orthogonality (" + format_scalar(at_step, 4) +
@@ -197,20 +200,13 @@ void limit_non_orthogonality(DesignStudy& study, const std::vector<double>& a,
     else
         for (double t = 1.0; t < 1e300 && !std::isfinite(hi); t *= 2.0) // no end: double
             (within(t) ? lo : hi) = t;
+    r.max_non_orthogonality = at_lo;
     if (!std::isfinite(hi))
-    {
-        r.max_non_orthogonality = at_step; // the last sample, lo: within the limit
-        return;
-    }
-    while (hi - lo > valid_step_tolerance * hi)
-    {
-        const double mid = 0.5 * (lo + hi);
-        (within(mid) ? lo : hi) = mid;
-    }
-    within(lo);
+        return; // within the limit up to the valid step
+    bisect(within, lo, hi);
     r.step = lo;
     r.invalid_above = hi;
-    r.max_non_orthogonality = at_step;
+    r.max_non_orthogonality = at_lo;
     r.limited_by = "nonOrthogonality";
     r.bound_variable.clear();
 }
@@ -260,16 +256,13 @@ ValidStep largest_valid_step(DesignStudy& study, const std::vector<double>& a,
     }
     if (std::isfinite(r.invalid_above))
     {
-        bisect(valid, r);
+        bisect(valid, r.step, r.invalid_above);
         r.limited_by = "inversion";
         r.bound_variable.clear();
     }
     if (max_non_orthogonality < 90.0)
         limit_non_orthogonality(study, a, direction, max_non_orthogonality, r);
     r.seconds = clock.seconds();
-    // Leave the study's mesh at the step found (as is_valid does).
-    if (std::isfinite(r.step))
-        study.is_valid(stepped(study, a, direction, r.step));
     return r;
 }
 

@@ -45,12 +45,11 @@ MovingPoint face_centre(const PolyMesh& mesh, const MeshGeometry& g, const Point
 }
 
 //! Cell c's centre: checkMesh's at t = 0, moving with the average of its faces' rates.
-MovingPoint cell_centre(const PolyMesh& mesh, const MeshGeometry& g, const Points& dx, Index c,
-                        std::span<const Index> faces)
+MovingPoint cell_centre(const MeshGeometry& g, Index c, const std::vector<MovingPoint>& faces)
 {
     Vector3 rate = Vector3::Zero();
-    for (Index f : faces)
-        rate += face_centre(mesh, g, dx, f).rate;
+    for (const MovingPoint& f : faces)
+        rate += f.rate;
     return {g.cell_centres.row(c).transpose(),
             rate / double(std::max<std::size_t>(faces.size(), 1))};
 }
@@ -125,19 +124,24 @@ double cell_inversion_step(const PolyMesh& mesh, const CompactList& cell_faces,
                            const MeshGeometry& g, const Points& dx, Index c, double limit)
 {
     const std::span<const Index> faces = cell_faces[c];
-    const MovingPoint centre = cell_centre(mesh, g, dx, c, faces);
+    thread_local std::vector<MovingPoint> centres; // each face's, computed once per cell
+    centres.clear();
+    for (Index f : faces)
+        centres.push_back(face_centre(mesh, g, dx, f));
+    const MovingPoint centre = cell_centre(g, c, centres);
     const CellScales scales = cell_scales(mesh, dx, faces, centre);
     double first = std::numeric_limits<double>::infinity();
     Cubic volume{0.0, 0.0, 0.0, 0.0};
-    for (Index f : faces)
+    for (std::size_t k = 0; k < faces.size(); ++k)
     {
-        const MovingPoint fa = face_centre(mesh, g, dx, f);
+        const Index f = faces[k];
+        const MovingPoint& fa = centres[k];
         const MovingPoint w{fa.at - centre.at, fa.rate - centre.rate};
         const Cubic pyramid = without_round_off(
             pyramid_volume(w, twice_area_vector(mesh, dx, f, fa), mesh.owner[f] == c ? 1.0 : -1.0),
             scales);
-        for (std::size_t k = 0; k < 4; ++k)
-            volume[k] += pyramid[k];
+        for (std::size_t i = 0; i < 4; ++i)
+            volume[i] += pyramid[i];
         if (pyramid[0] > 0.0)
             first = std::min(first, first_nonpositive_step(pyramid, std::min(first, limit)));
     }
