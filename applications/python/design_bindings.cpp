@@ -82,6 +82,7 @@ py::object evaluate(PyStudy& s, const py::handle& a, bool back_off)
                                               {
                                                   s.last.reset(); // until the new one is whole
                                                   s.last = s.study->evaluate(amplitudes, back_off);
+                                                  s.study->warn_new_check_failures(*s.last);
                                                   return app::variant_json(*s.study, *s.last);
                                               });
     return to_python(report);
@@ -225,7 +226,9 @@ void bind_design(py::module_& m)
         .def("evaluate", &evaluate, py::arg("a"), py::kw_only(), py::arg("back_off") = false,
              "Build and check the variant a (checkMesh's metrics; new invalid cells are "
              "untangled as a one-off morph does, unless the morphDict says 'untangle no'; refused "
-             "when some remain); returns morphMesh -variant's JSON report as a dict. "
+             "when some remain); returns morphMesh -variant's JSON report as a dict. A check "
+             "the set-up's mesh passed and the variant fails is a logger warning and an entry "
+             "of the report's 'newFailedChecks' (refused with 'newCheckFailures refuse'). "
              "back_off=True "
              "names the variable whose removal repairs a refused variant (one check per "
              "variable). write() writes it.")

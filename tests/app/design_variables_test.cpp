@@ -416,6 +416,38 @@ TEST_F(DesignVariables, a_variant_folding_too_many_cells_to_untangle_is_refused_
     EXPECT_FALSE(fs::exists(*dir_ / "1"));
 }
 
+TEST_F(DesignVariables, a_variant_failing_a_check_the_mesh_passed_is_said_and_refused_on_request)
+{
+    // The wall squeezed to 0.5% of its radius (amplitude 9.95 of 10% each): the RBF
+    // reproduces the scaling about the axis, so every cell is valid and 200 times thinner,
+    // and the aspect ratio passes checkMesh's limit of 1000 (the pipe's is 8.2).
+    const fs::path json = *dir_ / "aspect.json";
+    const std::vector<std::string> args{"-case",    dir_->string(),
+                                        "-variant", amplitude_list(amplitudes(0, 9.95, 0, 0)),
+                                        "-json",    json.string()};
+    const test::MorphRun warned = test::run_morph_mesh(args);
+    ASSERT_EQ(warned.code, 0) << warned.log;
+    EXPECT_NE(warned.err.find("Warning: the variant fails the check aspectRatio"),
+              std::string::npos)
+        << warned.err;
+    nlohmann::json j = nlohmann::json::parse(read_text(json));
+    ASSERT_EQ(j["newFailedChecks"].size(), 1u) << j.dump(1);
+    EXPECT_EQ(j["newFailedChecks"][0]["check"], "aspectRatio");
+    EXPECT_GT(j["newFailedChecks"][0]["count"].get<int>(), 0);
+    EXPECT_TRUE(j["written"].get<bool>());
+    fs::remove_all(*dir_ / "1");
+    // `newCheckFailures refuse` makes it an error, and leaves the set-up current.
+    const std::string dict = read_text(*dir_ / "system/morphDict");
+    test::write_text(*dir_ / "system/morphDict", dict + "newCheckFailures refuse;\n");
+    const test::MorphRun refused = test::run_morph_mesh(args);
+    test::write_text(*dir_ / "system/morphDict", dict);
+    EXPECT_EQ(refused.code, 3) << refused.log;
+    j = nlohmann::json::parse(read_text(json));
+    EXPECT_FALSE(j["written"].get<bool>());
+    EXPECT_NE(j["refusal"].get<std::string>().find("aspectRatio"), std::string::npos) << j;
+    EXPECT_FALSE(fs::exists(*dir_ / "1"));
+}
+
 TEST_F(DesignVariables, a_step_search_finds_the_largest_valid_lift_and_the_check_confirms_it)
 {
     // From a small design, along the lift (bounded by 3, where cells fold: the tests above).

@@ -270,6 +270,24 @@ def test_a_variant_that_folds_a_few_cells_is_untangled_exactly_unless_the_dict_s
 
     dict_path = design_pipe / "system" / "morphDict"
     dict_path.write_text(dict_path.read_text() + "\nuntangle no;\n")
-    meshmorph.setup_design(design_pipe)
     strict = meshmorph.DesignStudy(design_pipe).evaluate(folded)
     assert not strict["valid"] and "untangle" not in strict, strict
+
+
+def test_a_variant_failing_a_check_the_mesh_passed_is_warned_about(pipe, caplog):
+    # The wall squeezed to 0.5% of its radius: every cell valid, the aspect ratio 200 times
+    # the pipe's 8.2, past checkMesh's limit of 1000.
+    (pipe / "system" / "morphDict").write_text(
+        "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n"
+        "boundary { default { type fixed; } \"(inlet|outlet)\" { type slip; } }\n"
+        "designVariables { squeeze { patches (wall); type scale; origin (0 0 1);"
+        " factor (0.9 0.9 1); } }\n")
+    meshmorph.setup_design(pipe)
+    study = meshmorph.DesignStudy(pipe)
+    assert study.evaluate([0.5])["newFailedChecks"] == []
+    caplog.clear()
+    report = study.evaluate([9.95])
+    assert report["valid"] and study.is_valid([9.95]), report
+    assert [f["check"] for f in report["newFailedChecks"]] == ["aspectRatio"], report
+    warnings = [r.getMessage() for r in caplog.records if r.levelname == "WARNING"]
+    assert any(w.startswith("the variant fails the check aspectRatio") for w in warnings), warnings

@@ -77,7 +77,8 @@ int run_setup(const morph::MorphOptions& morph, const fs::path& json_path, std::
 }
 
 //! The log of one variant (`row`: "row 3: " for -variants, else ""); true when refused.
-bool report_variant(const design::VariantResult& r, std::ostream& out, const std::string& row = "")
+bool report_variant(const design::DesignStudy& study, const design::VariantResult& r,
+                    std::ostream& out, const std::string& row = "")
 {
     log::info() << "Variant: max displacement " << format_scalar(r.max_displacement, 4)
                 << ", constraint error " << format_scalar(r.relative_constraint_error, 3)
@@ -85,6 +86,7 @@ bool report_variant(const design::VariantResult& r, std::ostream& out, const std
     std::ostringstream summary;
     print_quality_summary(summary, nullptr, &r.after);
     log::info() << "Mesh quality of the variant:\n" << summary.str();
+    study.warn_new_check_failures(r);
     if (r.refused)
     {
         log::error() << row << r.refusal << ". Nothing written"
@@ -110,7 +112,7 @@ int run_variant(const morph::MorphOptions& morph, const std::string& text,
     const std::vector<double> a = design::parse_amplitudes(text);
     design::DesignStudy study(morph);
     const design::VariantResult r = study.apply(a, first_instance(study, morph));
-    const bool refused = report_variant(r, out);
+    const bool refused = report_variant(study, r, out);
     const int status = refused ? exit_refused : exit_ok;
     nlohmann::json j = variant_json(study, r);
     j["exitStatus"] = status;
@@ -192,7 +194,7 @@ int run_variants(const morph::MorphOptions& morph, const fs::path& table, const 
         instance = study.next_instance(instance);
         log::info() << "Row " << k + 1 << " of " << rows.size() << " -> " << instance;
         const design::VariantResult r = study.apply(rows[k], instance);
-        refused += report_variant(r, out, "row " + std::to_string(k + 1) + ": ") ? 1 : 0;
+        refused += report_variant(study, r, out, "row " + std::to_string(k + 1) + ": ") ? 1 : 0;
         nlohmann::json j = variant_json(study, r);
         j["row"] = k + 1;
         list.push_back(j);
@@ -271,7 +273,8 @@ nlohmann::json variant_json(const design::DesignStudy& study, const design::Vari
         {"maxDisplacement", r.max_displacement},
         {"timings",
          {{"combine", r.combine_seconds}, {"check", r.check_seconds}, {"write", r.write_seconds}}},
-        {"after", quality_json(r.after)}};
+        {"after", quality_json(r.after)},
+        {"newFailedChecks", failed_checks_json(r.new_failed_checks)}};
     if (!r.repair.skipped.empty())
         j["untangle"] = {{"skipped", r.repair.skipped}};
     if (r.repair.tried)

@@ -79,9 +79,7 @@ std::string morph_json(const morph::MorphResult& result, int exit_status)
     j["instance"] = result.instance;
     j["region"] = result.region;
     j["outputInstance"] = result.output_instance;
-    j["newFailedChecks"] = nlohmann::json::array();
-    for (const auto& [name, count] : result.new_failed_checks)
-        j["newFailedChecks"].push_back({{"check", name}, {"count", count}});
+    j["newFailedChecks"] = failed_checks_json(result.new_failed_checks);
     j["written"] = result.written;
     j["refused"] = result.refused;
     if (result.refused)

@@ -44,15 +44,24 @@ private:
     std::uint64_t h_ = 0xcbf29ce484222325ULL;
 };
 
-void add_dictionary(Fnv1a& f, const io::FoamDictionary& dict)
+//! morphDict keys that judge a variant after the fields are combined (untangle its new
+//! invalid cells, refuse its new check failures): editing one leaves the set-up current.
+bool judges_variants_only(const io::FoamEntry& e, int depth)
+{
+    return depth == 0 && (e.keyword() == "untangle" || e.keyword() == "newCheckFailures");
+}
+
+void add_dictionary(Fnv1a& f, const io::FoamDictionary& dict, int depth = 0)
 {
     for (const io::FoamEntry& e : dict.entries())
     {
+        if (judges_variants_only(e, depth))
+            continue;
         f.add(e.keyword().data(), e.keyword().size() + 1);
         if (e.is_dict())
         {
             f.add("{", 1);
-            add_dictionary(f, e.dict());
+            add_dictionary(f, e.dict(), depth + 1);
             f.add("}", 1);
             continue;
         }

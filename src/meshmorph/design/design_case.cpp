@@ -11,6 +11,7 @@
 #include "meshmorph/morph/deformation_dict.h"
 #include "meshmorph/morph/distributed_case.h"
 #include "meshmorph/morph/morph_steps.h"
+#include "meshmorph/morph/new_check_failures.h"
 #include "meshmorph/parallel/collective.h"
 
 namespace meshmorph::design
@@ -61,6 +62,7 @@ DesignCase read_design_case(const morph::MorphOptions& options)
     dc.settings = morph::read_deformation_settings(parsed, options.method);
     dc.variables = read_design_variables(parsed);
     dc.untangle = morph::read_step_settings(parsed).untangle;
+    dc.refuse_new_check_failures = morph::read_new_check_failures(parsed);
     if (dc.variables.empty())
         throw InvalidInput(dc.dict_path.string() +
                            ": no designVariables (see tutorials/designVariables)");

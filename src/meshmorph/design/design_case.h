@@ -29,6 +29,9 @@ struct DesignCase
     morph::DeformationSettings settings;
     DesignVariables variables;
     bool untangle = true; //!< morphDict `untangle`: repair a variant's new invalid cells
+    //! morphDict `newCheckFailures refuse`: a variant failing a check the set-up's mesh
+    //! passed is refused (default: a warning, and the report's newFailedChecks).
+    bool refuse_new_check_failures = false;
     io::FoamPolyMesh foam;
     bool parallel = false;
     morph::Decomposition decomposition; //!< -parallel: this rank's part

@@ -328,9 +328,54 @@ VariantResult DesignStudy::evaluate(const std::vector<double>& amplitudes, bool 
     r.after = check_variant(geometry);
     if (case_.untangle && has_new_invalid_cells(r.after) && worth_untangling(r))
         repair_variant(r, geometry);
+    if (!refuse(amplitudes, r, search_back_off))
+        judge_new_check_failures(r);
     r.check_seconds = stage.seconds();
-    refuse(amplitudes, r, search_back_off);
     return r;
+}
+
+const QualityReport& DesignStudy::setup_report()
+{
+    if (setup_report_)
+        return *setup_report_;
+    PolyMesh& mesh = case_.foam.mesh;
+    Points variant = std::move(mesh.points);
+    mesh.points = x0_;
+    setup_report_ = check_variant(compute_geometry(mesh, cell_faces_));
+    mesh.points = std::move(variant);
+    return *setup_report_;
+}
+
+void DesignStudy::judge_new_check_failures(VariantResult& r)
+{
+    // The master holds the whole report in a -parallel run: its verdict is every rank's.
+    const parallel::Communicator& comm = parallel::Communicator::world();
+    if (comm.broadcast(comm.master() && !r.after.mesh_ok() ? "fails" : "").empty())
+        return; // fails nothing: no need for the set-up mesh's report
+    const QualityReport& before = setup_report();
+    std::string refusal;
+    if (comm.master())
+    {
+        r.new_failed_checks = morph::new_failed_checks(before, r.after);
+        if (case_.refuse_new_check_failures)
+            refusal = morph::new_check_failures_refusal(r.new_failed_checks, "the variant");
+    }
+    refusal = comm.broadcast(refusal);
+    if (refusal.empty())
+        return;
+    if (options_.force)
+    {
+        log::warning() << "-force: writing although " << refusal;
+        return;
+    }
+    r.refused = true;
+    r.refusal = refusal;
+}
+
+void DesignStudy::warn_new_check_failures(const VariantResult& r) const
+{
+    morph::warn_new_check_failures(r.new_failed_checks, "the variant",
+                                   case_.refuse_new_check_failures);
 }
 
 QualityReport DesignStudy::check_variant(const MeshGeometry& geometry)

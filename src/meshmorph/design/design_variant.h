@@ -14,6 +14,7 @@
 #include "meshmorph/design/design_case.h"
 #include "meshmorph/design/variant_repair.h"
 #include "meshmorph/morph/morph_result.h"
+#include "meshmorph/morph/new_check_failures.h"
 #include "meshmorph/quality/cell_validity.h"
 #include "meshmorph/quality/quality_report.h"
 
@@ -36,6 +37,9 @@ struct VariantResult
     double max_displacement = 0.0;
     QualityReport after;
     VariantRepair repair; //!< the untangling of its new invalid cells, if it had any
+    //! The checks the variant fails that the set-up's mesh passed (on the master), each
+    //! warned about by report_new_failures().
+    morph::NewCheckFailures new_failed_checks;
     bool refused = false;
     std::string refusal;
     std::string back_off; //!< refused: the variable whose removal repairs most
@@ -82,6 +86,8 @@ public:
     VariantResult evaluate(const std::vector<double>& amplitudes, bool search_back_off = true);
     //! \brief Whether variant a has no more negative-volume cells or wrongly oriented face
     //! pyramids than x0: the two checks alone, for line searches (points() then holds it).
+    //! A warning per check r fails that the set-up's mesh passed (r.new_failed_checks).
+    void warn_new_check_failures(const VariantResult& r) const;
     //! The linear combination's verdict: no untangling (evaluate may still repair it).
     bool is_valid(const std::vector<double>& amplitudes);
     //! \brief Write the points of the last evaluated variant to `instance`, atomically.
@@ -117,6 +123,10 @@ private:
     std::vector<char> prescribed_points();
     //! Whether the variant in the study's mesh is refused (new invalid cells, no force).
     bool refuse(const std::vector<double>& amplitudes, VariantResult& r, bool search_back_off);
+    //! r.new_failed_checks, and with morphDict `newCheckFailures refuse` the refusal.
+    void judge_new_check_failures(VariantResult& r);
+    //! The check of the set-up's mesh, made when a variant first fails a check (collective).
+    const QualityReport& setup_report();
     std::string back_off(const Points& moved, const std::vector<double>& a, Index invalid);
 
     //! The check of the variant in the study's mesh. Without per-cell fields (a variant's
@@ -130,6 +140,7 @@ private:
     CompactList cell_faces_;
     //! The first variant's report, for its topology part and corners (check_variant).
     std::optional<QualityReport> topology_;
+    std::optional<QualityReport> setup_report_; //!< see setup_report()
     Points x0_; //!< the set-up's points (the study's mesh holds the last variant's)
     std::optional<VariantRepairer> repairer_; //!< made when a variant first needs it
     double read_seconds_ = 0.0;

@@ -22,6 +22,7 @@
 #include "meshmorph/morph/duplicate_points.h"
 #include "meshmorph/morph/morph_log.h"
 #include "meshmorph/morph/morph_output.h"
+#include "meshmorph/morph/new_check_failures.h"
 #include "meshmorph/morph/point_displacement_input.h"
 #include "meshmorph/morph/surface_projector.h"
 #include "meshmorph/parallel/collective.h"
@@ -98,52 +99,21 @@ std::vector<std::string> refusal_reasons(const QualityReport& before, const Qual
     return reasons;
 }
 
-//! The checks `after` fails that `before` passed, each with its first offender set's size.
-std::vector<std::pair<std::string, Index>> new_failed_checks(const QualityReport& before,
-                                                             const QualityReport& after)
-{
-    std::vector<std::pair<std::string, Index>> out;
-    for (const CheckResult& c : after.checks)
-    {
-        if (!c.failed() ||
-            std::find(before.failed_check_names.begin(), before.failed_check_names.end(),
-                      c.failure) != before.failed_check_names.end())
-            continue;
-        out.emplace_back(c.failure, c.sets.empty() ? Index(0) : c.sets.front().size());
-    }
-    return out;
-}
-
-//! result.new_failed_checks said: a warning each, and with `newCheckFailures refuse` the
-//! reason to refuse. \return that reason, or "".
-std::string judged_new_failures(const MorphCase& in, const MorphResult& result)
-{
-    std::string list;
-    for (const auto& [name, count] : result.new_failed_checks)
-    {
-        log::warning() << "the morphed mesh fails the check " << name
-                       << (count > 0 ? " (" + std::to_string(count) + " offenders)" : std::string())
-                       << ", which the mesh passed before the morph: OpenFOAM's checkMesh will "
-                          "fail it too"
-                       << (in.refuse_new_check_failures
-                               ? std::string()
-                               : " (morphDict 'newCheckFailures refuse;' makes this an error)");
-        list += (list.empty() ? "" : ", ") + name;
-    }
-    if (!in.refuse_new_check_failures || list.empty())
-        return {};
-    return "the morphed mesh fails checks it passed before (" + list +
-           ") and the morphDict says 'newCheckFailures refuse'";
-}
-
 //! Checks the morph makes fail, judged on the master and told to every rank.
 std::string judge_new_failures(const MorphCase& in, MorphResult& result)
 {
     // The master holds the whole report in a -parallel run: its verdict is every rank's.
     const parallel::Communicator& comm = parallel::Communicator::world();
+    std::string refusal;
     if (comm.master())
+    {
         result.new_failed_checks = new_failed_checks(result.before, result.after);
-    return comm.broadcast(judged_new_failures(in, result));
+        warn_new_check_failures(result.new_failed_checks, "the morphed mesh",
+                                in.refuse_new_check_failures);
+        if (in.refuse_new_check_failures)
+            refusal = new_check_failures_refusal(result.new_failed_checks, "the morphed mesh");
+    }
+    return comm.broadcast(refusal);
 }
 
 //! The before/after table; then whether the result is refused (true: write nothing).
@@ -202,19 +172,6 @@ void require_region(const fs::path& case_dir, const std::string& region)
                        (regions.empty()
                             ? std::string("it is a single-region case: leave out -region")
                             : "its regions: " + regions));
-}
-
-//! `newCheckFailures warn | refuse` (default warn). \return true for refuse.
-bool read_new_check_failures(const io::FoamDictionary& dict)
-{
-    const io::FoamEntry* e = dict.find("newCheckFailures");
-    if (e == nullptr)
-        return false;
-    const std::vector<io::FoamValueToken>& t = e->tokens();
-    if (t.size() == 1 && t[0].is_word() && (t[0].text == "warn" || t[0].text == "refuse"))
-        return t[0].text == "refuse";
-    throw e->error("expected 'warn' (the default: a warning per check the morph makes fail) or "
-                   "'refuse' (such a morph is refused, nothing written)");
 }
 
 } // namespace

@@ -12,6 +12,7 @@
 # morph_output). Depends on core, parallel, mesh, io, quality and deform.
 set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/motion.cpp
+    meshmorph/morph/new_check_failures.cpp
     meshmorph/morph/morph_setup.cpp
     meshmorph/morph/patch_assignment.cpp
     meshmorph/morph/empty_planes.cpp

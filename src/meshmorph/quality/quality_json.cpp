@@ -62,4 +62,12 @@ nlohmann::json quality_json(const QualityReport& r)
     return j;
 }
 
+nlohmann::json failed_checks_json(const std::vector<std::pair<std::string, Index>>& failures)
+{
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& [name, count] : failures)
+        list.push_back({{"check", name}, {"count", count}});
+    return list;
+}
+
 } // namespace meshmorph

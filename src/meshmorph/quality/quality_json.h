@@ -15,6 +15,8 @@
 
 #include <iosfwd>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -26,5 +28,8 @@ namespace meshmorph
 //! \brief The JSON object of a report (see the file comment for the keys). Non-finite
 //! numbers (e.g. an undefined scaled Jacobian) become null.
 nlohmann::json quality_json(const QualityReport& report);
+
+//! `newFailedChecks` of morphMesh's report: [{check, count}] per (check name, offenders).
+nlohmann::json failed_checks_json(const std::vector<std::pair<std::string, Index>>& failures);
 
 } // namespace meshmorph
