@@ -390,6 +390,20 @@ TEST_F(DesignVariables, a_variant_that_folds_cells_is_untangled_and_stays_exact)
     EXPECT_EQ(j["after"]["negativeVolumeCells"].get<int>(), 0);
     EXPECT_EQ(j["after"]["incorrectlyOrientedFacePyramids"].get<int>(), 0);
     fs::remove_all(*dir_ / "1");
+    // With fewer cells allowed than it needs, refused without trying; the set-up stays
+    // current (the key judges variants only).
+    const std::string dict = read_text(*dir_ / "system/morphDict");
+    test::write_text(*dir_ / "system/morphDict", dict + "maxUntangleCells 0;\n");
+    const test::MorphRun capped =
+        test::run_morph_mesh({"-case", dir_->string(), "-variant",
+                              amplitude_list(amplitudes(3.0, 0, 0, 0.01)), "-json", json.string()});
+    test::write_text(*dir_ / "system/morphDict", dict);
+    EXPECT_EQ(capped.code, 3) << capped.log;
+    EXPECT_EQ(capped.log.find("Untangled "), std::string::npos) << capped.log;
+    const std::string skipped =
+        nlohmann::json::parse(read_text(json))["untangle"]["skipped"].get<std::string>();
+    EXPECT_NE(skipped.find("more than maxUntangleCells 0"), std::string::npos) << skipped;
+    EXPECT_FALSE(fs::exists(*dir_ / "1"));
 }
 
 TEST_F(DesignVariables, a_variant_folding_too_many_cells_to_untangle_is_refused_at_once)

@@ -209,6 +209,46 @@ TEST(MorphSteps, untangling_repairs_in_place_the_cells_a_step_inverts)
     EXPECT_NE(r.log.find("untangled "), std::string::npos) << r.log;
 }
 
+TEST(MorphSteps, a_step_with_more_cells_to_repair_than_max_untangle_cells_is_shortened_instead)
+{
+    // The repairable squeeze above (8 cells to repair in one automatic step) with a limit of 4:
+    // the step is not repaired but redone shorter, each step is repaired only when it
+    // has at most 4 cells to repair, and the motion is reached in several steps.
+    const fs::path dir = repairable_venturi_case("capped", "maxUntangleCells 4;\n");
+    const test::MorphRun r = run(dir);
+    ASSERT_EQ(r.code, 0) << r.err << r.log;
+    const nlohmann::json j = read_json(dir / "morph.json");
+    const nlohmann::json& steps = j["steps"];
+    ASSERT_GE(steps.size(), 2u);
+    EXPECT_FALSE(steps[0]["accepted"].get<bool>());
+    EXPECT_GT(steps[0]["untangle"]["skippedCells"].get<int>(), 4) << steps[0];
+    EXPECT_EQ(steps[0]["untangle"]["pointsMoved"].get<int>(), 0) << steps[0];
+    for (const nlohmann::json& s : steps)
+        EXPECT_LE(s["untangle"]["invalidCells"].get<int>(), 4) << s;
+    EXPECT_EQ(steps.back()["to"].get<double>(), 1.0);
+    EXPECT_EQ(j["after"]["negativeVolumeCells"].get<int>(), 0);
+    EXPECT_EQ(j["after"]["incorrectlyOrientedFacePyramids"].get<int>(), 0);
+    EXPECT_NE(r.log.find("more than maxUntangleCells"), std::string::npos) << r.log;
+
+    const auto parse = [](const std::string& text)
+    { return read_step_settings(io::parse_dictionary(text, "system/morphDict")); };
+    EXPECT_EQ(parse("").max_untangle_cells, 1000);
+    EXPECT_EQ(parse("maxUntangleCells 0;").max_untangle_cells, 0);
+    for (const char* bad : {"maxUntangleCells -1;", "maxUntangleCells many;"})
+    {
+        try
+        {
+            parse(bad);
+            ADD_FAILURE() << "expected an error for " << bad;
+        }
+        catch (const ParseError& e)
+        {
+            EXPECT_NE(std::string(e.what()).find("maxUntangleCells"), std::string::npos)
+                << e.what();
+        }
+    }
+}
+
 TEST(MorphSteps, the_plain_venturi_squeeze_is_valid_in_one_step)
 {
     // Wall points on the venturi's plane of symmetry are equally near both slopes; the tie

@@ -64,6 +64,7 @@ std::string morph_json(const morph::MorphResult& result, int exit_status)
                                 {"layers", s.untangle.layers},
                                 {"stillInvalid", s.untangle.invalid_after},
                                 {"belowMargin", s.untangle.below_target_after},
+                                {"skippedCells", s.untangle.skipped_cells},
                                 {"seconds", s.untangle_seconds}}},
                               {"accepted", s.accepted},
                               {"fit", s.fit_seconds},

@@ -32,7 +32,8 @@ std::string topology_fingerprint(const PolyMesh& mesh);
 
 //! Of a parsed dictionary: every keyword and value token after `#include` and `$var`
 //! substitution, so an edited included file counts as an edit, a comment does not. The
-//! top-level `untangle` and `newCheckFailures`, which only judge variants, do not count.
+//! top-level `untangle`, `maxUntangleCells` and `newCheckFailures`, which only judge
+//! variants, do not count.
 std::string dictionary_fingerprint(const io::FoamDictionary& dict);
 
 } // namespace meshmorph::design

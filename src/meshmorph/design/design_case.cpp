@@ -61,7 +61,9 @@ DesignCase read_design_case(const morph::MorphOptions& options)
     dc.setup = morph::read_morph_setup(parsed);
     dc.settings = morph::read_deformation_settings(parsed, options.method);
     dc.variables = read_design_variables(parsed);
-    dc.untangle = morph::read_step_settings(parsed).untangle;
+    const morph::StepSettings steps = morph::read_step_settings(parsed);
+    dc.untangle = steps.untangle;
+    dc.max_untangle_cells = steps.max_untangle_cells;
     dc.refuse_new_check_failures = morph::read_new_check_failures(parsed);
     if (dc.variables.empty())
         throw InvalidInput(dc.dict_path.string() +

@@ -28,7 +28,8 @@ struct DesignCase
     morph::MorphSetup setup;
     morph::DeformationSettings settings;
     DesignVariables variables;
-    bool untangle = true; //!< morphDict `untangle`: repair a variant's new invalid cells
+    bool untangle = true;            //!< morphDict `untangle`: repair a variant's new invalid cells
+    Index max_untangle_cells = 1000; //!< morphDict `maxUntangleCells` (morph_steps.h)
     //! morphDict `newCheckFailures refuse`: a variant failing a check the set-up's mesh
     //! passed is refused (default: a warning, and the report's newFailedChecks).
     bool refuse_new_check_failures = false;

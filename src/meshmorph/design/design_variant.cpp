@@ -267,7 +267,12 @@ void DesignStudy::repair_variant(VariantResult& r, MeshGeometry& geometry)
 {
     if (!repairer_)
         repairer_.emplace(case_.foam.mesh, cell_faces_, x0_, prescribed_points(), case_.parts());
-    r.repair = repairer_->repair(case_.foam.mesh, geometry);
+    r.repair = repairer_->repair(case_.foam.mesh, geometry, case_.max_untangle_cells);
+    if (!r.repair.tried)
+    {
+        log::info() << "The variant is " << r.repair.skipped;
+        return;
+    }
     // Checked as a fresh read of the written points would be.
     geometry = compute_geometry(case_.foam.mesh, cell_faces_);
     r.after = check_variant(geometry);

@@ -37,15 +37,24 @@ VariantRepairer::VariantRepairer(PolyMesh& mesh, const CompactList& cell_faces, 
     std::swap(mesh.points, variant);
 }
 
-VariantRepair VariantRepairer::repair(PolyMesh& mesh, MeshGeometry& geometry) const
+VariantRepair VariantRepairer::repair(PolyMesh& mesh, MeshGeometry& geometry, Index max_cells) const
 {
     const Stopwatch clock;
-    const morph::UntangleReport u =
-        morph::untangle_cells(mesh, cell_faces_, geometry, x0_, targets_, movable_, {});
     const parallel::Communicator& comm = parts_ != nullptr && parts_->is_distributed()
                                              ? *parts_->comm
                                              : parallel::Communicator::world();
     VariantRepair r;
+    const Index to_repair = Index(comm.sum(
+        std::int64_t(morph::count_cells_below_target(mesh, cell_faces_, geometry, targets_))));
+    if (to_repair > max_cells)
+    {
+        r.skipped = "not untangled: " + std::to_string(to_repair) +
+                    " cells to repair, more than maxUntangleCells " + std::to_string(max_cells) +
+                    " (the local repair is for a few)";
+        return r;
+    }
+    const morph::UntangleReport u =
+        morph::untangle_cells(mesh, cell_faces_, geometry, x0_, targets_, movable_, {});
     r.tried = true;
     r.invalid_before = Index(comm.sum(std::int64_t(u.invalid_before)));
     r.invalid_after = Index(comm.sum(std::int64_t(u.invalid_after)));

@@ -43,8 +43,9 @@ public:
                     const std::vector<char>& prescribed, const morph::Decomposition* parts);
 
     //! \brief Repair the variant in `mesh` in place; `geometry` (compute_geometry of it on
-    //! entry) is kept up to date. Collective with -parallel (the counts are global).
-    VariantRepair repair(PolyMesh& mesh, MeshGeometry& geometry) const;
+    //! entry) is kept up to date. With more than `max_cells` cells to repair it tries
+    //! nothing (`skipped` says so). Collective with -parallel (the counts are global).
+    VariantRepair repair(PolyMesh& mesh, MeshGeometry& geometry, Index max_cells) const;
 
 private:
     const CompactList& cell_faces_;

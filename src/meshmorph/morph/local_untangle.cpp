@@ -409,6 +409,16 @@ std::vector<Index> cells_below_target(const PolyMesh& mesh, const CompactList& c
 
 } // namespace
 
+Index count_cells_below_target(const PolyMesh& mesh, const CompactList& cell_faces,
+                               const MeshGeometry& geometry, const std::vector<double>& targets)
+{
+    Index count = 0;
+#pragma omp parallel for schedule(static) reduction(+ : count)
+    for (Index c = 0; c < cell_faces.size(); ++c)
+        count += below_target(mesh, cell_faces, geometry, targets, c) ? 1 : 0;
+    return count;
+}
+
 std::vector<char> invalid_cell_flags(const PolyMesh& mesh, const CompactList& cell_faces,
                                      const MeshGeometry& g)
 {

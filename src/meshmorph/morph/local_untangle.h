@@ -51,6 +51,8 @@ struct UntangleReport
     Index points_moved = 0;       //!< distinct interior points moved
     int layers = 0;               //!< the neighbourhood's width when the repair stopped
     double max_move = 0.0;        //!< the largest distance a point was moved
+    //! Not tried (all else 0): the cells below their target, more than the caller's limit.
+    Index skipped_cells = 0;
 };
 
 //! \brief Per cell: 1 when it has a volume below OpenFOAM's VSMALL, a wrongly oriented face
@@ -63,6 +65,11 @@ std::vector<char> invalid_cell_flags(const PolyMesh& mesh, const CompactList& ce
 //! cell invalid in the unmorphed mesh gets a target below every quality (left alone).
 std::vector<double> repair_targets(const PolyMesh& original, const CompactList& cell_faces,
                                    const MeshGeometry& geometry);
+
+//! \brief The cells below their repair target in `mesh` (those untangle_cells() starts
+//! from), counted in one pass over the cells.
+Index count_cells_below_target(const PolyMesh& mesh, const CompactList& cell_faces,
+                               const MeshGeometry& geometry, const std::vector<double>& targets);
 
 //! \brief Repair the cells that are below their target in `mesh`.
 //! \param mesh the morphed mesh; its interior points near those cells are moved.

@@ -238,9 +238,9 @@ MorphSetup read_morph_setup(const io::FoamDictionary& dict)
     MorphSetup setup;
     setup.dict_path = dict.path();
     // Other top-level entries are allowed when used as $variables (helper entries).
-    dict.check_keywords({"method", "rbf", "dmffd", "ffd", "idw", "steps", "untangle", "boundary",
-                         "handles", "conflicts", "designVariables", "newCheckFailures",
-                         "jumpSmoothing"},
+    dict.check_keywords({"method", "rbf", "dmffd", "ffd", "idw", "steps", "untangle",
+                         "maxUntangleCells", "boundary", "handles", "conflicts", "designVariables",
+                         "newCheckFailures", "jumpSmoothing"},
                         "morphDict", dict.referenced_variables());
     if (const io::FoamEntry* e = dict.find("conflicts"))
         setup.conflicts = read_conflict_rule(*e);

@@ -13,6 +13,7 @@
 #include "meshmorph/core/log.h"
 #include "meshmorph/core/stopwatch.h"
 #include "meshmorph/io/foam_dictionary.h"
+#include "meshmorph/quality/inversion_step.h"
 
 namespace meshmorph::morph
 {
@@ -60,6 +61,10 @@ void log_step(std::size_t number, const StepRecord& r, bool failed, bool redo, b
         verdict = " (the shortest step: the rest of the motion in one step, to be refused)";
     else if (failed)
         verdict = " (kept: the result will be refused)";
+    if (r.untangle.skipped_cells > 0)
+        log::info() << "    not untangled: " << r.untangle.skipped_cells
+                    << " cells to repair, more than maxUntangleCells (the local repair is for "
+                       "a few cells)";
     if (r.untangle.invalid_before > 0)
         log::info() << "    untangled " << r.untangle.invalid_before << " invalid cells by moving "
                     << r.untangle.points_moved << " interior points by up to "
@@ -167,12 +172,21 @@ InvalidCells global_invalid_cells(const PolyMesh& mesh, const MeshGeometry& geom
             Index(comm.sum(std::int64_t(local.wrong_pyramids)))};
 }
 
-//! Untangle the step's new invalid cells in place and recount them.
+//! Untangle the step's new invalid cells in place and recount them, unless there are more
+//! than `max_cells` cells to repair (over every rank).
 void repair(PolyMesh& current, const CompactList& cell_faces, MeshGeometry& geometry,
-            std::vector<char>& pyramid_errors, OriginalState& original, StepRecord& record,
-            const parallel::Communicator& comm)
+            std::vector<char>& pyramid_errors, OriginalState& original, Index max_cells,
+            StepRecord& record, const parallel::Communicator& comm)
 {
     const Stopwatch clock;
+    const Index to_repair = Index(comm.sum(std::int64_t(
+        count_cells_below_target(current, cell_faces, geometry, original.repair_targets()))));
+    if (to_repair > max_cells)
+    {
+        record.untangle.skipped_cells = to_repair;
+        record.untangle_seconds = comm.max(clock.seconds());
+        return;
+    }
     record.untangle = untangle_cells(current, cell_faces, geometry, original.points(),
                                      original.repair_targets(), original.movable_points(), {});
     record.untangle.invalid_before = comm.sum(std::int64_t(record.untangle.invalid_before));
@@ -191,6 +205,13 @@ StepSettings read_step_settings(const io::FoamDictionary& dict)
 {
     StepSettings s = read_steps(dict);
     s.untangle = dict.get_or<bool>("untangle", true);
+    if (const io::FoamEntry* e = dict.find("maxUntangleCells"))
+    {
+        const std::vector<io::FoamValueToken>& t = e->tokens();
+        if (t.size() != 1 || !t[0].is_label() || t[0].label < 0)
+            throw e->error("expected a number of cells (0 or more; default 1000)");
+        s.max_untangle_cells = Index(t[0].label);
+    }
     return s;
 }
 
@@ -268,15 +289,42 @@ PointMorph fit_step(const PolyMesh& current, const Constraints& step, const Defo
 //! The trial's check: its geometry, pyramid errors and invalid cells (in the record), after
 //! the repair when `untangle` and it made cells invalid that were not before.
 void check_step(PolyMesh& current, const CompactList& cell_faces, const InvalidCells& before,
-                bool untangle, OriginalState& original, const parallel::Communicator& comm,
-                StepRecord& record, MeshGeometry& geometry, std::vector<char>& pyramid_errors)
+                const StepSettings& settings, OriginalState& original,
+                const parallel::Communicator& comm, StepRecord& record, MeshGeometry& geometry,
+                std::vector<char>& pyramid_errors)
 {
     const Stopwatch check_clock;
     geometry = compute_geometry(current, cell_faces);
     record.invalid = global_invalid_cells(current, geometry, comm, pyramid_errors);
     record.check_seconds = comm.max(check_clock.seconds());
-    if (untangle && record.invalid.worse_than(before))
-        repair(current, cell_faces, geometry, pyramid_errors, original, record, comm);
+    if (settings.untangle && record.invalid.worse_than(before))
+        repair(current, cell_faces, geometry, pyramid_errors, original, settings.max_untangle_cells,
+               record, comm);
+}
+
+//! The next length after a trial of `length` whose repair was skipped (too many cells to
+//! repair): halved at least once, and again while the cells it is predicted to fold are more
+//! than `max_cells`. The refitted field of a shorter step from the same state is this one
+//! scaled (the prescription scales, so do the greedy fit's tolerance and the limit), so each
+//! cell inverts at about the same fraction of it (quality/inversion_step.h): lengths that
+//! would fold too many cells to repair are skipped without a fit.
+double halved_length(const PolyMesh& accepted, const CompactList& cell_faces,
+                     const Points& displacement, double length, double shortest, Index max_cells,
+                     const parallel::Communicator& comm)
+{
+    const std::vector<double> folds_at = cell_inversion_steps(
+        accepted, cell_faces, compute_geometry(accepted, cell_faces), displacement, 1.0);
+    double next = 0.5 * length;
+    while (next > shortest * 1.5)
+    {
+        const double fraction = next / length;
+        const auto folded = std::count_if(folds_at.begin(), folds_at.end(),
+                                          [fraction](double s) { return s < fraction; });
+        if (Index(comm.sum(std::int64_t(folded))) <= max_cells)
+            break;
+        next *= 0.5;
+    }
+    return next;
 }
 
 } // namespace
@@ -328,7 +376,7 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         std::swap(current.points, other); // current: the trial; other: the accepted state
         MeshGeometry geometry;
         std::vector<char> pyramid_errors;
-        check_step(current, cell_faces, before, settings.untangle, original, comm, record, geometry,
+        check_step(current, cell_faces, before, settings, original, comm, record, geometry,
                    pyramid_errors);
         const bool failed = record.invalid.worse_than(before);
         const bool redo = failed && is_auto && !stuck && length > shortest * 1.5;
@@ -338,7 +386,16 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         if (redo)
         {
             std::swap(current.points, other); // back to the accepted state
-            length *= 0.5;
+            const double next = record.untangle.skipped_cells > 0
+                                    ? halved_length(current, cell_faces, m.displacement, length,
+                                                    shortest, settings.max_untangle_cells, comm)
+                                    : 0.5 * length;
+            if (next < 0.5 * length)
+                log::info() << "    (its field folds more than maxUntangleCells cells at every "
+                               "length down to "
+                            << format_fraction(2 * next) << " of the motion: next "
+                            << format_fraction(next) << ")";
+            length = next;
             continue;
         }
         if (failed && out.valid_fraction == 1.0)
