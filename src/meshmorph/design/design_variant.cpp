@@ -333,9 +333,9 @@ VariantResult DesignStudy::evaluate(const std::vector<double>& amplitudes, bool 
     r.after = check_variant(geometry);
     if (case_.untangle && has_new_invalid_cells(r.after) && worth_untangling(r))
         repair_variant(r, geometry);
+    r.check_seconds = stage.seconds();
     if (!refuse(amplitudes, r, search_back_off))
         judge_new_check_failures(r);
-    r.check_seconds = stage.seconds();
     return r;
 }
 

@@ -10,6 +10,7 @@
 
 #include "meshmorph/io/case_instance.h"
 #include "meshmorph/morph/constraint_set.h"
+#include "meshmorph/morph/invalid_cells_location.h"
 #include "meshmorph/morph/morph_steps.h"
 #include "meshmorph/morph/point_morph.h"
 #include "meshmorph/quality/quality_report.h"
@@ -70,6 +71,8 @@ struct MorphResult
     //! check's first offender set (0 when it has none): each is a warning, and an error
     //! with morphDict's `newCheckFailures refuse`.
     std::vector<std::pair<std::string, Index>> new_failed_checks;
+    //! With new invalid cells: the patches they touch (invalid_cells_location.h).
+    std::vector<PatchCells> invalid_cells_by_patch;
     bool written = false;
     std::filesystem::path points_file; //!< the written points file
     std::filesystem::path vtk_file;    //!< the written .vtu (if vtk)

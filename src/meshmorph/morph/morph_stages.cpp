@@ -20,6 +20,7 @@
 #include "meshmorph/morph/deformation_methods.h"
 #include "meshmorph/morph/distributed_case.h"
 #include "meshmorph/morph/duplicate_points.h"
+#include "meshmorph/morph/invalid_cells_location.h"
 #include "meshmorph/morph/morph_log.h"
 #include "meshmorph/morph/morph_output.h"
 #include "meshmorph/morph/new_check_failures.h"
@@ -129,10 +130,14 @@ bool judge(const MorphOptions& options, const MorphCase& in, MorphResult& result
     const std::string new_failures = judge_new_failures(in, result);
     if (reasons.empty() && new_failures.empty())
         return false;
-    result.refusal = reasons.empty()
-                         ? new_failures
-                         : "the morphed mesh has " + reasons.front() +
-                               (reasons.size() > 1 ? " and " + reasons.back() : std::string());
+    result.refusal =
+        reasons.empty()
+            ? new_failures
+            : "the morphed mesh has " + reasons.front() +
+                  (reasons.size() > 1 ? " and " + reasons.back() : std::string()) +
+                  (result.invalid_cells_by_patch.empty()
+                       ? std::string()
+                       : ", in cells touching " + describe(result.invalid_cells_by_patch));
     if (!options.force)
     {
         result.refused = true; // the caller reports it (morphMesh: exit status 3)
@@ -316,6 +321,11 @@ void morph_resolved(const MorphOptions& options, const MorphCase& in, const Comp
     check_settings.unchanged_topology = &result.before;           // only the points moved
     check_settings.face_pyramid_errors = &stepped.pyramid_errors; // counted after the last step
     result.after = check_morph_mesh(*moved, cf, stepped.geometry, check_settings, in.decomposition);
+    if (!refusal_reasons(result.before, result.after).empty()) // the counts are every rank's
+        result.invalid_cells_by_patch = invalid_cells_by_patch(
+            *moved, cf, stepped.geometry,
+            options.parallel && in.decomposition.comm != nullptr ? *in.decomposition.comm
+                                                                 : parallel::Communicator::world());
     result.timings.check += stage.seconds();
     judge(options, in, result);
 }

@@ -13,6 +13,7 @@
 set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/motion.cpp
     meshmorph/morph/new_check_failures.cpp
+    meshmorph/morph/invalid_cells_location.cpp
     meshmorph/morph/morph_setup.cpp
     meshmorph/morph/patch_assignment.cpp
     meshmorph/morph/empty_planes.cpp
