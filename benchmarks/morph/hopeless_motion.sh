@@ -110,4 +110,4 @@ cat "$table"
     echo "OpenFOAM's channel395DFSEM (blockMesh, $(grep -m1 -o '[0-9]* cells' "$out/turned 1 degree.log" || echo '1886000 cells')), its bottom wall turned about the y axis through its centre, every other patch fixed; morphMesh's defaults. Wall time of the whole run (read, check, morph, write or refusal)."
     echo
     cat "$table"
-} | results_write hopeless_motion "A motion that cannot be made valid: time to the refusal"
+} | results_write -openfoam hopeless_motion "A motion that cannot be made valid: time to the refusal"
