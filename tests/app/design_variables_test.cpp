@@ -424,6 +424,10 @@ TEST_F(DesignVariables, a_variant_folding_too_many_cells_to_untangle_is_refused_
     const std::string skipped = j["untangle"]["skipped"].get<std::string>();
     EXPECT_NE(skipped.find("more than 5% of the 2240 cells"), std::string::npos) << skipped;
     EXPECT_NE(j["refusal"].get<std::string>().find("not untangled"), std::string::npos);
+    // Where: the squeezed wall's cells among them.
+    EXPECT_GT(j["invalidCellsByPatch"].value("wall", 0), 0) << j["invalidCellsByPatch"];
+    EXPECT_NE(j["refusal"].get<std::string>().find("in cells touching "), std::string::npos)
+        << j["refusal"];
     // (Without the lift, the squeeze alone is valid: a scaling about the axis.)
     EXPECT_EQ(j["backOff"].get<std::string>().rfind("lift", 0), 0u) << j["backOff"];
     EXPECT_NE(r.log.find("back off lift"), std::string::npos) << r.log;

@@ -254,6 +254,14 @@ nlohmann::json setup_json(const design::DesignSetupResult& r)
             {"before", quality_json(r.before)}};
 }
 
+nlohmann::json invalid_cells_json(const std::vector<morph::PatchCells>& counts)
+{
+    nlohmann::json j = nlohmann::json::object();
+    for (const morph::PatchCells& p : counts)
+        j[p.patch] = p.cells;
+    return j;
+}
+
 nlohmann::json variant_json(const design::DesignStudy& study, const design::VariantResult& r)
 {
     nlohmann::json amplitudes;
@@ -274,7 +282,8 @@ nlohmann::json variant_json(const design::DesignStudy& study, const design::Vari
         {"timings",
          {{"combine", r.combine_seconds}, {"check", r.check_seconds}, {"write", r.write_seconds}}},
         {"after", quality_json(r.after)},
-        {"newFailedChecks", failed_checks_json(r.new_failed_checks)}};
+        {"newFailedChecks", failed_checks_json(r.new_failed_checks)},
+        {"invalidCellsByPatch", invalid_cells_json(r.invalid_cells_by_patch)}};
     if (!r.repair.skipped.empty())
         j["untangle"] = {{"skipped", r.repair.skipped}};
     if (r.repair.tried)

@@ -18,6 +18,9 @@
 namespace meshmorph::app
 {
 
+//! `invalidCellsByPatch` of morphMesh's and a variant's report: {patch: cells}.
+nlohmann::json invalid_cells_json(const std::vector<morph::PatchCells>& counts);
+
 //! The JSON of -variables: exitStatus, setupFile, method, points, constrainedPoints,
 //! variables [{name, movesPoints, maxConstraintError, relativeConstraintError, centres,
 //! seconds}], bytes, seconds, before.
@@ -27,7 +30,8 @@ nlohmann::json setup_json(const design::DesignSetupResult& r);
 //! relativeConstraintError, maxDisplacement, timings {combine, check, write}, after; when
 //! the linear combination had new invalid cells untangle {invalidBefore, invalidAfter,
 //! pointsMoved, maxMove, seconds} (or {skipped: why} when the damage was too wide to
-//! repair locally); when refused also refusal and backOff.
+//! repair locally); newFailedChecks, invalidCellsByPatch; when refused also refusal and
+//! backOff.
 nlohmann::json variant_json(const design::DesignStudy& study, const design::VariantResult& r);
 
 //! The JSON of -variant A -direction P (a step search; no mesh written): setupReused,

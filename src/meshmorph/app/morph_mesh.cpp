@@ -81,9 +81,7 @@ std::string morph_json(const morph::MorphResult& result, int exit_status)
     j["region"] = result.region;
     j["outputInstance"] = result.output_instance;
     j["newFailedChecks"] = failed_checks_json(result.new_failed_checks);
-    j["invalidCellsByPatch"] = nlohmann::json::object();
-    for (const morph::PatchCells& p : result.invalid_cells_by_patch)
-        j["invalidCellsByPatch"][p.patch] = p.cells;
+    j["invalidCellsByPatch"] = invalid_cells_json(result.invalid_cells_by_patch);
     j["written"] = result.written;
     j["refused"] = result.refused;
     if (result.refused)

@@ -294,6 +294,11 @@ bool DesignStudy::refuse(const std::vector<double>& amplitudes, VariantResult& r
     if (!has_new_invalid_cells(r.after))
         return false;
     r.refusal = refusal_text(invalid, header());
+    r.invalid_cells_by_patch = morph::invalid_cells_by_patch(
+        case_.foam.mesh, cell_faces_, compute_geometry(case_.foam.mesh, cell_faces_),
+        case_.parallel ? *case_.decomposition.comm : parallel::Communicator::world());
+    if (!r.invalid_cells_by_patch.empty())
+        r.refusal += ", in cells touching " + morph::describe(r.invalid_cells_by_patch);
     if (r.repair.tried)
         r.refusal += " after untangling";
     else if (!r.repair.skipped.empty())

@@ -13,6 +13,7 @@
 #include "meshmorph/design/design_basis.h"
 #include "meshmorph/design/design_case.h"
 #include "meshmorph/design/variant_repair.h"
+#include "meshmorph/morph/invalid_cells_location.h"
 #include "meshmorph/morph/morph_result.h"
 #include "meshmorph/morph/new_check_failures.h"
 #include "meshmorph/quality/cell_validity.h"
@@ -40,6 +41,8 @@ struct VariantResult
     //! The checks the variant fails that the set-up's mesh passed (on the master), each
     //! warned about by report_new_failures().
     morph::NewCheckFailures new_failed_checks;
+    //! Refused for invalid cells: the patches they touch (morph/invalid_cells_location.h).
+    std::vector<morph::PatchCells> invalid_cells_by_patch;
     bool refused = false;
     std::string refusal;
     std::string back_off; //!< refused: the variable whose removal repairs most
