@@ -3,7 +3,9 @@
 # The -parallel morph against the serial one on the pipe tutorial mesh: morphMesh serially,
 # decomposePar (method simple or scotch), mpirun -np N morphMesh -parallel, and a comparison
 # of every processor's points with the serial points (compare_decomposed.py: 1e-12 of the
-# extent, shared points bit-identical). Needs OpenFOAM (decomposePar) and OpenMPI.
+# extent, shared points bit-identical); then (the default motion only) a morph both refuse,
+# whose JSON must name the same patches (invalidCellsByPatch). Needs OpenFOAM (decomposePar)
+# and OpenMPI.
 #
 #   parallel_vs_serial.sh -bin DIR -out DIR [-np N] [-method simple|scotch] [-field | -design]
 #
@@ -122,6 +124,31 @@ if [ "$field" = 1 ]; then
 fi
 /usr/bin/python3 "$here/compare_decomposed.py" "$out/parallel" 1 "$np" "$out/serial/1/polyMesh/points" ||
     exit 1
+if [ "$design" != 1 ] && [ "$field" != 1 ]; then
+    # A morph both refuse (the wall squeezed to 5% against fixed ends): the same refusal,
+    # naming the same patches (their counts are a collective sum over the ranks).
+    for c in serial parallel; do
+        cat > "$out/$c/system/morphDict" <<'DICT'
+FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }
+steps 1;
+untangle no;
+boundary { wall { type scale; origin (0 0 1); factor (0.05 0.05 1); } }
+DICT
+    done
+    "$bin/morphMesh" -case "$out/serial" -json "$out/refused.serial.json" > "$out/log.refused.serial" 2>&1
+    serial_status=$?
+    mpirun -np "$np" --oversubscribe "$bin/morphMesh" -case "$out/parallel" -parallel \
+        -json "$out/refused.parallel.json" > "$out/log.refused.parallel" 2>&1
+    parallel_status=$?
+    [ "$serial_status" = 3 ] && [ "$parallel_status" = 3 ] ||
+        { echo "expected both morphs refused (exit 3): serial $serial_status, -parallel $parallel_status"; exit 1; }
+    /usr/bin/python3 - "$out/refused.serial.json" "$out/refused.parallel.json" <<'PY' || exit 1
+import json, sys
+s, p = (json.load(open(f))["invalidCellsByPatch"] for f in sys.argv[1:3])
+print(f"refused: invalid cells by patch, serial {s}, -parallel {p}")
+sys.exit(0 if s and s == p else 1)
+PY
+fi
 [ "$design" = 1 ] || exit 0
 /usr/bin/python3 - "$out/serial.json" "$out/parallel.json" <<'PY'
 import json, sys
