@@ -5,13 +5,37 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "meshmorph/morph/local_untangle.h"
+#include "meshmorph/quality/face_pyramids.h"
 
 namespace meshmorph::morph
 {
 
 namespace
 {
+
+//! The cells a morph is refused for: a volume below OpenFOAM's VSMALL, or a face pyramid
+//! of their own that is wrongly oriented (volume below -SMALL, or not a number). Each cell
+//! is judged by its own pyramids only, so a rank of a -parallel run judges its cells as a
+//! serial run does (a processor face's other side is the other rank's cell).
+std::vector<Index> invalid_cells(const PolyMesh& mesh, const MeshGeometry& g)
+{
+    const FacePyramidVolumes v = face_pyramid_volumes(mesh, g);
+    std::vector<char> invalid(std::size_t(mesh.n_cells), 0);
+    for (Index c = 0; c < mesh.n_cells; ++c)
+        invalid[std::size_t(c)] = !(g.cell_volumes[c] >= constants::vsmall);
+    for (Index f = 0; f < mesh.n_faces(); ++f)
+    {
+        if (!(v.owner[f] >= -constants::small))
+            invalid[std::size_t(mesh.owner[f])] = 1;
+        if (f < mesh.n_internal_faces() && !(v.neighbour[f] >= -constants::small))
+            invalid[std::size_t(mesh.neighbour[f])] = 1;
+    }
+    std::vector<Index> cells;
+    for (Index c = 0; c < mesh.n_cells; ++c)
+        if (invalid[std::size_t(c)])
+            cells.push_back(c);
+    return cells;
+}
 
 bool is_processor(const Patch& p)
 {
@@ -68,11 +92,7 @@ std::vector<PatchCells> invalid_cells_by_patch(const PolyMesh& mesh, const Compa
                                                const MeshGeometry& geometry,
                                                const parallel::Communicator& comm)
 {
-    const std::vector<char> invalid = invalid_cell_flags(mesh, cell_faces, geometry);
-    std::vector<Index> cells;
-    for (std::size_t c = 0; c < invalid.size(); ++c)
-        if (invalid[c])
-            cells.push_back(Index(c));
+    const std::vector<Index> cells = invalid_cells(mesh, geometry);
     const CellPoints cp = points_of_cells(mesh, cell_faces, cells);
     std::vector<PatchCells> counts;
     for (const Patch& patch : mesh.patches)

@@ -21,9 +21,10 @@ struct PatchCells
     Index cells = 0;
 };
 
-//! \brief Per patch (processor patches left out), the cells local untangling calls invalid
-//! (invalid_cell_flags) that have a point on it, summed over the ranks of `comm` (a
-//! collective: every rank holds the same patches first, as decomposePar writes them).
+//! \brief Per patch (processor patches left out), the invalid cells (a volume below
+//! VSMALL or a wrongly oriented face pyramid of their own, checkMesh's two criteria) that
+//! have a point on it, summed over the ranks of `comm` (a collective: every rank holds the
+//! same patches first, as decomposePar writes them).
 //! Patches no invalid cell touches are left out; the most touched first.
 std::vector<PatchCells> invalid_cells_by_patch(const PolyMesh& mesh, const CompactList& cell_faces,
                                                const MeshGeometry& geometry,
