@@ -286,8 +286,8 @@ void DesignStudy::repair_variant(VariantResult& r, MeshGeometry& geometry)
                 << " s)";
 }
 
-bool DesignStudy::refuse(const std::vector<double>& amplitudes, VariantResult& r,
-                         bool search_back_off)
+bool DesignStudy::refuse(const std::vector<double>& amplitudes, const MeshGeometry& geometry,
+                         VariantResult& r, bool search_back_off)
 {
     const InvalidCells invalid{r.after.negative_volume_cells,
                                r.after.incorrectly_oriented_face_pyramids};
@@ -295,7 +295,7 @@ bool DesignStudy::refuse(const std::vector<double>& amplitudes, VariantResult& r
         return false;
     r.refusal = refusal_text(invalid, header());
     r.invalid_cells_by_patch = morph::invalid_cells_by_patch(
-        case_.foam.mesh, cell_faces_, compute_geometry(case_.foam.mesh, cell_faces_),
+        case_.foam.mesh, cell_faces_, geometry,
         case_.parallel ? *case_.decomposition.comm : parallel::Communicator::world());
     if (!r.invalid_cells_by_patch.empty())
         r.refusal += ", in cells touching " + morph::describe(r.invalid_cells_by_patch);
@@ -339,7 +339,7 @@ VariantResult DesignStudy::evaluate(const std::vector<double>& amplitudes, bool 
     if (case_.untangle && has_new_invalid_cells(r.after) && worth_untangling(r))
         repair_variant(r, geometry);
     r.check_seconds = stage.seconds();
-    if (!refuse(amplitudes, r, search_back_off))
+    if (!refuse(amplitudes, geometry, r, search_back_off))
         judge_new_check_failures(r);
     return r;
 }

@@ -39,7 +39,7 @@ struct VariantResult
     QualityReport after;
     VariantRepair repair; //!< the untangling of its new invalid cells, if it had any
     //! The checks the variant fails that the set-up's mesh passed (on the master), each
-    //! warned about by report_new_failures().
+    //! warned about by DesignStudy::warn_new_check_failures().
     morph::NewCheckFailures new_failed_checks;
     //! Refused for invalid cells: the patches they touch (morph/invalid_cells_location.h).
     std::vector<morph::PatchCells> invalid_cells_by_patch;
@@ -87,10 +87,10 @@ public:
     //! r.back_off names the variable whose removal repairs most (one check per variable,
     //! without untangling). Writes nothing.
     VariantResult evaluate(const std::vector<double>& amplitudes, bool search_back_off = true);
-    //! \brief Whether variant a has no more negative-volume cells or wrongly oriented face
-    //! pyramids than x0: the two checks alone, for line searches (points() then holds it).
     //! A warning per check r fails that the set-up's mesh passed (r.new_failed_checks).
     void warn_new_check_failures(const VariantResult& r) const;
+    //! \brief Whether variant a has no more negative-volume cells or wrongly oriented face
+    //! pyramids than x0: the two checks alone, for line searches (points() then holds it).
     //! The linear combination's verdict: no untangling (evaluate may still repair it).
     bool is_valid(const std::vector<double>& amplitudes);
     //! \brief Write the points of the last evaluated variant to `instance`, atomically.
@@ -124,8 +124,10 @@ private:
     void repair_variant(VariantResult& r, MeshGeometry& geometry);
     //! Per point, 1 when some design variable prescribes it (read from the set-up once).
     std::vector<char> prescribed_points();
-    //! Whether the variant in the study's mesh is refused (new invalid cells, no force).
-    bool refuse(const std::vector<double>& amplitudes, VariantResult& r, bool search_back_off);
+    //! Whether the variant in the study's mesh (`geometry` its geometry) is refused (new
+    //! invalid cells, no force).
+    bool refuse(const std::vector<double>& amplitudes, const MeshGeometry& geometry,
+                VariantResult& r, bool search_back_off);
     //! r.new_failed_checks, and with morphDict `newCheckFailures refuse` the refusal.
     void judge_new_check_failures(VariantResult& r);
     //! The check of the set-up's mesh, made when a variant first fails a check (collective).

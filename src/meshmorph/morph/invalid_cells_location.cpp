@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "meshmorph/mesh/patch_kinds.h"
 #include "meshmorph/quality/face_pyramids.h"
 
 namespace meshmorph::morph
@@ -14,7 +15,7 @@ namespace
 {
 
 //! The cells a morph is refused for: a volume below OpenFOAM's VSMALL, or a face pyramid
-//! of their own that is wrongly oriented (volume below -SMALL, or not a number). Each cell
+//! of their own that is wrongly oriented (wrongly_oriented()). Each cell
 //! is judged by its own pyramids only, so a rank of a -parallel run judges its cells as a
 //! serial run does (a processor face's other side is the other rank's cell).
 std::vector<Index> invalid_cells(const PolyMesh& mesh, const MeshGeometry& g)
@@ -25,9 +26,9 @@ std::vector<Index> invalid_cells(const PolyMesh& mesh, const MeshGeometry& g)
         invalid[std::size_t(c)] = !(g.cell_volumes[c] >= constants::vsmall);
     for (Index f = 0; f < mesh.n_faces(); ++f)
     {
-        if (!(v.owner[f] >= -constants::small))
+        if (wrongly_oriented(v.owner[f]))
             invalid[std::size_t(mesh.owner[f])] = 1;
-        if (f < mesh.n_internal_faces() && !(v.neighbour[f] >= -constants::small))
+        if (f < mesh.n_internal_faces() && wrongly_oriented(v.neighbour[f]))
             invalid[std::size_t(mesh.neighbour[f])] = 1;
     }
     std::vector<Index> cells;
@@ -35,11 +36,6 @@ std::vector<Index> invalid_cells(const PolyMesh& mesh, const MeshGeometry& g)
         if (invalid[std::size_t(c)])
             cells.push_back(c);
     return cells;
-}
-
-bool is_processor(const Patch& p)
-{
-    return p.type == "processor" || p.type == "processorCyclic";
 }
 
 //! The points of `cells`, each once and sorted (`points`), and per cell its points as
@@ -97,7 +93,7 @@ std::vector<PatchCells> invalid_cells_by_patch(const PolyMesh& mesh, const Compa
     std::vector<PatchCells> counts;
     for (const Patch& patch : mesh.patches)
     {
-        if (is_processor(patch))
+        if (is_processor_patch(patch))
             continue;
         const std::vector<char> on = on_patch(mesh, patch, cp);
         std::int64_t touching = 0;

@@ -55,9 +55,8 @@ std::vector<char> face_pyramid_errors(const PolyMesh& mesh, const MeshGeometry& 
     for (Index f = 0; f < n_faces; ++f)
     {
         const auto [own, nei] = pyramid_volumes(mesh, g, f);
-        // !(v >= -SMALL): a volume that is not a number (non-finite points) is an error too.
-        n_err[f] = static_cast<char>(!(own >= -constants::small) +
-                                     (f < mesh.n_internal_faces() && !(nei >= -constants::small)));
+        n_err[f] = static_cast<char>(wrongly_oriented(own) +
+                                     (f < mesh.n_internal_faces() && wrongly_oriented(nei)));
     }
     return n_err;
 }
