@@ -109,8 +109,11 @@ void CorrectedDeformation::fit(const Eigen::Ref<const Points>& handles,
         global_->evaluate(handles, residual);
         residual = displacements - residual;
     }
-    const double largest = displacements.rowwise().norm().maxCoeff();
+    const double largest = displacements.rowwise().norm().maxCoeff(&largest_row_);
+    handles_ = handles;
     correction_.fit(handles, residual, quiet_handles(*global_, handles.rows(), largest));
+    largest_direction_ =
+        largest > 0.0 ? Vector3(displacements.row(largest_row_) / largest) : Vector3::Zero();
     report_ = global_->report();
     report_.method += "+idw";
     report_.max_displacement = largest;
@@ -176,14 +179,59 @@ void CorrectedDeformation::evaluate(const Eigen::Ref<const Points>& points,
 {
     // The parts check their points; the rows of out first, as the shortcut writes them.
     detail::check_output_rows(points, out, "corrected deformation");
+    evaluate_unlimited(points, out);
+    if (limit_)
+        detail::limit_to_ball(out, report_.max_displacement);
+}
+
+void CorrectedDeformation::evaluate_unlimited(const Eigen::Ref<const Points>& points,
+                                              Eigen::Ref<Points> out) const
+{
     evaluate_global(points, out);
     Points c(points.rows(), 3);
     correction_.evaluate(points, c);
 #pragma omp parallel for schedule(static) if (points.rows() > 4096)
     for (std::int64_t i = 0; i < std::int64_t(points.rows()); ++i)
         out.row(i) += c.row(i);
+}
+
+Points CorrectedDeformation::transpose(const Eigen::Ref<const Points>& points,
+                                       const Eigen::Ref<const Points>& weights) const
+{
+    detail::check_transpose_arguments(is_fitted(), points, weights, "corrected deformation");
+    Points g = weights;
+    double toward_largest = 0.0;
     if (limit_)
-        detail::limit_to_ball(out, report_.max_displacement);
+        toward_largest = limit_transpose(points, g);
+    // d = g(x) + c(x), c the IDW interpolant of the residual r = H - g(handles).
+    const Points residual_adjoint = correction_.transpose(points, g);
+    Points adjoint = residual_adjoint + global_->transpose(points, g);
+    adjoint -= global_->transpose(handles_, residual_adjoint);
+    adjoint.row(largest_row_) += toward_largest * largest_direction_.transpose();
+    return adjoint;
+}
+
+double CorrectedDeformation::limit_transpose(const Eigen::Ref<const Points>& points,
+                                             Points& g) const
+{
+    // Where |d| > M the result is M d / |d|: its derivative is (M / |d|) (I - u u^T) dd
+    // + u dM, u = d / |d|, and M = |H_j| of the largest prescription j, whose derivative
+    // is its direction (the first such row when several are as large: a subgradient).
+    Points d(points.rows(), 3);
+    evaluate_unlimited(points, d);
+    const double largest = report_.max_displacement;
+    double toward_largest = 0.0;
+    for (Eigen::Index i = 0; i < points.rows(); ++i)
+    {
+        const double n = d.row(i).norm();
+        if (!(n > largest))
+            continue;
+        const Eigen::RowVector3d u = d.row(i) / n;
+        const double along = u.dot(g.row(i));
+        g.row(i) = (largest / n) * (g.row(i) - along * u);
+        toward_largest += along;
+    }
+    return toward_largest;
 }
 
 const FitReport& CorrectedDeformation::report() const

@@ -46,6 +46,11 @@ public:
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     //! The global part's report; max/rms residual are those of the global part alone
     //! (what the correction takes up), max_displacement the prescriptions'.
+    //! The transpose of the derivative with respect to the prescriptions: the global part's
+    //! and the correction's transposes (d = g + IDW(H - g(handles))) and, limited, the
+    //! projection's derivative at the fitted data.
+    Points transpose(const Eigen::Ref<const Points>& points,
+                     const Eigen::Ref<const Points>& weights) const override;
     const FitReport& report() const override;
     bool is_fitted() const override;
     void write_field(FieldWriter& out) const override;
@@ -57,6 +62,12 @@ private:
     //! fit (values_at_handles, bit for bit what its evaluation gives), elsewhere evaluated.
     void evaluate_global(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const;
 
+    //! g + c before the limit.
+    void evaluate_unlimited(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const;
+    //! Replaces g by the limit's transposed derivative applied to it; returns the weight
+    //! that goes to M, the largest prescription's length.
+    double limit_transpose(const Eigen::Ref<const Points>& points, Points& g) const;
+
     std::unique_ptr<SpaceDeformation> global_;
     IdwDeformation correction_;
     bool limit_ = false;
@@ -65,6 +76,11 @@ private:
     //! part does not keep them, or for a field read back from a file).
     detail::ExactPointIndex handle_rows_;
     Points global_at_handles_;
+    //! The handles of the fit, and the row and direction of its largest prescription (what
+    //! the limit's radius follows), for transpose().
+    Points handles_;
+    Eigen::Index largest_row_ = 0;
+    Vector3 largest_direction_ = Vector3::Zero();
 };
 
 } // namespace meshmorph

@@ -373,4 +373,23 @@ Eigen::MatrixXd GreedyRbfDeformation::handle_basis(const Eigen::Ref<const Points
     return B;
 }
 
+Points GreedyRbfDeformation::transpose(const Eigen::Ref<const Points>& points,
+                                       const Eigen::Ref<const Points>& weights) const
+{
+    const Impl& d = *impl_;
+    detail::check_transpose_arguments(d.fitted, points, weights, "greedy RBF");
+    // d(x) = K(x) W H_c + P(x) Q H_c for the centres' displacements H_c, so the adjoint of
+    // H_c is W^T (K^T G) + Q^T (P^T G): the transposed solve of K^T G and P^T G.
+    const detail::IncrementalSystem& system = *d.system;
+    Eigen::MatrixXd KtG, PtG;
+    d.model.transpose_sums(points, weights, KtG, PtG);
+    const Eigen::MatrixXd centres = system.solve_transpose(KtG, PtG);
+    std::vector<Eigen::Index> rows(system.unisolvent());
+    rows.insert(rows.end(), system.selected().begin(), system.selected().end());
+    Points out = Points::Zero(d.num_inputs, 3);
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        out.row(d.merged.first[std::size_t(rows[i])]) = centres.row(Eigen::Index(i));
+    return out;
+}
+
 } // namespace meshmorph

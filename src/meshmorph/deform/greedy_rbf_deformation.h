@@ -64,6 +64,11 @@ public:
     //! displacements H (m x 3) of the constraints, for the centres selected by the last fit;
     //! columns of constraints that are not centres are zero. \throw InvalidInput.
     Eigen::MatrixXd handle_basis(const Eigen::Ref<const Points>& points) const;
+    //! The transpose of d(points) = B H with the centres held (handle_basis), without
+    //! forming B: the kernel sums at the centres, then the transposed solve (two triangular
+    //! solves with the fit's factor). Rows of constraints that are not centres are zero.
+    Points transpose(const Eigen::Ref<const Points>& points,
+                     const Eigen::Ref<const Points>& weights) const override;
     //! Max residual after each round (absolute), for convergence plots.
     const std::vector<double>& history() const;
     //! RMS residual after each round (absolute).

@@ -159,6 +159,35 @@ void IncrementalSystem::solve(const Eigen::MatrixXd& H, Eigen::MatrixXd& W,
     }
 }
 
+Eigen::MatrixXd IncrementalSystem::solve_transpose(const Eigen::MatrixXd& Wbar,
+                                                   const Eigen::MatrixXd& Qbar) const
+{
+    // solve() backwards: Q = PU^-1 (HU - AUU W_top - AU Y), W_top = -Lam Y,
+    // Y = sign (L L^T)^-1 (H_sel - Lam^T HU), HU = H_U.
+    const Eigen::Index p = P_.cols();
+    const Eigen::Index nc = Wbar.cols();
+    Eigen::MatrixXd HUbar = Eigen::MatrixXd::Zero(p, nc);
+    Eigen::MatrixXd Ybar = Wbar.bottomRows(r_);
+    if (p > 0)
+    {
+        const Eigen::MatrixXd Z = luT_.solve(Qbar); // PU^-T Qbar
+        HUbar += Z;
+        const Eigen::MatrixXd Wtop_bar = Wbar.topRows(p) - AUU_.transpose() * Z;
+        Ybar -= AU_.transpose() * Z;
+        Ybar -= Lam_.transpose() * Wtop_bar;
+    }
+    // (L L^T)^-1 is symmetric: the same two triangular solves.
+    factor_.forward(Ybar);
+    factor_.backward(Ybar);
+    Ybar *= sign_;
+    Eigen::MatrixXd Hbar(p + r_, nc);
+    if (p > 0)
+        HUbar -= Lam_ * Ybar;
+    Hbar.topRows(p) = HUbar;
+    Hbar.bottomRows(r_) = Ybar;
+    return Hbar;
+}
+
 void IncrementalSystem::truncate(Eigen::Index r)
 {
     if (r >= r_)

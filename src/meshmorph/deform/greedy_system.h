@@ -40,6 +40,12 @@ public:
     //! Weights of [U; selected] (rows) and polynomial coefficients for displacements H.
     void solve(const Eigen::MatrixXd& H, Eigen::MatrixXd& W, Eigen::MatrixXd& Q) const;
 
+    //! The transpose of solve(): for adjoints Wbar (rows as W) and Qbar (rows as Q) the
+    //! adjoint of H's rows [U; selected] (rows as W), so that for every H
+    //! sum(Wbar .* W) + sum(Qbar .* Q) = sum(Hbar .* H[U; selected]). Triangular solves
+    //! with the same factor: no centre-by-centre solve.
+    Eigen::MatrixXd solve_transpose(const Eigen::MatrixXd& Wbar, const Eigen::MatrixXd& Qbar) const;
+
     //! Keeps the first r selected centres. The leading r x r block of a Cholesky factor is
     //! the factor of the leading block, so nothing is recomputed.
     void truncate(Eigen::Index r);

@@ -134,6 +134,19 @@ void IdwDeformation::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref
     out = result;
 }
 
+Points IdwDeformation::transpose(const Eigen::Ref<const Points>& points,
+                                 const Eigen::Ref<const Points>& weights) const
+{
+    const Impl& d = *impl_;
+    detail::check_transpose_arguments(d.tree.has_value(), points, weights, "IDW");
+    if (d.handles.rows() == 0)
+        throw InvalidInput("IDW: no transpose for a field read for a region (-parallel)");
+    const Points normalised = (points.rowwise() - d.centre.transpose()) * (1.0 / d.scale);
+    Points adjoint;
+    d.tree->weighted_mean_transpose(normalised, Points(weights), adjoint);
+    return adjoint;
+}
+
 const FitReport& IdwDeformation::report() const
 {
     return impl_->report;

@@ -59,6 +59,9 @@ public:
              const std::vector<char>& quiet);
     //! OpenMP over points; per point independent of the thread count.
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
+    //! Exact: the transpose of the tree's sums as evaluate() takes them (idw_tree.h).
+    Points transpose(const Eigen::Ref<const Points>& points,
+                     const Eigen::Ref<const Points>& weights) const override;
     const FitReport& report() const override;
     bool is_fitted() const override;
     //! With a query region on `out`: only the locally essential tree (FieldKind::idw_local).

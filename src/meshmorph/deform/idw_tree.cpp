@@ -6,6 +6,7 @@
 
 #include "meshmorph/deform/idw_kernels.h"
 #include "meshmorph/deform/idw_split.h"
+#include "meshmorph/deform/idw_traversal.h"
 
 #include <algorithm>
 #include <array>
@@ -57,6 +58,7 @@ IdwTree::IdwTree(const Points& sources, const Points& values, const IdwWeight& w
     }
     for (int k = 0; k < 3; ++k)
         mid_[k] = 0.5 * (values.col(k).minCoeff() + values.col(k).maxCoeff());
+    source_order_ = order;
     shift_values();
     nodes_.resize(split.size());
 #pragma omp parallel for schedule(dynamic, 64) if (split.size() > 256)
@@ -244,7 +246,7 @@ std::uint32_t far_lanes(const IdwTree::Probe& node, double theta, const Block& b
 //! with the lanes it applies to. A node far for the whole ball (centre c, radius rho) is
 //! far for every point in it; a node that no point sees as far is opened for all. False if
 //! a point needs a node written as moments only (a tree written for another region).
-bool interaction_lists(const std::vector<IdwTree::Probe>& nodes, double theta, const double c[3],
+bool interaction_lists(const std::vector<IdwProbe>& nodes, double theta, const double c[3],
                        double rho, const Block& b, std::vector<Term>& far, std::vector<Term>& near)
 {
     far.clear();
@@ -289,11 +291,6 @@ bool interaction_lists(const std::vector<IdwTree::Probe>& nodes, double theta, c
     }
     return true;
 }
-
-} // namespace
-
-namespace
-{
 
 //! The distance from p to the box lo..hi (0 inside).
 double distance_to_box(const double p[3], const Vector3& lo, const Vector3& hi)
@@ -416,6 +413,15 @@ double load_block(const Points& x, const std::vector<Index>& order, const SplitN
 
 } // namespace
 
+bool idw::load_block_terms(const Points& x, const std::vector<Index>& order, const SplitNode& q,
+                           const std::vector<IdwProbe>& nodes, double theta, Block& b,
+                           std::vector<Term>& far, std::vector<Term>& near)
+{
+    double c[3] = {0, 0, 0};
+    const double rho = load_block(x, order, q, b, c);
+    return interaction_lists(nodes, theta, c, rho, b, far, near);
+}
+
 void IdwTree::weighted_mean(const Points& x, Points& out) const
 {
     out.resize(x.rows(), 3);
@@ -467,10 +473,8 @@ void IdwTree::sum_over_tree(const Points& x, std::vector<Index> order, Points& o
         for (std::int64_t k = 0; k < n_blocks; ++k)
         {
             const SplitNode& q = blocks[std::size_t(k)];
-            double c[3] = {0, 0, 0};
-            const double rho = load_block(x, order, q, b, c);
             // An exception must not leave an OpenMP region: noted, thrown after it.
-            if (!interaction_lists(probes_, theta_, c, rho, b, far, near))
+            if (!load_block_terms(x, order, q, probes_, theta_, b, far, near))
             {
                 outside_region = true;
                 continue;

@@ -94,6 +94,17 @@ public:
     //! over query blocks; every point's sum runs in a fixed order (thread-count independent).
     void weighted_mean(const Points& x, Points& out) const;
 
+    //! \brief The transpose of weighted_mean() as a map of the values: for weights g (a row
+    //! per row of x) the m x 3 adjoint a of the values (rows in the order the sources were
+    //! given), so that sum_i g_i . mean(x_i) = sum_j a_j . v_j for every v, with the tree's
+    //! choices held (which nodes each point expands, which source it coincides with). The
+    //! reverse pass of a sensitivity. Summed in double precision: against the forward sums'
+    //! single precision the two sides agree to ~1e-6 relative. Deterministic: partial sums
+    //! over a fixed partition of the query blocks, added in order (no thread-count effect).
+    //! \throw std::logic_error for a tree read back for a region (read_essential: it has
+    //! not every source).
+    void weighted_mean_transpose(const Points& x, const Points& g, Points& out) const;
+
     //! Number of sources (after nothing is merged: coincident sources all count).
     Index size() const { return static_cast<Index>(sx_.size()); }
 
@@ -123,6 +134,13 @@ private:
     //! The weighted mean by the sum over the tree at the rows `rows` of x, into the same
     //! rows of out.
     void sum_over_tree(const Points& x, std::vector<Index> rows, Points& out) const;
+    //! weighted_mean_transpose's sums over the tree for the rows `rows` of x, added to
+    //! `adjoint` (m x 3 values, tree order, row-major).
+    void transpose_over_tree(const Points& x, const Points& g, std::vector<Index> rows,
+                             std::vector<double>& adjoint) const;
+    //! Adds each node's adjoint moments (idw_tree_transpose.cpp) to its sources' adjoints.
+    void push_to_sources(const std::vector<double>& node_adjoint,
+                         std::vector<double>& adjoint) const;
 
     IdwWeight weight_;
     double theta_;
@@ -137,6 +155,8 @@ private:
     //! Sources relative to their leaf's centroid and the values minus mid_, in single
     //! precision (tree order), for the near-field kernel of the default weight.
     std::vector<float> ox_, oy_, oz_, fvx_, fvy_, fvz_;
+    //! Tree order -> the sources' order as given (empty for a tree read_essential()).
+    std::vector<Index> source_order_;
     // Sources and values in tree order, structure of arrays.
     std::vector<double> sx_, sy_, sz_, vx_, vy_, vz_;
     //! Exact coordinates (bit patterns, -0 as +0) of the sources without a coincident

@@ -449,4 +449,26 @@ Eigen::MatrixXd RbfDeformation::handle_basis(const Eigen::Ref<const Points>& poi
     return B;
 }
 
+Points RbfDeformation::transpose(const Eigen::Ref<const Points>& points,
+                                 const Eigen::Ref<const Points>& weights) const
+{
+    const Impl& d = *impl_;
+    detail::check_transpose_arguments(d.fitted, points, weights, "RBF");
+    // d(x) = K(x) W + P(x) Q with (W, Q) = S H linear in the centres' displacements: the
+    // adjoint is S_W^T (K^T G) + S_Q^T (P^T G), S's columns solved for unit displacements
+    // (as handle_basis; a direct fit has at most rbf.directLimit centres).
+    Eigen::MatrixXd KtG, PtG;
+    d.model.transpose_sums(points, weights, KtG, PtG);
+    const Eigen::Index mc = d.model.num_centres;
+    Eigen::MatrixXd W, Qc;
+    d.solve(Eigen::MatrixXd::Identity(mc, mc), W, Qc);
+    Eigen::MatrixXd centres = W.transpose() * KtG;
+    if (Qc.rows() > 0)
+        centres.noalias() += Qc.transpose() * PtG;
+    Points out = Points::Zero(d.handles.rows(), 3);
+    for (Eigen::Index c = 0; c < mc; ++c)
+        out.row(d.merged.first[std::size_t(c)]) = centres.row(c);
+    return out;
+}
+
 } // namespace meshmorph

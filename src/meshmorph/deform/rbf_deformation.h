@@ -44,6 +44,10 @@ public:
     //! benchmarks/paper/performance.cpp (paper Sec. 3.1). \throw InvalidInput.
     void refit(const Eigen::Ref<const Points>& displacements);
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
+    //! The transpose of d(points) = B H (handle_basis) without forming B: the kernel sums
+    //! at the centres times the solve's unit-displacement coefficients.
+    Points transpose(const Eigen::Ref<const Points>& points,
+                     const Eigen::Ref<const Points>& weights) const override;
     const FitReport& report() const override;
     bool is_fitted() const override;
     void write_field(FieldWriter& out) const override;

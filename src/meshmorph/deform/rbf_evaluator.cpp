@@ -469,4 +469,30 @@ void RbfModel::evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Point
                 });
 }
 
+void RbfModel::transpose_sums(const Eigen::Ref<const Points>& points,
+                              const Eigen::Ref<const Points>& G, Eigen::MatrixXd& KtG,
+                              Eigen::MatrixXd& PtG) const
+{
+    // Pieces small enough for their kernel matrix (2048 x centres) to stay modest.
+    constexpr Eigen::Index piece = 2048;
+    const Eigen::Index n = points.rows(), pieces = (n + piece - 1) / piece;
+    std::vector<Eigen::MatrixXd> kernel_part(static_cast<std::size_t>(pieces));
+    std::vector<Eigen::MatrixXd> poly_part(kernel_part.size());
+#pragma omp parallel for schedule(dynamic, 1) if (pieces > 1)
+    for (Eigen::Index k = 0; k < pieces; ++k)
+    {
+        const Eigen::Index begin = k * piece, rows = std::min(piece, n - begin);
+        const Points xn = normalise(points.middleRows(begin, rows));
+        kernel_part[std::size_t(k)] = kernel_matrix(xn).transpose() * G.middleRows(begin, rows);
+        poly_part[std::size_t(k)] = polynomial_matrix(xn).transpose() * G.middleRows(begin, rows);
+    }
+    KtG = Eigen::MatrixXd::Zero(num_centres, 3);
+    PtG = Eigen::MatrixXd::Zero(Eigen::Index(exponents.size()), 3);
+    for (Eigen::Index k = 0; k < pieces; ++k)
+    {
+        KtG += kernel_part[std::size_t(k)];
+        PtG += poly_part[std::size_t(k)];
+    }
+}
+
 } // namespace meshmorph::detail

@@ -63,6 +63,13 @@ struct RbfModel
     //! d at physical points into out (n x 3). OpenMP over point blocks; deterministic.
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const;
 
+    //! The transpose of the evaluation with respect to the coefficients: for weights G (a
+    //! row per row of the physical points) K^T G (centres x 3) and P^T G (polynomial terms
+    //! x 3), K and P the kernel and polynomial matrices at the points. Over pieces of points
+    //! added in order: deterministic for any thread count.
+    void transpose_sums(const Eigen::Ref<const Points>& points, const Eigen::Ref<const Points>& G,
+                        Eigen::MatrixXd& KtG, Eigen::MatrixXd& PtG) const;
+
     //! The expansion as bytes (field_io.h), and back (the Wendland grid is rebuilt).
     void write(FieldWriter& out) const;
     static RbfModel read(FieldReader& in);

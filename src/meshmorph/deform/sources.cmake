@@ -18,11 +18,13 @@ set(MESHMORPH_DEFORM_SOURCES
     meshmorph/deform/handle_basis.cpp
     meshmorph/deform/idw_split.cpp
     meshmorph/deform/idw_tree.cpp
+    meshmorph/deform/idw_tree_transpose.cpp
     meshmorph/deform/idw_deformation.cpp
     meshmorph/deform/corrected_deformation.cpp
 )
 # sqrt in the blocked RBF evaluator vectorises only without errno semantics.
 set_source_files_properties(meshmorph/deform/rbf_evaluator.cpp meshmorph/deform/idw_tree.cpp
+    meshmorph/deform/idw_tree_transpose.cpp
     PROPERTIES COMPILE_OPTIONS "-fno-math-errno")
 meshmorph_add_component(deform
     SOURCES ${MESHMORPH_DEFORM_SOURCES}

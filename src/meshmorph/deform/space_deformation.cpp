@@ -22,6 +22,13 @@ void SpaceDeformation::write_field(FieldWriter& /*out*/) const
                        ") cannot be sent to other ranks");
 }
 
+Points SpaceDeformation::transpose(const Eigen::Ref<const Points>& /*points*/,
+                                   const Eigen::Ref<const Points>& /*weights*/) const
+{
+    throw InvalidInput("this kind of deformation (" + report().method +
+                       ") has no reverse pass (transpose) for sensitivities");
+}
+
 Points displacements(const SpaceDeformation& deformation, const Eigen::Ref<const Points>& points)
 {
     Points out(points.rows(), 3);
@@ -105,6 +112,18 @@ void check_evaluate_arguments(bool is_fitted, const Eigen::Ref<const Points>& po
         throw InvalidInput(std::string(method) + ": evaluate() called before fit()");
     require_finite(points, (std::string(method) + " evaluate: point").c_str());
     check_output_rows(points, out, method);
+}
+
+void check_transpose_arguments(bool is_fitted, const Eigen::Ref<const Points>& points,
+                               const Eigen::Ref<const Points>& weights, const char* method)
+{
+    if (!is_fitted)
+        throw InvalidInput(std::string(method) + ": transpose() called before fit()");
+    require_finite(points, (std::string(method) + " transpose: point").c_str());
+    require_finite(weights, (std::string(method) + " transpose: weight").c_str());
+    if (weights.rows() != points.rows())
+        throw InvalidInput(std::string(method) + " transpose: " + std::to_string(weights.rows()) +
+                           " weight rows for " + std::to_string(points.rows()) + " points");
 }
 
 void check_output_rows(const Eigen::Ref<const Points>& points, const Eigen::Ref<Points>& out,

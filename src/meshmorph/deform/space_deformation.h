@@ -61,6 +61,15 @@ public:
     //! \brief Append what evaluate() needs to `out` (FieldKind first; read back by
     //! read_field() of field_io.h). \throw InvalidInput for a kind that cannot be written.
     virtual void write_field(FieldWriter& out) const;
+    //! \brief The reverse pass of a sensitivity: for weights G (a row per row of points, e.g.
+    //! dJ/dx) the m x 3 rows A, one per handle of the last fit(), with
+    //! sum_i G_i . dd(points_i) = sum_j A_j . dH_j for every small change dH of the fitted
+    //! displacements: the transpose of the fitted map's derivative with respect to its
+    //! data, with the fit's choices held (greedy centres, jump flags, the IDW tree). For the
+    //! linear methods that is the map itself. \throw InvalidInput for a method without it,
+    //! before fit(), or on sizes.
+    virtual Points transpose(const Eigen::Ref<const Points>& points,
+                             const Eigen::Ref<const Points>& weights) const;
     //! d at the handles of the last fit() (m x 3, bit for bit what evaluate() gives there)
     //! when the method kept them from its own residual report, else nullptr. A caller that
     //! needs them (CorrectedDeformation) then does not evaluate d at every handle again.
@@ -86,6 +95,9 @@ void check_fit_arguments(const Eigen::Ref<const Points>& handles,
 //! Throws InvalidInput naming `method` unless out has a row per point.
 void check_output_rows(const Eigen::Ref<const Points>& points, const Eigen::Ref<Points>& out,
                        const char* method);
+//! transpose() argument checks: fitted, a finite weight row per finite point.
+void check_transpose_arguments(bool is_fitted, const Eigen::Ref<const Points>& points,
+                               const Eigen::Ref<const Points>& weights, const char* method);
 //! Common evaluate() argument checks.
 void check_evaluate_arguments(bool is_fitted, const Eigen::Ref<const Points>& points,
                               const Eigen::Ref<Points>& out, const char* method);
