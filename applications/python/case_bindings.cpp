@@ -322,6 +322,30 @@ void bind_case(py::module_& m)
             "of checkMeshQuality -json (scaled_jacobian=False skips minScaledJacobian, which "
             "costs as much as the checks, and reports it as None).")
         .def(
+            "sensitivity",
+            [](PyCase& c, const py::handle& dJdx)
+            {
+                const Index n = c.session->mesh().n_points();
+                const py::array flat = py::array::ensure(dJdx);
+                const bool is_flat = flat && flat.ndim() == 1 && flat.size() == 3 * n;
+                const Points g =
+                    points_from(is_flat ? py::object(flat.attr("reshape")(-1, 3))
+                                        : py::object(py::reinterpret_borrow<py::object>(dJdx)),
+                                n, "dJ/dx");
+                if (!g.allFinite())
+                    throw InvalidInput("dJ/dx: a value is not finite (NaN or inf)");
+                return points_array(
+                    without_gil(*c.busy, [&] { return c.session->sensitivity(g); }));
+            },
+            py::arg("dJdx"),
+            "The reverse pass of the last morph: for dJ/dx at every point ((nPoints, 3) or "
+            "flat) the derivative dJ/dd with respect to each constrained point's prescribed "
+            "displacement, as an (nPoints, 3) array (zero at the points the morph did not "
+            "prescribe). The exact transpose of the morph's field with its choices held "
+            "(greedy centres, jump constraints, the IDW tree), so that dJ = sum(dJ/dd * dd) to "
+            "first order. For a morph in one step without untangling, serial, without slip "
+            "patches, wedges, cyclic patches or jumpSmoothing (an InputError says which).")
+        .def(
             "is_valid",
             [](PyCase& c) { return without_gil(*c.busy, [&] { return c.session->is_valid(); }); },
             "Whether the current points have no more negative-volume cells or wrongly "

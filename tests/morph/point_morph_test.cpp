@@ -26,15 +26,29 @@ BoundaryEntry make_entry(const std::string& key, MotionType type)
     return e;
 }
 
-TEST(MorphPoints, rbf_ends_exactly_at_prescriptions_and_fixed_points_stay)
+//! The constraints of zMax translated by (0.02, 0, 0.1), every other patch fixed.
+Constraints top_translated(const PolyMesh& mesh, ConflictRule conflicts)
 {
-    const PolyMesh mesh = test::make_box_mesh(6, 6, 6);
     MorphSetup setup;
     BoundaryEntry top = make_entry("zMax", MotionType::translate);
     top.motion.vector = Vector3(0.02, 0.0, 0.1);
     setup.boundary.push_back(top);
-    setup.conflicts = ConflictRule::last; // edges of zMax move with it
-    const Constraints c = build_constraints(mesh, setup);
+    setup.conflicts = conflicts;
+    return build_constraints(mesh, setup);
+}
+
+//! A 2D case: n x n cells, one cell thick in z, empty front and back.
+PolyMesh two_d_block_mesh(int n)
+{
+    return test::make_block_mesh(
+        n, n, 1, [](double u, double v, double w) { return Vector3(u, v, 0.05 * w - 0.02); },
+        {"patch", "patch", "patch", "patch", "empty", "empty"});
+}
+
+TEST(MorphPoints, rbf_ends_exactly_at_prescriptions_and_fixed_points_stay)
+{
+    const PolyMesh mesh = test::make_box_mesh(6, 6, 6);
+    const Constraints c = top_translated(mesh, ConflictRule::last); // edges of zMax move with it
 
     RbfDeformation rbf;
     const PointMorph m = morph_points(mesh, c, rbf);
@@ -147,10 +161,7 @@ TEST(MorphPoints, slip_points_stay_in_their_plane_and_keep_the_fitted_tangential
 
 TEST(MorphPoints, two_d_cases_stay_two_d)
 {
-    // A 2D case: one cell thick in z, empty front and back.
-    const PolyMesh mesh = test::make_block_mesh(
-        8, 8, 1, [](double u, double v, double w) { return Vector3(u, v, 0.05 * w - 0.02); },
-        {"patch", "patch", "patch", "patch", "empty", "empty"});
+    const PolyMesh mesh = two_d_block_mesh(8);
     MorphSetup setup;
     BoundaryEntry top = make_entry("yMax", MotionType::rotate);
     top.motion.origin = Vector3(0.5, 1, 0);
@@ -222,6 +233,57 @@ TEST(MorphPoints, nothing_prescribed_is_an_error)
     const Constraints c = build_constraints(mesh, setup);
     RbfDeformation rbf;
     EXPECT_THROW(morph_points(mesh, c, rbf), InvalidInput);
+}
+
+//! <morph(H + delta) - morph(H - delta), G> / 2 for the constraints c with values H: a
+//! central difference of J = <d, G> along delta (exact for a linear field).
+double central_difference(const PolyMesh& mesh, const Constraints& c, const Points& delta,
+                          const Points& G)
+{
+    double j[2];
+    for (const int sign : {1, -1})
+    {
+        Constraints moved = c;
+        moved.displacements += sign * delta;
+        RbfDeformation rbf;
+        j[sign > 0 ? 0 : 1] =
+            (morph_points(mesh, moved, rbf).displacement.array() * G.array()).sum();
+    }
+    return (j[0] - j[1]) / 2.0;
+}
+
+TEST(MorphPoints, the_transpose_gives_dJ_dH_as_central_differences_do)
+{
+    const PolyMesh mesh = test::make_box_mesh(5, 5, 5);
+    const Constraints c = top_translated(mesh, MorphSetup{}.conflicts);
+    const Points G = Points::Random(mesh.n_points(), 3);
+    RbfDeformation rbf;
+    const Points A = morph_points_transpose(mesh, c, rbf, G);
+    ASSERT_EQ(A.rows(), Eigen::Index(c.points.size()));
+    const Points delta = 0.01 * Points::Random(A.rows(), 3);
+    // A direct RBF: linear, so the difference is exact to the solve's round-off.
+    EXPECT_NEAR(central_difference(mesh, c, delta, G), (A.array() * delta.array()).sum(),
+                1e-9 * (A.array().abs() * delta.array().abs()).sum());
+}
+
+TEST(MorphPoints, the_transpose_in_two_d_drops_what_the_morph_drops)
+{
+    // Front and back points fitted as one handle at their mean, normal components removed:
+    // a perturbation of one point of a pair moves the pair by half of it.
+    const PolyMesh mesh = two_d_block_mesh(6);
+    MorphSetup setup;
+    BoundaryEntry top = make_entry("yMax", MotionType::translate);
+    top.motion.vector = Vector3(0.02, 0.05, 0.0);
+    setup.boundary.push_back(top);
+    const Constraints c = build_constraints(mesh, setup);
+    ASSERT_TRUE(c.empty_planes.has_value());
+    const Points G = Points::Random(mesh.n_points(), 3);
+    RbfDeformation rbf;
+    const Points A = morph_points_transpose(mesh, c, rbf, G);
+    EXPECT_EQ(A.col(2).cwiseAbs().maxCoeff(), 0.0) << "a normal prescription is dropped";
+    const Points delta = 0.01 * Points::Random(A.rows(), 3);
+    EXPECT_NEAR(central_difference(mesh, c, delta, G), (A.array() * delta.array()).sum(),
+                1e-9 * (A.array().abs() * delta.array().abs()).sum());
 }
 
 } // namespace

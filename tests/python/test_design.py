@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import meshmorph
-from conftest import run, run_json
+from conftest import run, run_json, write_dict
 
 A = np.array([0.8, 0.3, 1, 0.05, -0.05, 0.05, -0.05, 0.02, 0.02, 0.02, 0.02])
 
@@ -182,9 +182,94 @@ def test_idwarp_aliases(design_pipe):
     assert grid.shape == (3 * meshmorph.Case(design_pipe).n_points,)
     dXv = np.random.default_rng(1).normal(size=grid.shape)
     study = meshmorph.DesignStudy(design_pipe)
-    assert np.array_equal(mesh.warpDeriv(dXv), study.transpose_product(dXv.reshape(-1, 3)))
+    assert np.array_equal(mesh.designDeriv(dXv), study.transpose_product(dXv.reshape(-1, 3)))
     with pytest.raises(meshmorph.InputError):
         mesh.setSurfaceCoordinates(target[:-1])
+
+
+def test_warp_deriv_is_dJ_dXs_equal_to_central_differences(pipe):
+    """USMesh.warpDeriv returns dJ/dXs as IDWarp's does: for J = dXv . x, the derivative with
+    respect to the surface coordinates through warpMesh, equal to central differences of J
+    along a perturbation of each surface point by up to ~15% of its warp. A bump on the wall
+    with one largest displacement: the limit's radius (the largest prescription) then moves
+    smoothly (at a tie it has a kink, and differences across it see one side). The warp is
+    linear in the surface with the fit's choices held and the limit smooth here, so the two
+    agree to round-off; rel 1e-8 leaves room for the solve's conditioning."""
+    mesh = meshmorph.USMesh({"gridFile": str(pipe)})
+    with pytest.raises(meshmorph.InputError, match="warpMesh first"):
+        mesh.warpDeriv(np.zeros(3 * meshmorph.Case(pipe).n_points))
+    xs = mesh.getSurfaceCoordinates()
+    rng = np.random.default_rng(2)
+    top = len(xs) // 3
+    bump = np.exp(-np.sum((xs - xs[top]) ** 2, axis=1) / 0.2**2)
+    target = xs + 0.002 * bump[:, None] * np.array([1.0, 0.3, 0.2])
+    mesh.setSurfaceCoordinates(target)
+    mesh.warpMesh()
+    dXv = rng.normal(size=mesh.getSolverGrid().shape)
+    dXs = mesh.warpDeriv(dXv)
+    assert dXs.shape == xs.shape and np.array_equal(mesh.getdXs(), dXs)
+    delta = 0.05 * (target - xs) * rng.normal(size=xs.shape)
+
+    def objective(t):
+        mesh.setSurfaceCoordinates(target + t * delta)
+        mesh.warpMesh()
+        return dXv @ mesh.getSolverGrid()
+
+    central = (objective(1.0) - objective(-1.0)) / 2.0
+    assert central == pytest.approx(np.sum(dXs * delta), rel=1e-8)
+
+
+def test_the_sensitivity_of_a_morph_it_cannot_differentiate_says_why(pipe):
+    """Case.sensitivity before a morph, and after one that took more than one step, is an
+    InputError that says what to change."""
+    case = meshmorph.Case(pipe)
+    g = np.ones((case.n_points, 3))
+    with pytest.raises(meshmorph.InputError, match="morph first"):
+        case.sensitivity(g)
+    write_dict(pipe / "system" / "morphDict", "steps 2; boundary { wall { type translate; "
+               "vector (0.001 0 0); } }")
+    case.morph()
+    with pytest.raises(meshmorph.InputError, match="took 2 steps"):
+        case.sensitivity(g)
+
+
+def write_point_field(path, values):
+    """values (n, 3) as an ASCII pointVectorField whose patches take the internal values."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    rows = "\n".join(f"({a!r} {b!r} {c!r})" for a, b, c in values)
+    path.write_text("FoamFile { version 2.0; format ascii; class pointVectorField; object "
+                    f"{path.name}; }}\ndimensions [0 0 0 0 0 0 0];\n"
+                    f"internalField nonuniform List<vector> {len(values)}\n(\n{rows}\n);\n"
+                    'boundaryField { ".*" { type calculated; } }\n')
+
+
+def read_internal_field(path):
+    """The internalField of an ASCII pointVectorField written by meshmorph, as (n, 3)."""
+    text = path.read_text()
+    body = text[text.index("internalField"):text.index("boundaryField")]
+    rows = body[body.index("(\n") + 2:body.rindex(")")].split("\n")
+    return np.array([[float(v) for v in r.strip("()").split()] for r in rows if r.strip("()")])
+
+
+def test_morph_mesh_sensitivity_writes_what_case_sensitivity_gives(pipe):
+    """morphMesh -sensitivity on a case without designVariables: the morphDict's morph,
+    dJ/dx read from a pointVectorField, dJ/dXs written beside it as the pointVectorField
+    dJdXs (nonzero at the morph's constrained points only): the values Case.sensitivity
+    gives for the same morph (17 digits: the same doubles)."""
+    write_dict(pipe / "system" / "morphDict",
+               "boundary { wall { type scale; factor (1.02 1.03 1); origin (0 0 1); } }")
+    case = meshmorph.Case(pipe)
+    g = np.random.default_rng(3).normal(size=(case.n_points, 3))
+    write_point_field(pipe / "0" / "dJdx", g)
+    report = run_json("morphMesh", "-sensitivity", "0/dJdx", cwd=pipe)
+    assert report["exitStatus"] == 0 and report["output"] == str(pipe / "0" / "dJdXs")
+    written = read_internal_field(pipe / "0" / "dJdXs")
+    case.morph()
+    expected = case.sensitivity(g)
+    assert np.array_equal(written, expected)
+    constrained = np.count_nonzero(np.linalg.norm(expected, axis=1))
+    assert constrained == report["constrainedPoints"] > 0
+    assert not (pipe / "1").exists(), "a sensitivity run writes no mesh"
 
 
 @pytest.fixture

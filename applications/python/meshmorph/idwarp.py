@@ -5,9 +5,11 @@ The surface is the points of the wall patches (or `surface_patches`); every othe
 patch keeps its morphDict entry (fixed without a morphDict). warpMesh() is an exact morph
 (the case's method, rbf by default) from the mesh as read.
 
-One difference from IDWarp: meshmorph's shape parametrisation is its design variables
-(morphDict designVariables, set up with setup_design), so warpDeriv(dXv) returns dJ/da,
-what IDWarp's warpDeriv followed by pyGeo's totalSensitivity returns, not dJ/dXs.
+warpDeriv(dXv) returns dJ/dXs, as IDWarp does: the transpose of the last warpMesh's morph
+(its field's choices held), one row per surface point, also kept for getdXs(). With
+meshmorph's own design variables (morphDict designVariables, set up with setup_design),
+designDeriv(dXv) returns dJ/da instead (what warpDeriv followed by pyGeo's
+totalSensitivity gives).
 """
 import numpy as np
 
@@ -16,7 +18,8 @@ from ._core import Case, DesignStudy, InputError
 
 class USMesh:
     """IDWarp-style access to a case: getSurfaceCoordinates, setSurfaceCoordinates,
-    warpMesh, getSolverGrid/getWarpGrid, warpDeriv."""
+    warpMesh, getSolverGrid/getWarpGrid, warpDeriv, getdXs (and designDeriv for
+    meshmorph's own design variables)."""
 
     def __init__(self, options=None, case=".", surface_patches=None, **case_kwargs):
         """Open a case as IDWarp's USMesh opens a grid: options["gridFile"] (or case) is
@@ -37,6 +40,7 @@ class USMesh:
         self._surface = np.unique(np.concatenate(labels))
         self._target = None
         self._study = None
+        self._dXs = None
         self.report = None
 
     def getSurfaceCoordinates(self):
@@ -66,8 +70,24 @@ class USMesh:
     getWarpGrid = getSolverGrid
 
     def warpDeriv(self, dXv):
-        """dJ/da of the design variables for dJ/dXv ((n, 3) or flat): the chain rule through
-        the set-up's fields (setup_design must have been run on the case)."""
+        """dJ/dXs for dJ/dXv ((n, 3) or flat), as IDWarp's warpDeriv: (nSurface, 3), in
+        getSurfaceCoordinates' order, through the last warpMesh (call it first); kept for
+        getdXs(). The exact transpose of that morph's field with its choices held."""
+        if self.report is None:
+            raise InputError("warpDeriv: call warpMesh first (the derivative is that of the "
+                             "last warp)")
+        self._dXs = self.case.sensitivity(np.asarray(dXv, dtype=float))[self._surface]
+        return self._dXs
+
+    def getdXs(self):
+        """The last warpDeriv's dJ/dXs ((nSurface, 3), a copy)."""
+        if self._dXs is None:
+            raise InputError("getdXs: call warpDeriv first")
+        return self._dXs.copy()
+
+    def designDeriv(self, dXv):
+        """dJ/da of meshmorph's design variables for dJ/dXv ((n, 3) or flat): the chain rule
+        through the set-up's fields (setup_design must have been run on the case)."""
         if self._study is None:
             kwargs = {k: v for k, v in self._case_kwargs.items() if k != "method"}
             self._study = DesignStudy(self._case_dir, **kwargs)

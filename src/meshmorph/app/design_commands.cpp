@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "meshmorph/app/exit_status.h"
+#include "meshmorph/app/morph_sensitivity.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/core/number_format.h"
 #include "meshmorph/core/stopwatch.h"
@@ -214,6 +215,8 @@ int run_variants(const morph::MorphOptions& morph, const fs::path& table, const 
 int run_sensitivity(const morph::MorphOptions& morph, const fs::path& file,
                     const fs::path& json_path, std::ostream& out)
 {
+    if (!declares_design_variables(morph))
+        return run_morph_sensitivity(morph, file, json_path, out);
     design::DesignStudy study(morph);
     const design::SensitivityResult r = design::design_sensitivity(study, file);
     nlohmann::json gradient;

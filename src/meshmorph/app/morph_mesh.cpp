@@ -210,8 +210,10 @@ Options morph_mesh_options()
           "Write every row of amplitudes in FILE (a design-of-experiments table) to its own "
           "time directory"},
          {"sensitivity", "FILE",
-          "dJ/da of every design variable from dJ/dx at the points (a pointVectorField; "
-          "relative to the case): printed and written to postProcessing/morphMesh/dJda"}},
+          "dJ/dx at the points (a pointVectorField, relative to the case) through the "
+          "morph: with designVariables dJ/da, printed and written to "
+          "postProcessing/morphMesh/dJda; without, dJ/dXs of the morphDict's morph, written "
+          "beside FILE as the pointVectorField dJdXs"}},
         {{exit_ok, "morphed mesh written"},
          {exit_input_error, "bad option, dictionary, mesh or surface file; nothing written"},
          {exit_refused, "the morph (or a variant) creates invalid cells, or with morphDict's "

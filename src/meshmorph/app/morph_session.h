@@ -74,6 +74,15 @@ public:
     //! method, its settings and the patches not named. \throw InvalidInput naming the patch
     //! or point set for a wrong shape, an unknown patch or label, a non-finite value.
     const morph::MorphResult& morph(const Prescriptions& prescriptions);
+    //! \brief The reverse pass of the last morph: for dJ/dx at every mesh point (nPoints x 3)
+    //! dJ/dH, the derivative with respect to each constrained point's prescribed
+    //! displacement (nPoints x 3, zero at the other points). The transpose of the morph's
+    //! field with its choices held (greedy centres, jumps, the IDW tree), refitted as the
+    //! morph fitted it. Points the morph's local repair moved are taken as following the
+    //! field (a warning says how many). \throw InvalidInput before a morph, for a morph in
+    //! more than one step (not one field), or for what morph::morph_points_transpose does not
+    //! cover.
+    Points sensitivity(const Points& dJdx) const;
     //! The last morph's result (empty before the first).
     const morph::MorphResult& result() const { return result_; }
 

@@ -10,6 +10,7 @@ set(MESHMORPH_APP_SOURCES
     meshmorph/app/design_commands.cpp
     meshmorph/app/morph_mesh.cpp
     meshmorph/app/morph_session.cpp
+    meshmorph/app/morph_sensitivity.cpp
     meshmorph/app/process_memory.cpp
 )
 meshmorph_add_component(app

@@ -18,8 +18,11 @@ namespace fs = std::filesystem;
 Points read_point_sensitivity(const DesignStudy& study, const fs::path& file)
 {
     const DesignCase& dc = study.design_case();
-    const fs::path path = file.is_absolute() ? file : dc.mesh_case / file;
-    const PolyMesh& mesh = dc.foam.mesh;
+    return read_point_sensitivity(dc.foam.mesh, file.is_absolute() ? file : dc.mesh_case / file);
+}
+
+Points read_point_sensitivity(const PolyMesh& mesh, const fs::path& path)
+{
     io::PointVectorField field;
     parallel::collective(
         parallel::Communicator::world(),

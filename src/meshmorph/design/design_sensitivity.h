@@ -35,6 +35,9 @@ struct SensitivityResult
 //! IoError, ParseError naming the file (another mesh: a wrong size).
 Points read_point_sensitivity(const DesignStudy& study, const std::filesystem::path& file);
 
+//! \brief The same for `mesh` from the file `path` (a collective with -parallel).
+Points read_point_sensitivity(const PolyMesh& mesh, const std::filesystem::path& path);
+
 //! \brief dJ/da from `file`; writes `postProcessing/morphMesh[/<region>]/dJda` (a dictionary of
 //! `<variable> <value>;`) atomically. \throw as read_point_sensitivity; IoError.
 SensitivityResult design_sensitivity(DesignStudy& study, const std::filesystem::path& file);

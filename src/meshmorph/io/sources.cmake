@@ -21,6 +21,7 @@ set(MESHMORPH_IO_SOURCES
     meshmorph/io/read_poly_mesh.cpp
     meshmorph/io/write_poly_mesh.cpp
     meshmorph/io/point_field.cpp
+    meshmorph/io/point_field_writer.cpp
     meshmorph/io/surface_io.cpp
 )
 # The VTK writer prepares plain arrays; VTK itself is in a module loaded only when a run

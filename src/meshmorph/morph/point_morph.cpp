@@ -89,6 +89,8 @@ struct FitHandles
 {
     Points positions;
     Points values;
+    //! Per row given: the handle it was merged into (empty: none merged, row for row).
+    std::vector<Eigen::Index> handle_of;
 };
 
 //! Row indices of `positions` in lexicographic order (ties by index).
@@ -141,13 +143,18 @@ FitHandles merge_coincident(const FitHandles& h, double same)
         ++counts[std::size_t(r)];
     }
     const Eigen::Index n = std::count_if(counts.begin(), counts.end(), [](int c) { return c > 0; });
-    FitHandles out{Points(n, 3), Points(n, 3)};
+    FitHandles out{Points(n, 3), Points(n, 3), {}};
+    std::vector<Eigen::Index> row_of_representative(counts.size(), -1);
     for (Eigen::Index i = 0, k = 0; i < h.positions.rows(); ++i)
         if (counts[std::size_t(i)] > 0)
         {
             out.positions.row(k) = h.positions.row(i);
-            out.values.row(k++) = sums.row(i) / counts[std::size_t(i)];
+            out.values.row(k) = sums.row(i) / counts[std::size_t(i)];
+            row_of_representative[std::size_t(i)] = k++;
         }
+    out.handle_of.resize(counts.size());
+    for (std::size_t i = 0; i < counts.size(); ++i)
+        out.handle_of[i] = row_of_representative[std::size_t(representative[i])];
     return out;
 }
 
@@ -155,7 +162,7 @@ FitHandles merge_coincident(const FitHandles& h, double same)
 //! coincident ones merged.
 FitHandles fit_handles(const Points& positions, const Points& prescribed, const Constraints& c)
 {
-    FitHandles h{positions, prescribed};
+    FitHandles h{positions, prescribed, {}};
     if (!c.empty_planes || positions.rows() < 2)
         return h;
     const double diag =
@@ -486,6 +493,41 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
     result.max_constraint_error = max_error(result.displacement, p);
     result.relative_constraint_error = result.max_constraint_error / scale;
     return result;
+}
+
+Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c,
+                              SpaceDeformation& deformation, const Points& weights)
+{
+    if (!c.slip_points.empty() || c.wedge || !c.cyclic_pairs.empty() || c.jump_smoothing)
+        throw InvalidInput("the sensitivity is not available yet for a morph with slip patches, "
+                           "wedges, cyclic patches or jumpSmoothing");
+    if (weights.rows() != mesh.n_points())
+        throw InvalidInput("sensitivity: " + std::to_string(weights.rows()) +
+                           " rows of dJ/dx for a mesh of " + std::to_string(mesh.n_points()) +
+                           " points");
+    const Points x_eval = evaluation_positions(mesh.points, c);
+    const FitInput in = local_fit_input(x_eval, c);
+    if (in.labels.empty())
+        throw InvalidInput("sensitivity: no point has a prescribed displacement");
+    const FitHandles handles = fit_handles(in.positions, in.values, c);
+    deformation.fit(handles.positions, handles.values);
+    // d = P f(x_eval) with P the 2D projection (symmetric: its own transpose).
+    Points g = weights;
+    remove_empty_normal(g, c);
+    const Points at_handles = deformation.transpose(x_eval, g);
+    if (handles.handle_of.empty())
+        return at_handles;
+    // Merged handles (2D: a front and a back point) were fitted at their values' mean.
+    std::vector<int> members(std::size_t(at_handles.rows()), 0);
+    for (const Eigen::Index h : handles.handle_of)
+        ++members[std::size_t(h)];
+    Points out(Eigen::Index(handles.handle_of.size()), 3);
+    for (std::size_t i = 0; i < handles.handle_of.size(); ++i)
+    {
+        const Eigen::Index h = handles.handle_of[i];
+        out.row(Eigen::Index(i)) = at_handles.row(h) / members[std::size_t(h)];
+    }
+    return out;
 }
 
 double max_norm(const Points& values)

@@ -56,6 +56,17 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& constraints,
                         SpaceDeformation& deformation, bool fit = true, bool snap = false,
                         const Decomposition* decomposition = nullptr);
 
+//! \brief The reverse pass of a serial morph_points() (fit, no snapping): fits
+//! `deformation` to the constraints as morph_points() does, then for weights G at every
+//! mesh point (dJ/dx) returns dJ/dH, one row per constrained point (c.points' order): the
+//! transpose of the fitted field's derivative with respect to the prescribed displacements,
+//! the fit's choices held (SpaceDeformation::transpose). In 2D the normal component is
+//! removed as the morph removes it. \throw InvalidInput for a method without a transpose, for
+//! what it does not cover yet (slip patches, wedges, cyclic pairs, jump smoothing) or a
+//! wrong row count; SolverError.
+Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c,
+                              SpaceDeformation& deformation, const Points& weights);
+
 //! The largest row norm of an n x 3 array (0 for none): the largest displacement.
 double max_norm(const Points& values);
 
