@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <tuple>
+
+#include <omp.h>
 
 #include "deform_test_helpers.h"
 #include "meshmorph/core/exceptions.h"
@@ -91,16 +94,20 @@ TEST(Transpose, of_the_idw_sum_holds_the_inner_product_identity)
     const Points g = random_weights(x.rows(), 5);
     const Points v = test::residual_like_field(h, 0.15);
     // theta 0: double-precision direct sums, agreement to round-off; the tree (with quiet
-    // nodes): single-precision forward sums (~1e-7 per term) against the double transpose.
-    for (const double theta : {0.0, 0.2})
+    // nodes): single-precision forward sums (~1e-7 per term) against the double transpose;
+    // exponents (2, 4): the tree's double-precision kernels of any weight.
+    for (const auto& [theta, far, near] : {std::tuple{0.0, 3, 5}, {0.2, 3, 5}, {0.2, 2, 4}})
     {
         IdwSettings settings;
         settings.theta = theta;
+        settings.far_exponent = far;
+        settings.near_exponent = near;
         IdwDeformation idw(settings);
         idw.fit(h, v, test::small_values(v));
         const Points a = idw.transpose(x, g);
         const Points y = displacements(idw, x);
-        const double tolerance = theta == 0.0 ? 1e-12 : 1e-6;
+        const bool single = theta > 0.0 && far == 3 && near == 5;
+        const double tolerance = single ? 1e-6 : 1e-12;
         EXPECT_NEAR(inner(y, g), inner(v, a), tolerance * magnitude(y, g)) << "theta " << theta;
         // Another set of values through the same tree: the transpose is of the values.
         const Points w = test::smooth_field(h);
@@ -161,6 +168,30 @@ TEST(Transpose, of_a_limited_field_equals_central_finite_differences)
     };
     const double fd = (objective(eps) - objective(-eps)) / (2.0 * eps);
     EXPECT_NEAR(fd, inner(delta, a), 1e-6 * std::abs(inner(delta, a)));
+}
+
+TEST(Transpose, gives_the_same_bits_with_one_and_two_threads)
+{
+    // Enough points for the IDW transpose's partial sums and the RBF's kernel pieces to be
+    // spread over the threads.
+    const Points h = test::sphere_points(3000, Vector3(0.5, 0.5, 0.5), 0.4);
+    const Points x = queries(h, 20000);
+    const Points g = random_weights(x.rows(), 9);
+    GreedySettings coarse;
+    coarse.tolerance = 0.02;
+    coarse.rms_tolerance = 0.02;
+    const int threads = omp_get_max_threads();
+    std::vector<Points> adjoints;
+    for (const int t : {1, 2})
+    {
+        omp_set_num_threads(t);
+        CorrectedDeformation corrected(std::make_unique<GreedyRbfDeformation>(coarse),
+                                       IdwSettings{}, true);
+        corrected.fit(h, test::smooth_field(h));
+        adjoints.push_back(corrected.transpose(x, g));
+    }
+    omp_set_num_threads(threads);
+    EXPECT_EQ(adjoints[0], adjoints[1]);
 }
 
 TEST(Transpose, before_the_fit_or_with_a_weight_row_per_point_missing_is_refused)

@@ -32,9 +32,10 @@ struct Weight35
 {
     double beta;
     static constexpr double a = 3.0, b = 5.0;
-    void operator()(double inv_r, double& pa, double& pb) const
+    //! T: double, or double8 for eight points at once (the transposed kernels).
+    template <class T> void operator()(const T& inv_r, T& pa, T& pb) const
     {
-        const double inv_r2 = inv_r * inv_r;
+        const T inv_r2 = inv_r * inv_r;
         pa = inv_r2 * inv_r;
         pb = beta * pa * inv_r2;
     }
@@ -44,9 +45,9 @@ struct WeightGeneral
     double beta;
     int ia, ib;
     double a, b;
-    void operator()(double inv_r, double& pa, double& pb) const
+    template <class T> void operator()(const T& inv_r, T& pa, T& pb) const
     {
-        pa = 1.0;
+        pa = inv_r * 0.0 + 1.0;
         for (int k = 0; k < ia; ++k)
             pa *= inv_r;
         pb = beta * pa;

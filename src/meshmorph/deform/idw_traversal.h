@@ -23,4 +23,33 @@ bool load_block_terms(const Points& x, const std::vector<Index>& order, const Sp
                       const std::vector<IdwProbe>& nodes, double theta, Block& b,
                       std::vector<Term>& far, std::vector<Term>& near);
 
+//! What a block's forward sums read: the tree's arrays and its kernels' choice.
+struct ForwardSums
+{
+    const SourceArrays& sources;
+    const IdwProbe* probes;
+    const IdwFarMoments* moments;
+    const SourcesSingle& sources_single;
+    float beta;
+    bool single;             //!< the default weight with a tree: single-precision kernels
+    const Weight35& w35;     //!< the default weight, in double precision
+    const WeightGeneral& wg; //!< any other weight
+    bool default_weight;
+};
+
+//! N, D and the coincidences of a block's points over its terms, with the kernels the
+//! weighted mean sums them with.
+inline void add_block_sums(const BlockTerms& terms, const ForwardSums& forward, Block& b,
+                           FarSums& fs)
+{
+    b.clear_sums();
+    if (forward.single)
+        add_terms_single(terms, forward.probes, forward.moments, forward.sources_single,
+                         forward.beta, b, fs);
+    else if (forward.default_weight)
+        add_terms(terms, forward.sources, forward.w35, b);
+    else
+        add_terms(terms, forward.sources, forward.wg, b);
+}
+
 } // namespace meshmorph::detail::idw

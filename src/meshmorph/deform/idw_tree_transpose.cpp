@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "meshmorph/core/simd8.h"
 #include "meshmorph/deform/idw_kernels.h"
 #include "meshmorph/deform/idw_split.h"
 #include "meshmorph/deform/idw_traversal.h"
@@ -32,88 +33,138 @@ constexpr int node_adjoint_size = far_coefficients * 3;
 //! the result does not depend on the thread count.
 constexpr std::int64_t partial_sums = 8;
 
-//! A query block's weights g_i / D(x_i) per component (0 for a point on a source).
+//! A query block's weights g_i / D(x_i) per component (0 for a point on a source and for
+//! the unused lanes).
 struct BlockWeights
 {
     alignas(64) double x[block_size] = {}, y[block_size] = {}, z[block_size] = {};
 };
 
+//! Lanes of an 8-point chunk of a term's mask as 1.0 / 0.0.
+double8 lane_mask(std::uint32_t lanes, int offset)
+{
+    double8 on;
+    for (int i = 0; i < lanes8; ++i)
+        on[i] = double((lanes >> (offset + i)) & 1u);
+    return on;
+}
+
+//! Offsets of a chunk's points from (cx, cy, cz) and their squared distance, at least the
+//! single-precision kernels' floor (1e-8 of the sources' extent, as the forward sums take
+//! it), and 1 on the lanes off (their terms are multiplied by 0).
+void chunk_offsets(const Block& b, int o, double cx, double cy, double cz, const double8& on,
+                   double8& rx, double8& ry, double8& rz, double8& r2)
+{
+    rx = load8(b.x + o) - cx;
+    ry = load8(b.y + o) - cy;
+    rz = load8(b.z + o) - cz;
+    r2 = rx * rx + ry * ry + rz * rz;
+    r2 = on > 0.0 ? (r2 > double(single_floor2) ? r2 : double(single_floor2)) : 1.0;
+}
+
+double horizontal_sum(const double8& v)
+{
+    double sum = 0.0;
+    for (int i = 0; i < lanes8; ++i)
+        sum += v[i];
+    return sum;
+}
+
 //! Adds, for the block's points in `lanes`, the far node's coefficients times the points'
-//! weights to the node's adjoint (node_adjoint_size values).
+//! weights to the node's adjoint (node_adjoint_size values), eight points at a time.
 template <class W>
 void far_transpose(const IdwNode& node, const W& weight, std::uint32_t lanes, const Block& b,
                    const BlockWeights& g, double* adjoint)
 {
-    for (int i = 0; i < b.n; ++i)
+    double8 sum[far_coefficients][3] = {};
+    for (int o = 0; o < block_size; o += lanes8)
     {
-        if (!((lanes >> i) & 1u))
+        if (!((lanes >> o) & 0xffu))
             continue;
-        const double rx = b.x[i] - node.cx, ry = b.y[i] - node.cy, rz = b.z[i] - node.cz;
-        const double inv_r = 1.0 / std::sqrt(rx * rx + ry * ry + rz * rz), inv_r2 = inv_r * inv_r;
-        double pa, pb;
+        const double8 on = lane_mask(lanes, o);
+        double8 rx, ry, rz, r2;
+        chunk_offsets(b, o, node.cx, node.cy, node.cz, on, rx, ry, rz, r2);
+        const double8 inv_r = inverse_sqrt8(r2), inv_r2 = inv_r * inv_r;
+        double8 pa, pb;
         weight(inv_r, pa, pb);
-        const double w0 = pa + pb;
-        const double d1_r = -(weight.a * pa + weight.b * pb) * inv_r2;
-        const double d2 =
-            (weight.a * (weight.a + 1.0) * pa + weight.b * (weight.b + 1.0) * pb) * inv_r2;
-        const double quad = 0.5 * (d2 - d1_r) * inv_r2;
-        const double c[far_coefficients] = {w0,
-                                            -d1_r * rx,
-                                            -d1_r * ry,
-                                            -d1_r * rz,
-                                            quad * rx * rx,
-                                            quad * ry * ry,
-                                            quad * rz * rz,
-                                            quad * 2.0 * rx * ry,
-                                            quad * 2.0 * rx * rz,
-                                            quad * 2.0 * ry * rz,
-                                            0.5 * d1_r};
+        // add_far's coefficients; `on` zeroes the lanes the term does not apply to.
+        const double8 w0 = on * (pa + pb);
+        const double8 d1_r = -on * (weight.a * pa + weight.b * pb) * inv_r2;
+        const double8 d2 =
+            on * (weight.a * (weight.a + 1.0) * pa + weight.b * (weight.b + 1.0) * pb) * inv_r2;
+        const double8 quad = 0.5 * (d2 - d1_r) * inv_r2;
+        const double8 c[far_coefficients] = {w0,
+                                             -d1_r * rx,
+                                             -d1_r * ry,
+                                             -d1_r * rz,
+                                             quad * rx * rx,
+                                             quad * ry * ry,
+                                             quad * rz * rz,
+                                             2.0 * quad * rx * ry,
+                                             2.0 * quad * rx * rz,
+                                             2.0 * quad * ry * rz,
+                                             0.5 * d1_r};
+        const double8 gx = load8(g.x + o), gy = load8(g.y + o), gz = load8(g.z + o);
         for (int t = 0; t < far_coefficients; ++t)
         {
-            adjoint[3 * t + 0] += c[t] * g.x[i];
-            adjoint[3 * t + 1] += c[t] * g.y[i];
-            adjoint[3 * t + 2] += c[t] * g.z[i];
+            sum[t][0] += c[t] * gx;
+            sum[t][1] += c[t] * gy;
+            sum[t][2] += c[t] * gz;
         }
     }
+    for (int t = 0; t < far_coefficients; ++t)
+        for (int k = 0; k < 3; ++k)
+            adjoint[3 * t + k] += horizontal_sum(sum[t][k]);
 }
 
-//! Adds, for every source of a near leaf, its weight at the block's points in `lanes` times
-//! their weights to the source's adjoint (tree order, row-major).
+//! Adds, for every source of a near leaf, its weight at the block's points in `lanes` (not
+//! on a source) times their weights to the source's adjoint (tree order, row-major).
 template <class W>
 void leaf_transpose(const IdwTree::Node& leaf, const double* sx, const double* sy, const double* sz,
                     const W& weight, std::uint32_t lanes, const Block& b, const BlockWeights& g,
                     double* adjoint)
 {
+    std::uint32_t open = 0; // the term's lanes whose point is on no source
+    for (int i = 0; i < b.n; ++i)
+        if (((lanes >> i) & 1u) && !(b.hit[i] > 0.0))
+            open |= 1u << i;
     for (Index j = leaf.begin; j < leaf.end; ++j)
     {
-        double ax = 0.0, ay = 0.0, az = 0.0;
-        for (int i = 0; i < b.n; ++i)
+        double8 sum[3] = {};
+        for (int o = 0; o < block_size; o += lanes8)
         {
-            if (!((lanes >> i) & 1u) || b.hit[i] > 0.0)
-                continue; // a point on a source takes its value: no weight goes back
-            const double dx = b.x[i] - sx[j], dy = b.y[i] - sy[j], dz = b.z[i] - sz[j];
-            double pa, pb;
-            weight(1.0 / std::sqrt(dx * dx + dy * dy + dz * dz), pa, pb);
-            const double w = pa + pb;
-            ax += w * g.x[i];
-            ay += w * g.y[i];
-            az += w * g.z[i];
+            if (!((open >> o) & 0xffu))
+                continue;
+            const double8 on = lane_mask(open, o);
+            double8 rx, ry, rz, r2;
+            chunk_offsets(b, o, sx[j], sy[j], sz[j], on, rx, ry, rz, r2);
+            double8 pa, pb;
+            weight(inverse_sqrt8(r2), pa, pb);
+            const double8 w = on * (pa + pb);
+            sum[0] += w * load8(g.x + o);
+            sum[1] += w * load8(g.y + o);
+            sum[2] += w * load8(g.z + o);
         }
-        adjoint[3 * j + 0] += ax;
-        adjoint[3 * j + 1] += ay;
-        adjoint[3 * j + 2] += az;
+        for (int k = 0; k < 3; ++k)
+            adjoint[3 * j + k] += horizontal_sum(sum[k]);
     }
 }
 
-//! One query block's share: D(x) and the coincidences from the double-precision sums
-//! (values do not enter D), then each far and near term transposed.
+//! One query block's share: D(x) and the coincidences from the forward sums (the same
+//! kernels as the weighted mean, so the same D and hits), then each far and near term
+//! transposed.
+//! Flattened, with the block and the float sums its own locals: out of line (the weighted
+//! mean is their other caller) or through references (that might alias) GCC compiled the
+//! forward kernels 4 times slower than inlined into the weighted mean.
 template <class W>
-void block_transpose(const BlockTerms& terms, const SourceArrays& sources, const W& weight,
-                     const Points& g, const std::vector<Index>& order, const SplitNode& q, Block& b,
-                     double* node_adjoint, double* adjoint)
+[[gnu::flatten]] void block_transpose(const BlockTerms& terms, const ForwardSums& forward,
+                                      const W& weight, const Points& g,
+                                      const std::vector<Index>& order, const SplitNode& q,
+                                      const Block& loaded, double* node_adjoint, double* adjoint)
 {
-    b.clear_sums();
-    add_terms(terms, sources, weight, b);
+    Block b = loaded;
+    FarSums fs;
+    add_block_sums(terms, forward, b, fs);
     BlockWeights w;
     for (int i = 0; i < b.n; ++i)
     {
@@ -133,8 +184,8 @@ void block_transpose(const BlockTerms& terms, const SourceArrays& sources, const
         far_transpose(terms.nodes[t.node], weight, t.lanes, b, w,
                       node_adjoint + node_adjoint_size * t.node);
     for (const Term& t : terms.near)
-        leaf_transpose(terms.nodes[t.node], sources.x, sources.y, sources.z, weight, t.lanes, b, w,
-                       adjoint);
+        leaf_transpose(terms.nodes[t.node], forward.sources.x, forward.sources.y, forward.sources.z,
+                       weight, t.lanes, b, w, adjoint);
 }
 
 } // namespace
@@ -183,6 +234,17 @@ void IdwTree::transpose_over_tree(const Points& x, const Points& g, std::vector<
     const Weight35 w35{weight_.beta};
     const WeightGeneral wg{weight_.beta, weight_.far_exponent, weight_.near_exponent,
                            double(weight_.far_exponent), double(weight_.near_exponent)};
+    const SourcesSingle sources_f{ox_.data(),  oy_.data(),  oz_.data(),
+                                  fvx_.data(), fvy_.data(), fvz_.data()};
+    const ForwardSums forward{sources,
+                              probes_.data(),
+                              moments_f_.data(),
+                              sources_f,
+                              float(weight_.beta),
+                              default_weight && theta_ > 0.0,
+                              w35,
+                              wg,
+                              default_weight};
     std::vector<std::vector<double>> node_parts(partial_sums), source_parts(partial_sums);
     std::atomic<bool> outside_region{false};
 #pragma omp parallel for schedule(dynamic, 1) if (n_blocks > 8)
@@ -205,9 +267,9 @@ void IdwTree::transpose_over_tree(const Points& x, const Points& g, std::vector<
             }
             const BlockTerms terms{far, near, nodes_.data()};
             if (default_weight)
-                block_transpose(terms, sources, w35, g, order, q, b, nodes.data(), own.data());
+                block_transpose(terms, forward, w35, g, order, q, b, nodes.data(), own.data());
             else
-                block_transpose(terms, sources, wg, g, order, q, b, nodes.data(), own.data());
+                block_transpose(terms, forward, wg, g, order, q, b, nodes.data(), own.data());
         }
     }
     if (outside_region)
