@@ -7,7 +7,8 @@
 # whose JSON must name the same patches (invalidCellsByPatch). Needs OpenFOAM (decomposePar)
 # and OpenMPI.
 #
-#   parallel_vs_serial.sh -bin DIR -out DIR [-np N] [-method simple|scotch] [-field | -design]
+#   parallel_vs_serial.sh -bin DIR -out DIR [-np N] [-method simple|scotch]
+#                         [-field | -design | -sensitivity]
 #
 # -field: the wall and inlet take their motion from 0/pointDisplacement
 # (write_point_displacement.py), and the case is written in binary, so that decomposePar
@@ -18,12 +19,16 @@
 # serially and in parallel) and -sensitivity (a dJ/dx over every point, which
 # decomposePar splits) serially and under mpirun; the variant's points compared as above,
 # and dJ/da to 1e-12 relative.
+# -sensitivity: -sensitivity without design variables (dJ/dXs of the morph: the wall scaled,
+# everything else fixed) serially and under mpirun; every processor's dJdXs against the
+# serial one at its pointProcAddressing labels, to 1e-9 of the largest value (the master
+# transposes the gathered points in another order: round-off).
 # -bin: the directory holding morphMesh. Exit 0 when the results agree, 77 when OpenFOAM or
 # mpirun is missing (a skip), 1 otherwise.
 set -u
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 source_dir=$(cd "$here/../.." && pwd)
-bin="" out="" np=2 method=simple field=0 design=0
+bin="" out="" np=2 method=simple field=0 design=0 sensitivity=0
 while [ $# -gt 0 ]; do
     case "$1" in
         -bin) bin=$2; shift 2 ;;
@@ -32,7 +37,8 @@ while [ $# -gt 0 ]; do
         -method) method=$2; shift 2 ;;
         -field) field=1; shift ;;
         -design) design=1; shift ;;
-        -help|-h) sed -n '3,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -sensitivity) sensitivity=1; shift ;;
+        -help|-h) sed -n '3,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "parallel_vs_serial.sh: unknown option '$1' (try -help)" >&2; exit 2 ;;
     esac
 done
@@ -46,7 +52,13 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS
 rm -rf "$out" && mkdir -p "$out" || exit 1
 out=$(cd "$out" && pwd)
 motion_dict() {
-    if [ "$design" = 1 ]; then
+    if [ "$sensitivity" = 1 ]; then
+        cat <<'DICT'
+FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }
+method rbf;
+boundary { wall { type scale; origin (0 0 1); factor (1.02 1.03 1); } }
+DICT
+    elif [ "$design" = 1 ]; then
         cat "$source_dir/tutorials/designVariables/system/morphDict"
     elif [ "$field" = 1 ]; then
         cat <<'DICT'
@@ -76,7 +88,7 @@ make_case() {
     mkdir -p "$1/system" "$1/0" && cp -r "$source_dir/tutorials/pipe/constant" "$1/" &&
         cp "$source_dir/tutorials/pipe/system/controlDict" "$1/system/" &&
         motion_dict > "$1/system/morphDict" || return 1
-    if [ "$design" = 1 ]; then
+    if [ "$design" = 1 ] || [ "$sensitivity" = 1 ]; then
         /usr/bin/python3 "$source_dir/benchmarks/morph/write_point_field.py" "$1" 0/dJdx || return 1
     fi
     if [ "$field" = 1 ]; then
@@ -95,7 +107,9 @@ amplitudes="(0.8 0.3 1 0.05 -0.05 0.05 -0.05 0.02 0.02 0.02 0.02)"
 morph() {
     local name=$1
     shift
-    if [ "$design" = 1 ]; then
+    if [ "$sensitivity" = 1 ]; then
+        run "$name.sensitivity" "$@" -sensitivity 0/dJdx -json "$out/$name.json"
+    elif [ "$design" = 1 ]; then
         run "$name.variables" "$@" -variables
         run "$name.variant" "$@" -variant "$amplitudes"
         run "$name.sensitivity" "$@" -sensitivity 0/dJdx -json "$out/$name.json"
@@ -121,6 +135,34 @@ if [ "$field" = 1 ]; then
     # The case this test is for: a processor holding none of the inlet's points.
     grep -aq "nonuniform 0;" "$out"/parallel/processor*/0/pointDisplacement ||
         { echo "no processor got an empty inlet list from decomposePar: the test misses its case"; exit 1; }
+fi
+if [ "$sensitivity" = 1 ]; then
+    /usr/bin/python3 - "$out" "$np" <<'PY'
+import re, sys
+out, n = sys.argv[1], int(sys.argv[2])
+def internal(path):
+    text = open(path).read()
+    m = re.search(r"internalField\s+nonuniform List<vector>\s+(\d+)\s*\(", text)
+    rows = re.findall(r"\(([-+0-9.eE]+) ([-+0-9.eE]+) ([-+0-9.eE]+)\)", text[m.end():])
+    return [tuple(map(float, r)) for r in rows[: int(m.group(1))]]
+def labels(path):
+    text = open(path, "rb").read()
+    m = re.compile(rb"\n(\d+)\s*\n\(").search(text, text.index(b"}", text.index(b"FoamFile")))
+    return [int(v) for v in re.findall(rb"-?\d+", text[m.end(): text.index(b")", m.end())])]
+serial = internal(f"{out}/serial/0/dJdXs")
+largest = max(max(abs(v) for v in p) for p in serial)
+worst = 0.0
+for r in range(n):
+    values = internal(f"{out}/parallel/processor{r}/0/dJdXs")
+    addressing = labels(f"{out}/parallel/processor{r}/constant/polyMesh/pointProcAddressing")
+    if len(values) != len(addressing):
+        sys.exit(f"processor{r}: {len(values)} values for {len(addressing)} points")
+    for v, g in zip(values, addressing):
+        worst = max(worst, max(abs(v[k] - serial[g][k]) for k in range(3)))
+print(f"dJ/dXs, -parallel against serial: largest difference {worst:.3g} of {largest:.3g}")
+sys.exit(0 if largest > 0 and worst <= 1e-9 * largest else 1)
+PY
+    exit $?
 fi
 /usr/bin/python3 "$here/compare_decomposed.py" "$out/parallel" 1 "$np" "$out/serial/1/polyMesh/points" ||
     exit 1

@@ -7,14 +7,13 @@
 #include <cmath>
 
 #include "meshmorph/core/exceptions.h"
-#include "meshmorph/core/log.h"
 #include "meshmorph/io/foam_dictionary.h"
 #include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/morph/deformation_dict.h"
 #include "meshmorph/morph/deformation_methods.h"
 #include "meshmorph/morph/distributed_case.h"
 #include "meshmorph/morph/morph_output.h"
-#include "meshmorph/morph/point_morph.h"
+#include "meshmorph/morph/morph_sensitivity.h"
 #include "meshmorph/parallel/communicator.h"
 #include "meshmorph/quality/cell_validity.h"
 #include "meshmorph/quality/check_mesh.h"
@@ -155,31 +154,7 @@ void MorphSession::run_morph(const morph::MorphOptions& options,
 
 Points MorphSession::sensitivity(const Points& dJdx) const
 {
-    const morph::Constraints& c = result_.constraints;
-    if (result_.steps.empty())
-        throw InvalidInput("sensitivity: morph first (the sensitivity is that of the last morph)");
-    if (result_.steps.size() > 1)
-        throw InvalidInput("sensitivity: the last morph took " +
-                           std::to_string(result_.steps.size()) +
-                           " steps, so its points are not one field of the prescriptions; a "
-                           "smaller motion, or morphDict `steps 1;`, gives one");
-    if (const morph::UntangleReport& repair = result_.steps.front().untangle;
-        repair.invalid_before > 0)
-        log::warning() << "sensitivity: the morph's repair moved " << repair.points_moved
-                       << " interior points near " << repair.invalid_before
-                       << " folded cells; dJ/dXs treats them as following the field (the "
-                          "repair itself is not differentiated)";
-    const PolyMesh& mesh = in_.foam.mesh;
-    morph::Constraints full = c;
-    full.displacements = morph::prescribed_at(c, mesh.points, 1.0);
-    const std::unique_ptr<SpaceDeformation> field =
-        morph::make_deformation(in_.settings, morph::bounding_corners(mesh.points),
-                                c.n_prescribed_points + c.n_slip_points);
-    const Points at_constraints = morph::morph_points_transpose(mesh, full, *field, dJdx);
-    Points out = Points::Zero(mesh.n_points(), 3);
-    for (std::size_t i = 0; i < c.points.size(); ++i)
-        out.row(c.points[i]) = at_constraints.row(Eigen::Index(i));
-    return out;
+    return morph::morph_sensitivity(in_, result_, dJdx);
 }
 
 const morph::MorphResult& MorphSession::morph(const std::optional<fs::path>& dict)

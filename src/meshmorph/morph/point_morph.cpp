@@ -495,25 +495,18 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
     return result;
 }
 
-Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c,
-                              SpaceDeformation& deformation, const Points& weights)
+namespace
 {
-    if (!c.slip_points.empty() || c.wedge || !c.cyclic_pairs.empty() || c.jump_smoothing)
-        throw InvalidInput("the sensitivity is not available yet for a morph with slip patches, "
-                           "wedges, cyclic patches or jumpSmoothing");
-    if (weights.rows() != mesh.n_points())
-        throw InvalidInput("sensitivity: " + std::to_string(weights.rows()) +
-                           " rows of dJ/dx for a mesh of " + std::to_string(mesh.n_points()) +
-                           " points");
-    const Points x_eval = evaluation_positions(mesh.points, c);
-    const FitInput in = local_fit_input(x_eval, c);
+
+//! The transpose of a fit to `in` evaluated at x_eval, for weights g (2D normal removed):
+//! one row per handle of `in` (its order). Fits `deformation` first.
+Points fitted_transpose(const FitInput& in, const Constraints& c, SpaceDeformation& deformation,
+                        const Points& x_eval, const Points& g)
+{
     if (in.labels.empty())
         throw InvalidInput("sensitivity: no point has a prescribed displacement");
     const FitHandles handles = fit_handles(in.positions, in.values, c);
     deformation.fit(handles.positions, handles.values);
-    // d = P f(x_eval) with P the 2D projection (symmetric: its own transpose).
-    Points g = weights;
-    remove_empty_normal(g, c);
     const Points at_handles = deformation.transpose(x_eval, g);
     if (handles.handle_of.empty())
         return at_handles;
@@ -528,6 +521,84 @@ Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c,
         out.row(Eigen::Index(i)) = at_handles.row(h) / members[std::size_t(h)];
     }
     return out;
+}
+
+//! -parallel: every rank's points and weights go to the master (a shared point once, by its
+//! label, as a serial run has it), which fits as morph_points_distributed() does and
+//! transposes; each rank gets back the rows of its own constrained points.
+Points distributed_transpose(const Points& x_eval, const Constraints& c,
+                             SpaceDeformation& deformation, const Points& g, const Decomposition& d)
+{
+    const parallel::Communicator& comm = *d.comm;
+    const FitInput in = gathered_fit_input(x_eval, c, d);
+    std::vector<Index> every(std::size_t(x_eval.rows()));
+    std::iota(every.begin(), every.end(), Index{0});
+    const auto weights_of = [&](std::size_t i, double* data)
+    {
+        for (int k = 0; k < 3; ++k)
+            data[k] = g(Eigen::Index(i), k);
+    };
+    const auto points = comm.gather_values(to_wire(every, x_eval, d, weights_of));
+    std::vector<Index> mine(c.points.size());
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+        mine[i] = d.global_point[std::size_t(c.points[i])];
+    const std::vector<std::vector<Index>> asked = comm.gather_values(mine);
+    std::vector<std::vector<WirePoint>> answers;
+    parallel::on_master(comm,
+                        [&]
+                        {
+                            const std::vector<WirePoint> all = sorted_unique(points);
+                            Points x(Eigen::Index(all.size()), 3), w(Eigen::Index(all.size()), 3);
+                            for (std::size_t i = 0; i < all.size(); ++i)
+                                for (int k = 0; k < 3; ++k)
+                                {
+                                    x(Eigen::Index(i), k) = all[i].position[k];
+                                    w(Eigen::Index(i), k) = all[i].data[k];
+                                }
+                            const Points a = fitted_transpose(in, c, deformation, x, w);
+                            for (const std::vector<Index>& labels : asked)
+                            {
+                                answers.emplace_back();
+                                for (const Index label : labels)
+                                {
+                                    WirePoint answer;
+                                    answer.label = label;
+                                    const auto at =
+                                        std::lower_bound(in.labels.begin(), in.labels.end(), label);
+                                    const Eigen::Index row = at - in.labels.begin();
+                                    for (int k = 0; k < 3; ++k)
+                                        answer.data[k] = a(row, k);
+                                    answers.back().push_back(answer);
+                                }
+                            }
+                        });
+    const std::vector<WirePoint> back = comm.scatter_values(answers);
+    Points out(Eigen::Index(back.size()), 3);
+    for (std::size_t i = 0; i < back.size(); ++i)
+        out.row(Eigen::Index(i)) << back[i].data[0], back[i].data[1], back[i].data[2];
+    return out;
+}
+
+} // namespace
+
+Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c,
+                              SpaceDeformation& deformation, const Points& weights,
+                              const Decomposition* decomposition)
+{
+    if (!c.slip_points.empty() || c.wedge || !c.cyclic_pairs.empty() || c.jump_smoothing)
+        throw InvalidInput("the sensitivity is not available yet for a morph with slip patches, "
+                           "wedges, cyclic patches or jumpSmoothing");
+    if (weights.rows() != mesh.n_points())
+        throw InvalidInput("sensitivity: " + std::to_string(weights.rows()) +
+                           " rows of dJ/dx for a mesh of " + std::to_string(mesh.n_points()) +
+                           " points");
+    const Points x_eval = evaluation_positions(mesh.points, c);
+    // d = P f(x_eval) with P the 2D projection (symmetric: its own transpose).
+    Points g = weights;
+    remove_empty_normal(g, c);
+    if (decomposition != nullptr && decomposition->is_distributed())
+        return distributed_transpose(x_eval, c, deformation, g, *decomposition);
+    return fitted_transpose(local_fit_input(x_eval, c), c, deformation, x_eval, g);
 }
 
 double max_norm(const Points& values)

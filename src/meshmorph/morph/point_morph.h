@@ -64,8 +64,11 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& constraints,
 //! removed as the morph removes it. \throw InvalidInput for a method without a transpose, for
 //! what it does not cover yet (slip patches, wedges, cyclic pairs, jump smoothing) or a
 //! wrong row count; SolverError.
+//! With a distributed decomposition (a collective): this rank's constrained points, the
+//! master transposing the fit of every rank's constraints at every rank's points.
 Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c,
-                              SpaceDeformation& deformation, const Points& weights);
+                              SpaceDeformation& deformation, const Points& weights,
+                              const Decomposition* decomposition = nullptr);
 
 //! The largest row norm of an n x 3 array (0 for none): the largest displacement.
 double max_norm(const Points& values);

@@ -31,6 +31,7 @@ set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/distributed_constraints.cpp
     meshmorph/morph/jump_smoothing.cpp
     meshmorph/morph/point_morph.cpp
+    meshmorph/morph/morph_sensitivity.cpp
     meshmorph/morph/morph_steps.cpp
     meshmorph/morph/local_untangle.cpp
     meshmorph/morph/deformation_dict.cpp

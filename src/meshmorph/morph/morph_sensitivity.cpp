@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The reverse pass of a morph of a case (see the header).
+#include "meshmorph/morph/morph_sensitivity.h"
+
+#include <string>
+
+#include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/log.h"
+#include "meshmorph/morph/deformation_methods.h"
+#include "meshmorph/morph/point_morph.h"
+
+namespace meshmorph::morph
+{
+
+namespace
+{
+
+//! What the reverse pass needs of the morph: one step (a field of the prescriptions); a
+//! repair is said, not refused.
+void require_one_field(const MorphResult& result)
+{
+    if (result.steps.empty())
+        throw InvalidInput("sensitivity: morph first (the sensitivity is that of the last morph)");
+    if (result.steps.size() > 1)
+        throw InvalidInput("sensitivity: the last morph took " +
+                           std::to_string(result.steps.size()) +
+                           " steps, so its points are not one field of the prescriptions; a "
+                           "smaller motion, or morphDict `steps 1;`, gives one");
+    if (const UntangleReport& repair = result.steps.front().untangle; repair.invalid_before > 0)
+        log::warning() << "sensitivity: the morph's repair moved " << repair.points_moved
+                       << " interior points near " << repair.invalid_before
+                       << " folded cells; dJ/dXs treats them as following the field (the "
+                          "repair itself is not differentiated)";
+}
+
+} // namespace
+
+Points morph_sensitivity(const MorphCase& in, const MorphResult& result, const Points& dJdx,
+                         const Decomposition* parts)
+{
+    require_one_field(result);
+    const Constraints& c = result.constraints;
+    const PolyMesh& mesh = in.foam.mesh;
+    Constraints full = c; // the one step's constraints: the whole motion from x0
+    full.displacements = prescribed_at(c, mesh.points, 1.0);
+    const std::unique_ptr<SpaceDeformation> field = make_deformation(
+        in.settings, bounding_corners(mesh.points, parts), c.n_prescribed_points + c.n_slip_points);
+    const Points at_constraints = morph_points_transpose(mesh, full, *field, dJdx, parts);
+    Points out = Points::Zero(mesh.n_points(), 3);
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+        out.row(c.points[i]) = at_constraints.row(Eigen::Index(i));
+    return out;
+}
+
+} // namespace meshmorph::morph
