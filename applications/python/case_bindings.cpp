@@ -343,8 +343,9 @@ void bind_case(py::module_& m)
             "displacement, as an (nPoints, 3) array (zero at the points the morph did not "
             "prescribe). The exact transpose of the morph's field with its choices held "
             "(greedy centres, jump constraints, the IDW tree), so that dJ = sum(dJ/dd * dd) to "
-            "first order. For a morph in one step without untangling, serial, without slip "
-            "patches, wedges, cyclic patches or jumpSmoothing (an InputError says which).")
+            "first order. For a morph in one step (points its repair moved are taken as "
+            "following the field, with a warning), without wedges, cyclic patches or "
+            "jumpSmoothing (an InputError says which).")
         .def(
             "is_valid",
             [](PyCase& c) { return without_gil(*c.busy, [&] { return c.session->is_valid(); }); },

@@ -252,16 +252,40 @@ double central_difference(const PolyMesh& mesh, const Constraints& c, const Poin
     return (j[0] - j[1]) / 2.0;
 }
 
+//! A fresh direct RBF (linear in its data: central differences of it are exact).
+std::unique_ptr<SpaceDeformation> direct_rbf()
+{
+    return std::make_unique<RbfDeformation>();
+}
+
 TEST(MorphPoints, the_transpose_gives_dJ_dH_as_central_differences_do)
 {
     const PolyMesh mesh = test::make_box_mesh(5, 5, 5);
     const Constraints c = top_translated(mesh, MorphSetup{}.conflicts);
     const Points G = Points::Random(mesh.n_points(), 3);
-    RbfDeformation rbf;
-    const Points A = morph_points_transpose(mesh, c, rbf, G);
+    const Points A = morph_points_transpose(mesh, c, direct_rbf, G);
     ASSERT_EQ(A.rows(), Eigen::Index(c.points.size()));
     const Points delta = 0.01 * Points::Random(A.rows(), 3);
     // A direct RBF: linear, so the difference is exact to the solve's round-off.
+    EXPECT_NEAR(central_difference(mesh, c, delta, G), (A.array() * delta.array()).sum(),
+                1e-9 * (A.array().abs() * delta.array().abs()).sum());
+}
+
+TEST(MorphPoints, the_transpose_through_slip_points_gives_what_central_differences_give)
+{
+    // The slip points' prescriptions come from a first fit (the field there, projected onto
+    // their plane), so dJ/dH reaches the constrained points through them too.
+    const PolyMesh mesh = test::make_box_mesh(5, 5, 5);
+    MorphSetup setup;
+    BoundaryEntry top = make_entry("zMax", MotionType::translate);
+    top.motion.vector = Vector3(0.02, 0.03, 0.1);
+    setup.boundary.push_back(top);
+    setup.boundary.push_back(make_entry("xMin", MotionType::slip));
+    const Constraints c = build_constraints(mesh, setup);
+    ASSERT_FALSE(c.slip_points.empty());
+    const Points G = Points::Random(mesh.n_points(), 3);
+    const Points A = morph_points_transpose(mesh, c, direct_rbf, G);
+    const Points delta = 0.01 * Points::Random(A.rows(), 3);
     EXPECT_NEAR(central_difference(mesh, c, delta, G), (A.array() * delta.array()).sum(),
                 1e-9 * (A.array().abs() * delta.array().abs()).sum());
 }
@@ -278,8 +302,7 @@ TEST(MorphPoints, the_transpose_in_two_d_drops_what_the_morph_drops)
     const Constraints c = build_constraints(mesh, setup);
     ASSERT_TRUE(c.empty_planes.has_value());
     const Points G = Points::Random(mesh.n_points(), 3);
-    RbfDeformation rbf;
-    const Points A = morph_points_transpose(mesh, c, rbf, G);
+    const Points A = morph_points_transpose(mesh, c, direct_rbf, G);
     EXPECT_EQ(A.col(2).cwiseAbs().maxCoeff(), 0.0) << "a normal prescription is dropped";
     const Points delta = 0.01 * Points::Random(A.rows(), 3);
     EXPECT_NEAR(central_difference(mesh, c, delta, G), (A.array() * delta.array()).sum(),

@@ -152,10 +152,9 @@ void leaf_transpose(const IdwTree::Node& leaf, const double* sx, const double* s
 
 //! One query block's share: D(x) and the coincidences from the forward sums (the same
 //! kernels as the weighted mean, so the same D and hits), then each far and near term
-//! transposed.
-//! Flattened, with the block and the float sums its own locals: out of line (the weighted
-//! mean is their other caller) or through references (that might alias) GCC compiled the
-//! forward kernels 4 times slower than inlined into the weighted mean.
+//! transposed. Flattened, with the block and the float sums its own locals: out of line
+//! (the weighted mean is their other caller) or through references (that might alias) GCC
+//! compiled the forward kernels 4 times slower than inlined into the weighted mean.
 template <class W>
 [[gnu::flatten]] void block_transpose(const BlockTerms& terms, const ForwardSums& forward,
                                       const W& weight, const Points& g,

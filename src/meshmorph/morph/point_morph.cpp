@@ -9,6 +9,7 @@
 #include <limits>
 #include <numeric>
 #include <tuple>
+#include <unordered_map>
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
@@ -498,19 +499,12 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
 namespace
 {
 
-//! The transpose of a fit to `in` evaluated at x_eval, for weights g (2D normal removed):
-//! one row per handle of `in` (its order). Fits `deformation` first.
-Points fitted_transpose(const FitInput& in, const Constraints& c, SpaceDeformation& deformation,
-                        const Points& x_eval, const Points& g)
+//! Per row given to fit_handles(), its handle's row of `at_handles` (a handle merged from
+//! several rows, 2D's front and back points, was fitted at their mean: each gets its share).
+Points per_given_row(const FitHandles& handles, const Points& at_handles)
 {
-    if (in.labels.empty())
-        throw InvalidInput("sensitivity: no point has a prescribed displacement");
-    const FitHandles handles = fit_handles(in.positions, in.values, c);
-    deformation.fit(handles.positions, handles.values);
-    const Points at_handles = deformation.transpose(x_eval, g);
     if (handles.handle_of.empty())
         return at_handles;
-    // Merged handles (2D: a front and a back point) were fitted at their values' mean.
     std::vector<int> members(std::size_t(at_handles.rows()), 0);
     for (const Eigen::Index h : handles.handle_of)
         ++members[std::size_t(h)];
@@ -523,11 +517,64 @@ Points fitted_transpose(const FitInput& in, const Constraints& c, SpaceDeformati
     return out;
 }
 
+//! The transpose of a field fitted to (positions, values) by `make()`'s deformation and
+//! evaluated at x: one row per row given.
+Points fit_and_transpose(const FieldMaker& make, const Points& positions, const Points& values,
+                         const Constraints& c, const Points& x, const Points& g)
+{
+    const std::unique_ptr<SpaceDeformation> field = make();
+    const FitHandles handles = fit_handles(positions, values, c);
+    field->fit(handles.positions, handles.values);
+    return per_given_row(handles, field->transpose(x, g));
+}
+
+//! The transpose of fit_constraints() evaluated at x_eval, for weights g (2D normal
+//! removed): one row per constrained point of `in` (its order). With slip points, their
+//! prescriptions came from a first fit (slip_prescriptions: the field there, projected onto
+//! their planes): their rows of the final fit's transpose go back through it.
+Points fitted_transpose(const FitInput& in, const Constraints& c, const FieldMaker& make,
+                        const Points& x_eval, const Points& g)
+{
+    if (in.labels.empty())
+        throw InvalidInput("sensitivity: no point has a prescribed displacement");
+    if (in.slip_labels.empty())
+        return fit_and_transpose(make, in.positions, in.values, c, x_eval, g);
+    const std::unique_ptr<SpaceDeformation> first = make();
+    const Prescription p = merged(in, slip_prescriptions(in, c, *first));
+    const Points at_p = fit_and_transpose(make, p.positions, p.values, c, x_eval, g);
+    // The final fit's rows: the constrained points' directly, the slip points' through the
+    // first fit (p is sorted by label; in.labels and in.slip_labels are disjoint).
+    std::unordered_map<Index, Eigen::Index> constrained, slipping;
+    for (std::size_t i = 0; i < in.labels.size(); ++i)
+        constrained.emplace(in.labels[i], Eigen::Index(i));
+    for (std::size_t i = 0; i < in.slip_labels.size(); ++i)
+        slipping.emplace(in.slip_labels[i], Eigen::Index(i));
+    Points out = Points::Zero(Eigen::Index(in.labels.size()), 3);
+    Points at_slip = Points::Zero(Eigen::Index(in.slip_labels.size()), 3);
+    for (std::size_t k = 0; k < p.points.size(); ++k)
+    {
+        const Eigen::RowVector3d a = at_p.row(Eigen::Index(k));
+        if (const auto it = constrained.find(p.points[k]); it != constrained.end())
+            out.row(it->second) += a;
+        else
+            at_slip.row(slipping.at(p.points[k])) = a;
+    }
+    // slip value = N P_i f1(x_i): N (2D) and P_i transposed.
+    remove_empty_normal(at_slip, c);
+    for (Eigen::Index i = 0; i < at_slip.rows(); ++i)
+        at_slip.row(i) =
+            (in.slip_projectors[std::size_t(i)].transpose() * at_slip.row(i).transpose())
+                .transpose();
+    const FitHandles first_handles = fit_handles(in.positions, in.values, c);
+    out += per_given_row(first_handles, first->transpose(in.slip_positions, at_slip));
+    return out;
+}
+
 //! -parallel: every rank's points and weights go to the master (a shared point once, by its
 //! label, as a serial run has it), which fits as morph_points_distributed() does and
 //! transposes; each rank gets back the rows of its own constrained points.
-Points distributed_transpose(const Points& x_eval, const Constraints& c,
-                             SpaceDeformation& deformation, const Points& g, const Decomposition& d)
+Points distributed_transpose(const Points& x_eval, const Constraints& c, const FieldMaker& make,
+                             const Points& g, const Decomposition& d)
 {
     const parallel::Communicator& comm = *d.comm;
     const FitInput in = gathered_fit_input(x_eval, c, d);
@@ -555,7 +602,7 @@ Points distributed_transpose(const Points& x_eval, const Constraints& c,
                                     x(Eigen::Index(i), k) = all[i].position[k];
                                     w(Eigen::Index(i), k) = all[i].data[k];
                                 }
-                            const Points a = fitted_transpose(in, c, deformation, x, w);
+                            const Points a = fitted_transpose(in, c, make, x, w);
                             for (const std::vector<Index>& labels : asked)
                             {
                                 answers.emplace_back();
@@ -581,13 +628,12 @@ Points distributed_transpose(const Points& x_eval, const Constraints& c,
 
 } // namespace
 
-Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c,
-                              SpaceDeformation& deformation, const Points& weights,
-                              const Decomposition* decomposition)
+Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c, const FieldMaker& make,
+                              const Points& weights, const Decomposition* decomposition)
 {
-    if (!c.slip_points.empty() || c.wedge || !c.cyclic_pairs.empty() || c.jump_smoothing)
-        throw InvalidInput("the sensitivity is not available yet for a morph with slip patches, "
-                           "wedges, cyclic patches or jumpSmoothing");
+    if (c.wedge || !c.cyclic_pairs.empty() || c.jump_smoothing)
+        throw InvalidInput("the sensitivity is not available yet for a morph with wedges, "
+                           "cyclic patches or jumpSmoothing");
     if (weights.rows() != mesh.n_points())
         throw InvalidInput("sensitivity: " + std::to_string(weights.rows()) +
                            " rows of dJ/dx for a mesh of " + std::to_string(mesh.n_points()) +
@@ -597,8 +643,8 @@ Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c,
     Points g = weights;
     remove_empty_normal(g, c);
     if (decomposition != nullptr && decomposition->is_distributed())
-        return distributed_transpose(x_eval, c, deformation, g, *decomposition);
-    return fitted_transpose(local_fit_input(x_eval, c), c, deformation, x_eval, g);
+        return distributed_transpose(x_eval, c, make, g, *decomposition);
+    return fitted_transpose(local_fit_input(x_eval, c), c, make, x_eval, g);
 }
 
 double max_norm(const Points& values)

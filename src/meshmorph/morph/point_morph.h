@@ -11,6 +11,9 @@
 //!   identically and stay planar.
 #pragma once
 
+#include <functional>
+#include <memory>
+
 #include "meshmorph/core/poly_mesh.h"
 #include "meshmorph/deform/space_deformation.h"
 #include "meshmorph/morph/constraint_set.h"
@@ -56,19 +59,21 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& constraints,
                         SpaceDeformation& deformation, bool fit = true, bool snap = false,
                         const Decomposition* decomposition = nullptr);
 
-//! \brief The reverse pass of a serial morph_points() (fit, no snapping): fits
-//! `deformation` to the constraints as morph_points() does, then for weights G at every
-//! mesh point (dJ/dx) returns dJ/dH, one row per constrained point (c.points' order): the
-//! transpose of the fitted field's derivative with respect to the prescribed displacements,
-//! the fit's choices held (SpaceDeformation::transpose). In 2D the normal component is
-//! removed as the morph removes it. \throw InvalidInput for a method without a transpose, for
-//! what it does not cover yet (slip patches, wedges, cyclic pairs, jump smoothing) or a
-//! wrong row count; SolverError.
-//! With a distributed decomposition (a collective): this rank's constrained points, the
-//! master transposing the fit of every rank's constraints at every rank's points.
-Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c,
-                              SpaceDeformation& deformation, const Points& weights,
-                              const Decomposition* decomposition = nullptr);
+//! Builds a fresh, unfitted deformation (the morph's method and settings).
+using FieldMaker = std::function<std::unique_ptr<SpaceDeformation>()>;
+
+//! \brief The reverse pass of morph_points() (fit, no snapping): fits fresh deformations from
+//! `make` to the constraints as morph_points() does (with slip points: the first fit that
+//! gives their prescriptions, then the final one), then for weights G at every mesh point
+//! (dJ/dx) returns dJ/dH, one row per constrained point (c.points' order): the transpose of
+//! the fitted field's derivative with respect to the prescribed displacements, the fits'
+//! choices held (SpaceDeformation::transpose). In 2D the normal component is removed as the
+//! morph removes it. With a distributed decomposition (a collective): this rank's
+//! constrained points, the master transposing the fit of every rank's constraints at every
+//! rank's points. \throw InvalidInput for a method without a transpose, for what it does not
+//! cover yet (wedges, cyclic pairs, jump smoothing) or a wrong row count; SolverError.
+Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c, const FieldMaker& make,
+                              const Points& weights, const Decomposition* decomposition = nullptr);
 
 //! The largest row norm of an n x 3 array (0 for none): the largest displacement.
 double max_norm(const Points& values);
