@@ -46,11 +46,7 @@ Points morph_sensitivity(const MorphCase& in, const MorphResult& result, const P
     const Points corners = bounding_corners(mesh.points, parts); // a collective: every rank
     const Index n_fit = c.n_prescribed_points + c.n_slip_points;
     const FieldMaker make = [&] { return make_deformation(in.settings, corners, n_fit); };
-    const Points at_constraints = morph_points_transpose(mesh, full, make, dJdx, parts);
-    Points out = Points::Zero(mesh.n_points(), 3);
-    for (std::size_t i = 0; i < c.points.size(); ++i)
-        out.row(c.points[i]) = at_constraints.row(Eigen::Index(i));
-    return out;
+    return morph_points_transpose(mesh, full, make, dJdx, parts);
 }
 
 } // namespace meshmorph::morph

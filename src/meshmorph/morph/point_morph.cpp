@@ -572,9 +572,11 @@ Points fitted_transpose(const FitInput& in, const Constraints& c, const FieldMak
 
 //! -parallel: every rank's points and weights go to the master (a shared point once, by its
 //! label, as a serial run has it), which fits as morph_points_distributed() does and
-//! transposes; each rank gets back the rows of its own constrained points.
-Points distributed_transpose(const Points& x_eval, const Constraints& c, const FieldMaker& make,
-                             const Points& g, const Decomposition& d)
+//! transposes; each rank gets back the rows of its constrained points and of its shared
+//! points (a point constrained on another rank only, where a patch face lies there, gets the
+//! same value as there), into `out` (a row per local point).
+void distributed_transpose(const Points& x_eval, const Constraints& c, const FieldMaker& make,
+                           const Points& g, const Decomposition& d, Points& out)
 {
     const parallel::Communicator& comm = *d.comm;
     const FitInput in = gathered_fit_input(x_eval, c, d);
@@ -586,9 +588,18 @@ Points distributed_transpose(const Points& x_eval, const Constraints& c, const F
             data[k] = g(Eigen::Index(i), k);
     };
     const auto points = comm.gather_values(to_wire(every, x_eval, d, weights_of));
-    std::vector<Index> mine(c.points.size());
-    for (std::size_t i = 0; i < c.points.size(); ++i)
-        mine[i] = d.global_point[std::size_t(c.points[i])];
+    std::vector<char> wanted(std::size_t(x_eval.rows()), 0);
+    for (const Index p : c.points)
+        wanted[std::size_t(p)] = 1;
+    for (const Index p : d.shared_points)
+        wanted[std::size_t(p)] = 1;
+    std::vector<Index> local, mine;
+    for (std::size_t p = 0; p < wanted.size(); ++p)
+        if (wanted[p])
+        {
+            local.push_back(Index(p));
+            mine.push_back(d.global_point[p]);
+        }
     const std::vector<std::vector<Index>> asked = comm.gather_values(mine);
     std::vector<std::vector<WirePoint>> answers;
     parallel::on_master(comm,
@@ -608,22 +619,20 @@ Points distributed_transpose(const Points& x_eval, const Constraints& c, const F
                                 answers.emplace_back();
                                 for (const Index label : labels)
                                 {
-                                    WirePoint answer;
+                                    WirePoint answer; // zero: constrained on no rank
                                     answer.label = label;
                                     const auto at =
                                         std::lower_bound(in.labels.begin(), in.labels.end(), label);
-                                    const Eigen::Index row = at - in.labels.begin();
-                                    for (int k = 0; k < 3; ++k)
-                                        answer.data[k] = a(row, k);
+                                    if (at != in.labels.end() && *at == label)
+                                        for (int k = 0; k < 3; ++k)
+                                            answer.data[k] = a(at - in.labels.begin(), k);
                                     answers.back().push_back(answer);
                                 }
                             }
                         });
     const std::vector<WirePoint> back = comm.scatter_values(answers);
-    Points out(Eigen::Index(back.size()), 3);
     for (std::size_t i = 0; i < back.size(); ++i)
-        out.row(Eigen::Index(i)) << back[i].data[0], back[i].data[1], back[i].data[2];
-    return out;
+        out.row(local[i]) << back[i].data[0], back[i].data[1], back[i].data[2];
 }
 
 } // namespace
@@ -642,9 +651,16 @@ Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c, const 
     // d = P f(x_eval) with P the 2D projection (symmetric: its own transpose).
     Points g = weights;
     remove_empty_normal(g, c);
+    Points out = Points::Zero(mesh.n_points(), 3);
     if (decomposition != nullptr && decomposition->is_distributed())
-        return distributed_transpose(x_eval, c, make, g, *decomposition);
-    return fitted_transpose(local_fit_input(x_eval, c), c, make, x_eval, g);
+    {
+        distributed_transpose(x_eval, c, make, g, *decomposition, out);
+        return out;
+    }
+    const Points at_constraints = fitted_transpose(local_fit_input(x_eval, c), c, make, x_eval, g);
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+        out.row(c.points[i]) = at_constraints.row(Eigen::Index(i));
+    return out;
 }
 
 double max_norm(const Points& values)

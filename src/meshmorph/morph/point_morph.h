@@ -65,12 +65,13 @@ using FieldMaker = std::function<std::unique_ptr<SpaceDeformation>()>;
 //! \brief The reverse pass of morph_points() (fit, no snapping): fits fresh deformations from
 //! `make` to the constraints as morph_points() does (with slip points: the first fit that
 //! gives their prescriptions, then the final one), then for weights G at every mesh point
-//! (dJ/dx) returns dJ/dH, one row per constrained point (c.points' order): the transpose of
-//! the fitted field's derivative with respect to the prescribed displacements, the fits'
-//! choices held (SpaceDeformation::transpose). In 2D the normal component is removed as the
-//! morph removes it. With a distributed decomposition (a collective): this rank's
-//! constrained points, the master transposing the fit of every rank's constraints at every
-//! rank's points. \throw InvalidInput for a method without a transpose, for what it does not
+//! (dJ/dx) returns dJ/dH at every mesh point (zero where nothing is prescribed): the
+//! transpose of the fitted field's derivative with respect to the prescribed displacements,
+//! the fits' choices held (SpaceDeformation::transpose). In 2D the normal component is
+//! removed as the morph removes it. With a distributed decomposition (a collective): the
+//! master transposes the fit of every rank's constraints at every rank's points; a shared
+//! point gets the same value on every rank (also where only another rank's patch faces
+//! constrain it). \throw InvalidInput for a method without a transpose, for what it does not
 //! cover yet (wedges, cyclic pairs, jump smoothing) or a wrong row count; SolverError.
 Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c, const FieldMaker& make,
                               const Points& weights, const Decomposition* decomposition = nullptr);
