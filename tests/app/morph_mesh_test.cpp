@@ -25,6 +25,7 @@
 #include "meshmorph/io/temp_file.h"
 #include "meshmorph/io/write_poly_mesh.h"
 #include "morph_run.h"
+#include "shipped_pipe.h"
 
 namespace meshmorph::app
 {
@@ -777,8 +778,7 @@ TEST(MorphMesh, openfoam_checkmesh_reads_the_squeezed_pipe_ascii_and_binary)
 {
     if (!test::openfoam_available())
         GTEST_SKIP() << "OpenFOAM not installed: checkMesh on the morphed pipe is skipped";
-    const fs::path pipe = fs::path(MESHMORPH_SOURCE_DIR) / "tutorials/pipe";
-    const io::FoamPolyMesh shipped = io::read_poly_mesh(pipe);
+    const io::FoamPolyMesh shipped = test::read_shipped_pipe();
     // Radial squeeze of the whole wall by 0.3 R about the axis; inlet/outlet slide.
     const std::string dict = R"D(
 boundary

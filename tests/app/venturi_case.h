@@ -13,6 +13,7 @@
 #include "meshmorph/io/read_poly_mesh.h"
 #include "meshmorph/io/write_poly_mesh.h"
 #include "morph_run.h"
+#include "shipped_pipe.h"
 
 namespace meshmorph::test
 {
@@ -65,9 +66,8 @@ inline std::filesystem::path venturi_case(const std::string& name, double depth,
                                           const std::string& method = "rbf", double offset = 0.0)
 {
     const std::filesystem::path dir = test::scratch_dir("morph_steps/" + name);
-    const std::filesystem::path pipe =
-        std::filesystem::path(MESHMORPH_SOURCE_DIR) / "tutorials/pipe";
-    const io::FoamPolyMesh shipped = io::read_poly_mesh(pipe);
+    const std::filesystem::path pipe = test::pipe_tutorial_dir();
+    const io::FoamPolyMesh shipped = test::read_shipped_pipe();
     io::write_poly_mesh(shipped.mesh, io::default_poly_mesh_files(io::FoamFormat::binary), dir,
                         "constant");
     std::filesystem::create_directories(dir / "system");
