@@ -272,6 +272,18 @@ def test_morph_mesh_sensitivity_writes_what_case_sensitivity_gives(pipe):
     assert not (pipe / "1").exists(), "a sensitivity run writes no mesh"
 
 
+def test_morph_mesh_sensitivity_reads_a_bad_dJdx_before_it_morphs(pipe):
+    """A dJ/dx file with too few values is an input error naming the file, given before the
+    morph runs (no fit in the log) and with nothing written."""
+    write_dict(pipe / "system" / "morphDict",
+               "boundary { wall { type scale; factor (1.02 1.03 1); origin (0 0 1); } }")
+    write_point_field(pipe / "0" / "dJdx", np.ones((7, 3)))
+    done = run("morphMesh", "-sensitivity", "0/dJdx", cwd=pipe, expect=2)
+    assert "0/dJdx" in done.stderr and "7" in done.stderr, done.stderr
+    assert "Constraints:" not in done.stdout and "centres" not in done.stdout, done.stdout
+    assert not (pipe / "0" / "dJdXs").exists() and not (pipe / "1").exists()
+
+
 @pytest.fixture
 def bump_search(design_pipe):
     """A study of the set-up pipe, a start design and a direction along which cells invert:

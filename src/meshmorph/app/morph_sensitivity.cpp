@@ -17,6 +17,7 @@
 #include "meshmorph/io/point_field_writer.h"
 #include "meshmorph/morph/morph_log.h"
 #include "meshmorph/morph/morph_sensitivity.h"
+#include "meshmorph/parallel/collective.h"
 #include "meshmorph/parallel/communicator.h"
 
 namespace meshmorph::app
@@ -27,13 +28,28 @@ namespace fs = std::filesystem;
 namespace
 {
 
-//! The morphDict's morph of the case, in memory (as morphMesh runs it, nothing written); `in`
-//! keeps the mesh as read.
-morph::MorphResult morph_in_memory(const morph::MorphOptions& options, morph::MorphCase& in)
+//! The morphDict and the mesh, as morphMesh reads them.
+void read_case(const morph::MorphOptions& options, morph::MorphCase& in, morph::MorphResult& result)
 {
-    morph::MorphResult result;
     morph::read_morph_dict(options, in, result);
     morph::read_morph_mesh(options, in, result);
+}
+
+//! dJ/dx, read before the morph so that a bad file fails at once. With -parallel each rank
+//! reads its processor directory's file, as decomposePar writes it.
+Points read_dJdx(const morph::MorphCase& in, const fs::path& input)
+{
+    Points dJdx;
+    parallel::collective(parallel::Communicator::world(),
+                         [&] { dJdx = design::read_point_sensitivity(in.foam.mesh, input); });
+    return dJdx;
+}
+
+//! The morphDict's morph of the case read, in memory (as morphMesh runs it, nothing
+//! written); `in` keeps the mesh as read.
+void morph_in_memory(const morph::MorphOptions& options, morph::MorphCase& in,
+                     morph::MorphResult& result)
+{
     morph::resolve_constraints(options, std::as_const(in), result);
     morph::log_setup(result.constraints);
     const CompactList cf = cell_faces(in.foam.mesh);
@@ -46,7 +62,6 @@ morph::MorphResult morph_in_memory(const morph::MorphOptions& options, morph::Mo
     if (result.refused)
         log::warning() << "the morph itself is refused (" << result.refusal
                        << "); dJ/dXs is still that of its field";
-    return result;
 }
 
 } // namespace
@@ -63,11 +78,12 @@ int run_morph_sensitivity(const morph::MorphOptions& options, const fs::path& fi
                           const fs::path& json_path, std::ostream& out)
 {
     morph::MorphCase in;
-    const morph::MorphResult morphed = morph_in_memory(options, in);
-    const morph::Decomposition* parts = in.parts(options);
-    // With -parallel each rank reads its processor directory's file, as decomposePar writes it.
+    morph::MorphResult morphed;
+    read_case(options, in, morphed);
     const fs::path input = file.is_absolute() ? file : in.mesh_case / file;
-    const Points dJdx = design::read_point_sensitivity(in.foam.mesh, input);
+    const Points dJdx = read_dJdx(in, input);
+    morph_in_memory(options, in, morphed);
+    const morph::Decomposition* parts = in.parts(options);
     const Points dJdXs = morph::morph_sensitivity(in, morphed, dJdx, parts);
     const fs::path output = input.parent_path() / "dJdXs";
     io::write_point_vector_field(
