@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "meshmorph/core/exceptions.h"
+#include "meshmorph/core/heap_reuse.h"
 #include "meshmorph/core/log.h"
 #include "python_errors.h"
 
@@ -120,6 +121,7 @@ PYBIND11_MODULE(_core, m)
 {
     m.doc() = "meshmorph's C++ core: cases, morphs, checks and design variables in memory "
               "(use the package meshmorph, which re-exports these).";
+    meshmorph::keep_freed_blocks_in_heap(); // a variant's arrays reused, not faulted in again
     meshmorph::python::register_errors(m);
     meshmorph::python::route_log_to_python();
     meshmorph::python::bind_case(m);

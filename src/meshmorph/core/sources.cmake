@@ -11,5 +11,6 @@ meshmorph_add_component(core
         meshmorph/core/memory_budget.cpp
         meshmorph/core/number_format.cpp
         meshmorph/core/cubic_first_root.cpp
+        meshmorph/core/heap_reuse.cpp
         # (one file per line)
     DEPENDS Eigen3::Eigen OpenMP::OpenMP_CXX)
