@@ -128,13 +128,18 @@ print(f"| moveMesh, 5% lift (whole process) | {movemesh:.2f} | 1 |")
 print(f"| morphMesh one-off, 5% lift (whole process) | {oneoff:.2f} | {ratio(oneoff)} |")
 print(f"| -variables, 4 variables (whole process) | {setup:.2f} | {ratio(setup)} |")
 print(f"| -variants, 20 rows (whole process) | {variants:.2f} | |")
+# The first row also checks the topology once and pages the set-up file in: apart.
+later = [r for r in plain if r is not rows[0]]
+if rows[0] in plain:
+    s = stage(rows[0])
+    print(f"| -variants first row (+ the topology checked once) | {s:.3f} | {ratio(s)} |")
 for name, pick in (("median", statistics.median), ("largest", max)):
-    if plain:
-        s = pick([stage(r) for r in plain])
-        print(f"| -variants row without repair, {name} (combine + check + write) | {s:.3f} | {ratio(s)} |")
-if plain:
+    if later:
+        s = pick([stage(r) for r in later])
+        print(f"| -variants later rows without repair, {name} (combine + check + write) | {s:.3f} | {ratio(s)} |")
+if later:
     for k in ("combine", "check", "write"):
-        s = statistics.median(r["timings"][k] for r in plain)
+        s = statistics.median(r["timings"][k] for r in later)
         print(f"| &nbsp;&nbsp;of which {k} (median) | {s:.3f} | |")
 for key, label in (("evaluateWrite", "Python evaluate + write"), ("isValid", "Python is_valid"),
                    ("transposeProduct", "Python transpose_product (dJ/da)")):
