@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "helpers.h"
+#include "meshmorph/mesh/coupled_patches.h"
 #include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/quality/cell_closedness.h"
 #include "meshmorph/quality/cell_concavity.h"
@@ -93,6 +94,53 @@ TEST(FaceSkewness, faces_eight_at_a_time_give_the_results_of_one_at_a_time_bit_f
             EXPECT_EQ(all[f], face_skewness_at(mesh, g, f)) << "face " << f;
         EXPECT_GT(all.maxCoeff(), 0.01) << "the premise: skewed faces";
     }
+}
+
+//! A block sheared in y beyond x = 0.5 and not before (y rises by 15 per unit of x): the
+//! faces at the kink, between an upright and a leaning cell, far above skewness 4.
+PolyMesh kinked_block()
+{
+    return test::make_block_mesh(10, 4, 4,
+                                 [](double u, double v, double w)
+                                 { return Vector3(u, v + 15.0 * std::max(0.0, u - 0.5), w); });
+}
+
+//! screened_face_skewness against face_skewness on `mesh`: the largest value and the faces
+//! above `threshold` the same, to the bit.
+void expect_screened_as_full(const PolyMesh& mesh, double threshold)
+{
+    const MeshGeometry g = compute_geometry(mesh);
+    const CoupledFaces coupled = coupled_faces(mesh, g, cyclic_patches(mesh, g));
+    const Eigen::VectorXd full = face_skewness(mesh, g, coupled);
+    const Eigen::VectorXd screened = screened_face_skewness(mesh, g, coupled, threshold);
+    EXPECT_EQ(screened.maxCoeff(), full.maxCoeff());
+    for (Index f = 0; f < mesh.n_faces(); ++f)
+    {
+        if (full[f] > threshold)
+            EXPECT_EQ(screened[f], full[f]) << "face " << f;
+        EXPECT_EQ(screened[f] > threshold, full[f] > threshold) << "face " << f;
+        EXPECT_TRUE(screened[f] == full[f] || screened[f] == 0.0) << "face " << f;
+    }
+    // Fewer computed than all: the screen's premise (its gain) on these meshes.
+    EXPECT_LT((screened.array() != 0.0).count(), mesh.n_faces()) << "threshold " << threshold;
+}
+
+TEST(FaceSkewness, screened_gives_the_largest_and_the_faces_above_the_threshold_exactly)
+{
+    const PolyMesh kinked = kinked_block();
+    const MeshGeometry g = compute_geometry(kinked);
+    ASSERT_GT(face_skewness(kinked, g).maxCoeff(), 4.0) << "the premise: faces above 4";
+    expect_screened_as_full(kinked, 4.0); // some faces above: they alone are computed
+    expect_screened_as_full(kinked, 1e3); // none above: the largest is searched
+    expect_screened_as_full(warped_block(24, 22, 16), 4.0);
+    expect_screened_as_full(test::make_pentagon_cells(), 4.0);
+    // Cyclic faces measure against the cell across: periodic in x, cells growing along x.
+    PolyMesh periodic = test::make_block_mesh(
+        6, 3, 3, [](double u, double v, double w) { return Vector3(4 * u * u, v + 0.2 * u, w); });
+    periodic.patches[0].type = periodic.patches[1].type = "cyclic";
+    periodic.patches[0].entries = {{"neighbourPatch", periodic.patches[1].name}};
+    periodic.patches[1].entries = {{"neighbourPatch", periodic.patches[0].name}};
+    expect_screened_as_full(periodic, 4.0);
 }
 
 TEST(FaceOrthogonality, box_is_orthogonal_and_boundary_faces_are_one)

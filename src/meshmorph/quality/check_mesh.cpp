@@ -297,7 +297,12 @@ void run_geometry_checks(const PolyMesh& mesh, const CompactList& cell_faces, co
     checks.push_back(check_face_orthogonality(ortho, coupled.statistics_faces()));
     std::vector<char> computed;
     checks.push_back(check_face_pyramids(pyramid_errors_of(mesh, g, settings, computed)));
-    const Eigen::VectorXd skewness = face_skewness(mesh, g, coupled);
+    // Without cell fields or meshQualityDict checks only the largest skewness and the faces
+    // above 4 are used: screened, most faces skip the metric's gathers of their points.
+    const bool every_face = settings.cell_fields || settings.mesh_quality;
+    const Eigen::VectorXd skewness =
+        every_face ? face_skewness(mesh, g, coupled)
+                   : screened_face_skewness(mesh, g, coupled, highly_skewed_face);
     checks.push_back(check_face_skewness(skewness, coupled.master));
     checks.push_back(check_coupled_points(coupled_point_match(mesh, g, cyclics, processors)));
     if (settings.cell_fields)

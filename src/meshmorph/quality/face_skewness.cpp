@@ -38,31 +38,60 @@ S skewness_from(const V& cf, const V& af, const V& cpf, const V& d, double facto
     return mag(sv) / fd;
 }
 
-//! Skewness of face f; `across` is the cell centre on the other side, if any.
-double skewness_of(const PolyMesh& mesh, const MeshGeometry& g, Index f, const FoamVector* across)
+//! What a face's skewness is measured with: its centre cf and area af, the offset cpf of
+//! cf from the owner's centre, the vector d it is measured along and the normalisation
+//! factor.
+struct SkewnessFrame
 {
-    const FoamVector cf = row(g.face_centres, f);
-    const FoamVector af = row(g.face_areas, f);
-    const FoamVector own_cc = row(g.cell_centres, mesh.owner[f]);
-    const FoamVector cpf = cf - own_cc;
-    FoamVector d;
+    FoamVector cf, af, cpf, d;
     double factor;
+};
+
+//! The frame of face f; `across` is the cell centre on the other side, if any.
+SkewnessFrame frame_of(const PolyMesh& mesh, const MeshGeometry& g, Index f,
+                       const FoamVector* across)
+{
+    SkewnessFrame s;
+    s.cf = row(g.face_centres, f);
+    s.af = row(g.face_areas, f);
+    const FoamVector own_cc = row(g.cell_centres, mesh.owner[f]);
+    s.cpf = s.cf - own_cc;
     if (across)
     {
-        d = *across - own_cc;
-        factor = 0.2;
+        s.d = *across - own_cc;
+        s.factor = 0.2;
     }
     else
     {
-        FoamVector normal = af;
+        FoamVector normal = s.af;
         normal /= detail::mag(normal) + constants::rootvsmall;
-        d = detail::dot(normal, cpf) * normal;
-        factor = 0.4;
+        s.d = detail::dot(normal, s.cpf) * normal;
+        s.factor = 0.4;
     }
+    return s;
+}
+
+//! Skewness of face f; `across` is the cell centre on the other side, if any.
+double skewness_of(const PolyMesh& mesh, const MeshGeometry& g, Index f, const FoamVector* across)
+{
+    const SkewnessFrame s = frame_of(mesh, g, f, across);
     const std::span<const Index> face = mesh.faces[f];
-    return skewness_from<FoamVector, double>(cf, af, cpf, d, factor, int(face.size()),
+    return skewness_from<FoamVector, double>(s.cf, s.af, s.cpf, s.d, s.factor, int(face.size()),
                                              [&](int k)
                                              { return row(mesh.points, face[std::size_t(k)]); });
+}
+
+//! An upper bound of skewness_of without its vertices: skewness_from's denominator starts
+//! at factor |d| + rootvsmall and only grows by the vertices' term, and the bound divides
+//! the same |sv|, computed by the same operations, by that start (division by a larger
+//! positive number never gives more, in floating point too).
+double skewness_bound_of(const PolyMesh& mesh, const MeshGeometry& g, Index f,
+                         const FoamVector* across)
+{
+    constexpr double rootvsmall = constants::rootvsmall;
+    const SkewnessFrame s = frame_of(mesh, g, f, across);
+    const FoamVector sv = s.cpf - (dot(s.af, s.cpf) / (dot(s.af, s.d) + rootvsmall)) * s.d;
+    return mag(sv) / (s.factor * mag(s.d) + rootvsmall);
 }
 
 //! skewness_of eight internal quads at once: the same kernel, lane by lane (same bits).
@@ -118,6 +147,68 @@ Eigen::VectorXd face_skewness(const PolyMesh& mesh, const MeshGeometry& g,
             const FoamVector across = row(coupled.neighbour_cell_centres, f - n_int);
             skewness[f] = skewness_of(mesh, g, f, &across);
         }
+    return skewness;
+}
+
+namespace
+{
+
+//! The face skewness of checkMesh (face_skewness with coupled faces) at f, or its bound.
+template <class Measure>
+double checkmesh_measure(const PolyMesh& mesh, const MeshGeometry& g, const CoupledFaces& coupled,
+                         Index f, const Measure& measure)
+{
+    const Index n_int = mesh.n_internal_faces();
+    if (f < n_int)
+    {
+        const FoamVector across = row(g.cell_centres, mesh.neighbour[f]);
+        return measure(mesh, g, f, &across);
+    }
+    if (coupled.coupled_boundary(mesh, f))
+    {
+        const FoamVector across = row(coupled.neighbour_cell_centres, f - n_int);
+        return measure(mesh, g, f, &across);
+    }
+    return measure(mesh, g, f, nullptr);
+}
+
+} // namespace
+
+Eigen::VectorXd screened_face_skewness(const PolyMesh& mesh, const MeshGeometry& g,
+                                       const CoupledFaces& coupled, double threshold)
+{
+    const Index n_faces = mesh.n_faces();
+    Eigen::VectorXd bound(n_faces);
+#pragma omp parallel for schedule(dynamic,                                                         \
+                                  detail::loop_piece) if (n_faces > detail::parallel_threshold)
+    for (Index f = 0; f < n_faces; ++f)
+        bound[f] = checkmesh_measure(mesh, g, coupled, f, skewness_bound_of);
+    Eigen::VectorXd skewness = Eigen::VectorXd::Zero(n_faces);
+    // Exact wherever the bound exceeds `level` (or is not finite); returns their largest.
+    const auto exact_above = [&](double level)
+    {
+        double largest = 0.0;
+#pragma omp parallel for schedule(dynamic, detail::loop_piece)                                     \
+    reduction(max                                                                                  \
+              : largest) if (n_faces > detail::parallel_threshold)
+        for (Index f = 0; f < n_faces; ++f)
+            if (!(bound[f] <= level))
+            {
+                skewness[f] = checkmesh_measure(mesh, g, coupled, f, skewness_of);
+                largest = std::max(largest, skewness[f]);
+            }
+        return largest;
+    };
+    // Every face above the threshold is exact; a face left out is at most the threshold.
+    const double above = exact_above(threshold);
+    if (above >= threshold || n_faces == 0)
+        return skewness;
+    // All faces at most the threshold: the largest is at least the value of the face with
+    // the largest bound, and no face whose bound is below that can exceed it.
+    Index top = 0;
+    bound.maxCoeff(&top);
+    skewness[top] = checkmesh_measure(mesh, g, coupled, top, skewness_of);
+    (void)exact_above(std::max(above, skewness[top]));
     return skewness;
 }
 

@@ -26,6 +26,15 @@ double face_skewness_at(const PolyMesh& mesh, const MeshGeometry& geometry, Inde
 Eigen::VectorXd face_skewness(const PolyMesh& mesh, const MeshGeometry& geometry,
                               const CoupledFaces& coupled);
 
+//! \brief face_skewness(mesh, geometry, coupled) where only its largest value and the faces
+//! above `threshold` are wanted (checkMesh's maxSkewness and skewFaces): exact, to the same
+//! bits, at every face above the threshold and at the largest; 0 at faces that can be
+//! neither. A bound without the vertices' term (the gathers of the face's points, most of
+//! the metric's cost) screens the faces first; a variant's check on the motorBike then
+//! computes the whole metric for the few faces above 4 only.
+Eigen::VectorXd screened_face_skewness(const PolyMesh& mesh, const MeshGeometry& geometry,
+                                       const CoupledFaces& coupled, double threshold);
+
 //! \brief Per cell, the largest skewness of its faces (0 for a cell without faces).
 //! \param skewness face_skewness(mesh, geometry). \return nCells values.
 Eigen::VectorXd cell_skewness(const CompactList& cell_faces, const Eigen::VectorXd& skewness);

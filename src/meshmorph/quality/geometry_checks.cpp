@@ -288,7 +288,7 @@ CheckResult check_face_skewness(const Eigen::VectorXd& skewness, const std::vect
     for (std::int64_t f = 0; f < n; ++f)
         max_skew = std::max(max_skew, skewness[f]);
     const std::vector<Index> faces =
-        faces_where(Index(n), [&](Index f) { return skewness[f] > 4; });
+        faces_where(Index(n), [&](Index f) { return skewness[f] > highly_skewed_face; });
     Index n_counted = 0;
     for (Index f : faces)
         n_counted += counted.empty() || counted[static_cast<std::size_t>(f)];

@@ -63,6 +63,9 @@ CheckResult check_face_orthogonality(const Eigen::VectorXd& orthogonality,
 //! \param errors face_pyramid_errors(mesh, geometry).
 CheckResult check_face_pyramids(const std::vector<char>& errors);
 
+//! The skewness above which checkMesh counts a face as highly skewed.
+inline constexpr double highly_skewed_face = 4.0;
+
 //! \brief Skewness above 4. Fails "skewness"; statistics maxSkewness, highlySkewedFaces;
 //! set skewFaces. \param skewness face_skewness(mesh, geometry).
 //! \param counted per face: counted if highly skewed (CoupledFaces::master); empty: all.
