@@ -117,7 +117,9 @@ void expect_screened_as_full(const PolyMesh& mesh, double threshold)
     for (Index f = 0; f < mesh.n_faces(); ++f)
     {
         if (full[f] > threshold)
+        {
             EXPECT_EQ(screened[f], full[f]) << "face " << f;
+        }
         EXPECT_EQ(screened[f] > threshold, full[f] > threshold) << "face " << f;
         EXPECT_TRUE(screened[f] == full[f] || screened[f] == 0.0) << "face " << f;
     }
