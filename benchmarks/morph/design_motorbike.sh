@@ -28,6 +28,7 @@ set -euo pipefail
 script_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$script_dir/../.." && pwd)
 source "$script_dir/natural_morph.sh"
+source "$script_dir/timed.sh" # timed <log> <cmd...>: $wall, $rss
 # shellcheck source=SCRIPTDIR/../results.sh
 source "$root/benchmarks/results.sh"   # results_init, results_write, ...
 results_init "$@"
@@ -53,27 +54,8 @@ export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
 rm -rf "$out" && mkdir -p "$out"
 say() { echo "design_motorbike.sh: $*"; }
 
-# timed <log> <cmd...>: wall seconds and peak RSS (MB) of one run into $wall and $rss.
-timed() {
-    local log=$1
-    shift
-    local status=0
-    /usr/bin/time -f "%e %M" -o "$log.time" "$@" >"$log" 2>&1 || status=$?
-    # exit 3: a design refused (invalid cells), reported in the table; anything else fails
-    if [ "$status" -ne 0 ] && [ "$status" -ne 3 ]; then
-        tail -20 "$log" >&2
-        return 1
-    fi
-    read -r wall rss_kb < <(tail -1 "$log.time")
-    rss=$((rss_kb / 1024))
-}
-
 say "1. the peer: moveMesh and a one-off morphMesh of the 5% lift"
-bash "$script_dir/motorbike_vs_movemesh.sh" -cache "$cache" -morphMesh "$morph_mesh" \
-    -lifts 0.05 -out "$out/peer" -no-results >"$out/peer.log" 2>&1 || { tail -20 "$out/peer.log"; exit 1; }
-peer_row() { awk -F, -v t="$1" '$7 == t { print $9, $11 }' "$out/peer/results.csv"; }
-read -r movemesh_wall movemesh_rss <<<"$(peer_row moveMesh)"
-read -r oneoff_wall oneoff_rss <<<"$(peer_row morphMesh)"
+natural_morph_peer "$cache" "$morph_mesh" "$out/peer" || exit 1
 say "   moveMesh $movemesh_wall s $movemesh_rss MB, morphMesh $oneoff_wall s $oneoff_rss MB"
 
 say "2. the set-up of six design variables"

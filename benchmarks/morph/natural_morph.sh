@@ -17,3 +17,16 @@ boundary
 }
 DICT
 }
+
+#! natural_morph_peer <full motorBike case> <morphMesh> <dir>: moveMesh and a one-off
+#! morphMesh of the natural lift in one run (motorbike_vs_movemesh.sh -lifts 0.05, into
+#! <dir>); sets movemesh_wall, movemesh_rss, oneoff_wall, oneoff_rss (seconds, MB).
+natural_morph_peer() {
+    local here
+    here=$(dirname "${BASH_SOURCE[0]}")
+    bash "$here/motorbike_vs_movemesh.sh" -cache "$1" -morphMesh "$2" -lifts 0.05 -out "$3" \
+        -no-results >"$3.log" 2>&1 || { tail -20 "$3.log"; return 1; }
+    local row='$7 == tool { print $9, $11 }'
+    read -r movemesh_wall movemesh_rss <<<"$(awk -F, -v tool=moveMesh "$row" "$3/results.csv")"
+    read -r oneoff_wall oneoff_rss <<<"$(awk -F, -v tool=morphMesh "$row" "$3/results.csv")"
+}

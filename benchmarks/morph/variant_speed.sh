@@ -23,6 +23,7 @@ set -euo pipefail
 script_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$script_dir/../.." && pwd)
 source "$script_dir/natural_morph.sh"
+source "$script_dir/timed.sh" # timed <log> <cmd...>: $wall, $rss
 # shellcheck source=SCRIPTDIR/../results.sh
 source "$root/benchmarks/results.sh" # results_init, results_write, ...
 results_init "$@"
@@ -48,23 +49,8 @@ export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
 rm -rf "$out" && mkdir -p "$out"
 say() { echo "variant_speed.sh: $*"; }
 
-# timed <log> <cmd...>: wall seconds of one run into $wall (exit 3, a refusal, is a result).
-timed() {
-    local log=$1 status=0
-    shift
-    /usr/bin/time -f "%e %M" -o "$log.time" "$@" >"$log" 2>&1 || status=$?
-    if [ "$status" -ne 0 ] && [ "$status" -ne 3 ]; then
-        tail -20 "$log" >&2
-        return 1
-    fi
-    read -r wall _ < <(tail -1 "$log.time")
-}
-
 say "1. the peer: moveMesh on the 5% lift"
-bash "$script_dir/motorbike_vs_movemesh.sh" -cache "$cache" -morphMesh "$morph_mesh" \
-    -lifts 0.05 -out "$out/peer" -no-results >"$out/peer.log" 2>&1 || { tail -20 "$out/peer.log"; exit 1; }
-movemesh_wall=$(awk -F, '$7 == "moveMesh" { print $9 }' "$out/peer/results.csv")
-oneoff_wall=$(awk -F, '$7 == "morphMesh" { print $9 }' "$out/peer/results.csv")
+natural_morph_peer "$cache" "$morph_mesh" "$out/peer" || exit 1
 say "   moveMesh $movemesh_wall s, one-off morphMesh $oneoff_wall s"
 
 say "2. the set-up: lift, pitch and one lattice control point in x and z"
