@@ -62,3 +62,21 @@ def test_every_wrong_value_raises(design_pipe):
     assert np.array_equal(case.points, case.initial_points)
     assert case.is_valid()
     assert study.evaluate(np.zeros(len(study.names)))["valid"]
+
+
+def test_usmesh_refuses_wrong_kinds_of_the_right_size(pipe):
+    """USMesh's arrays of the surface's own size but of the wrong kind are refused, not
+    converted: numpy's float conversion would make True 1.0 and drop imaginary parts."""
+    surface = meshmorph.USMesh({"gridFile": str(pipe)})
+    xs = surface.getSurfaceCoordinates()
+    n = meshmorph.Case(pipe).n_points
+    for value in (xs > 0, xs + 1j, xs.astype(str), np.where(xs > 0, np.nan, xs)):
+        with pytest.raises((TypeError, meshmorph.InputError)):
+            surface.setSurfaceCoordinates(value)
+    with pytest.raises(meshmorph.InputError, match="setSurfaceCoordinates first"):
+        surface.warpMesh()  # nothing was set
+    surface.setSurfaceCoordinates(xs.tolist())  # a list of numbers is fine
+    surface.warpMesh()
+    for value in (np.ones((n, 3), dtype=bool), np.ones((n, 3), dtype=complex)):
+        with pytest.raises(TypeError):
+            surface.warpDeriv(value)

@@ -16,6 +16,21 @@ import numpy as np
 from ._core import Case, DesignStudy, InputError
 
 
+def _real_points(values, call):
+    """values as (n, 3) floats, refused as the module's other calls refuse them: booleans,
+    complex numbers, strings and objects are a TypeError (not converted: numpy would make
+    True 1.0 and drop imaginary parts), NaN or infinite values an InputError."""
+    a = np.asarray(values)
+    if a.dtype.kind not in "iuf":
+        raise TypeError(f"{call}: an array of real numbers is needed, not {a.dtype}")
+    if a.size % 3 != 0:
+        raise ValueError(f"{call}: {a.size} values are not (n, 3) coordinates")
+    a = a.astype(float).reshape(-1, 3)
+    if not np.isfinite(a).all():
+        raise InputError(f"{call}: coordinates that are not finite (NaN or infinite)")
+    return a
+
+
 class USMesh:
     """IDWarp-style access to a case: getSurfaceCoordinates, setSurfaceCoordinates,
     warpMesh, getSolverGrid/getWarpGrid, warpDeriv, getdXs (and designDeriv for
@@ -49,7 +64,7 @@ class USMesh:
 
     def setSurfaceCoordinates(self, coordinates):
         """The surface points' new positions, in getSurfaceCoordinates' order."""
-        xs = np.array(coordinates, dtype=float).reshape(-1, 3)
+        xs = _real_points(coordinates, "setSurfaceCoordinates")
         if xs.shape[0] != self._surface.size:
             raise InputError(f"setSurfaceCoordinates: {xs.shape[0]} points given, "
                              f"the surface has {self._surface.size}")
@@ -76,7 +91,7 @@ class USMesh:
         if self.report is None:
             raise InputError("warpDeriv: call warpMesh first (the derivative is that of the "
                              "last warp)")
-        self._dXs = self.case.sensitivity(np.asarray(dXv, dtype=float))[self._surface]
+        self._dXs = self.case.sensitivity(dXv)[self._surface]
         return self._dXs
 
     def getdXs(self):
@@ -91,4 +106,4 @@ class USMesh:
         if self._study is None:
             kwargs = {k: v for k, v in self._case_kwargs.items() if k != "method"}
             self._study = DesignStudy(self._case_dir, **kwargs)
-        return self._study.transpose_product(np.asarray(dXv, dtype=float))
+        return self._study.transpose_product(dXv)
