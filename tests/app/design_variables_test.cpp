@@ -677,8 +677,7 @@ TEST(DesignVariableSetUp, a_2d_lattice_moves_both_empty_planes_alike)
         {"patch", "patch", "wall", "wall", "empty", "empty"});
     io::write_poly_mesh(mesh, io::default_poly_mesh_files(io::FoamFormat::binary), dir, "constant");
     fs::create_directories(dir / "system");
-    fs::copy_file(fs::path(MESHMORPH_SOURCE_DIR) / "tutorials/pipe/system/controlDict",
-                  dir / "system/controlDict");
+    fs::copy_file(test::pipe_tutorial_dir() / "system/controlDict", dir / "system/controlDict");
     test::write_text(
         dir / "system/morphDict",
         "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n"

@@ -60,7 +60,7 @@ fs::path make_case(const std::string& name, const PolyMesh& mesh, const std::str
                "writePrecision 15;\n");
     write_text(dir / "system/morphDict", std::string(dict_header) + morph_dict);
     // OpenFOAM's checkMesh needs these two to start.
-    const fs::path pipe_system = fs::path(MESHMORPH_SOURCE_DIR) / "tutorials/pipe/system";
+    const fs::path pipe_system = test::pipe_tutorial_dir() / "system";
     for (const char* f : {"fvSchemes", "fvSolution"})
         fs::copy_file(pipe_system / f, dir / "system" / f, fs::copy_options::overwrite_existing);
     return dir;

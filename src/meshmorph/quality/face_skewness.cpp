@@ -114,6 +114,25 @@ void internal_quads_skewness(const PolyMesh& mesh, const MeshGeometry& g, const 
         skewness[faces[l]] = s[l];
 }
 
+//! The face skewness of checkMesh (face_skewness with coupled faces) at f, or its bound.
+template <class Measure>
+double checkmesh_measure(const PolyMesh& mesh, const MeshGeometry& g, const CoupledFaces& coupled,
+                         Index f, const Measure& measure)
+{
+    const Index n_int = mesh.n_internal_faces();
+    if (f < n_int)
+    {
+        const FoamVector across = row(g.cell_centres, mesh.neighbour[f]);
+        return measure(mesh, g, f, &across);
+    }
+    if (coupled.coupled_boundary(mesh, f))
+    {
+        const FoamVector across = row(coupled.neighbour_cell_centres, f - n_int);
+        return measure(mesh, g, f, &across);
+    }
+    return measure(mesh, g, f, nullptr);
+}
+
 } // namespace
 
 Eigen::VectorXd face_skewness(const PolyMesh& mesh, const MeshGeometry& g)
@@ -140,39 +159,11 @@ Eigen::VectorXd face_skewness(const PolyMesh& mesh, const MeshGeometry& g,
                               const CoupledFaces& coupled)
 {
     Eigen::VectorXd skewness = face_skewness(mesh, g);
-    const Index n_int = mesh.n_internal_faces();
-    for (Index f = n_int; f < mesh.n_faces(); ++f)
+    for (Index f = mesh.n_internal_faces(); f < mesh.n_faces(); ++f)
         if (coupled.coupled_boundary(mesh, f))
-        {
-            const FoamVector across = row(coupled.neighbour_cell_centres, f - n_int);
-            skewness[f] = skewness_of(mesh, g, f, &across);
-        }
+            skewness[f] = checkmesh_measure(mesh, g, coupled, f, skewness_of);
     return skewness;
 }
-
-namespace
-{
-
-//! The face skewness of checkMesh (face_skewness with coupled faces) at f, or its bound.
-template <class Measure>
-double checkmesh_measure(const PolyMesh& mesh, const MeshGeometry& g, const CoupledFaces& coupled,
-                         Index f, const Measure& measure)
-{
-    const Index n_int = mesh.n_internal_faces();
-    if (f < n_int)
-    {
-        const FoamVector across = row(g.cell_centres, mesh.neighbour[f]);
-        return measure(mesh, g, f, &across);
-    }
-    if (coupled.coupled_boundary(mesh, f))
-    {
-        const FoamVector across = row(coupled.neighbour_cell_centres, f - n_int);
-        return measure(mesh, g, f, &across);
-    }
-    return measure(mesh, g, f, nullptr);
-}
-
-} // namespace
 
 Eigen::VectorXd screened_face_skewness(const PolyMesh& mesh, const MeshGeometry& g,
                                        const CoupledFaces& coupled, double threshold)
@@ -184,23 +175,24 @@ Eigen::VectorXd screened_face_skewness(const PolyMesh& mesh, const MeshGeometry&
     for (Index f = 0; f < n_faces; ++f)
         bound[f] = checkmesh_measure(mesh, g, coupled, f, skewness_bound_of);
     Eigen::VectorXd skewness = Eigen::VectorXd::Zero(n_faces);
-    // Exact wherever the bound exceeds `level` (or is not finite); returns their largest.
-    const auto exact_above = [&](double level)
+    // The exact value wherever `wanted(f)`; returns the largest of them.
+    const auto exact_where = [&](const auto& wanted)
     {
         double largest = 0.0;
 #pragma omp parallel for schedule(dynamic, detail::loop_piece)                                     \
     reduction(max                                                                                  \
               : largest) if (n_faces > detail::parallel_threshold)
         for (Index f = 0; f < n_faces; ++f)
-            if (!(bound[f] <= level))
+            if (wanted(f))
             {
                 skewness[f] = checkmesh_measure(mesh, g, coupled, f, skewness_of);
                 largest = std::max(largest, skewness[f]);
             }
         return largest;
     };
-    // Every face above the threshold is exact; a face left out is at most the threshold.
-    const double above = exact_above(threshold);
+    // Every face whose bound exceeds the threshold (or is not finite) exact: a face left out
+    // is at most the threshold.
+    const double above = exact_where([&](Index f) { return !(bound[f] <= threshold); });
     if (above >= threshold || n_faces == 0)
         return skewness;
     // All faces at most the threshold: the largest is at least the value of the face with
@@ -208,7 +200,8 @@ Eigen::VectorXd screened_face_skewness(const PolyMesh& mesh, const MeshGeometry&
     Index top = 0;
     bound.maxCoeff(&top);
     skewness[top] = checkmesh_measure(mesh, g, coupled, top, skewness_of);
-    (void)exact_above(std::max(above, skewness[top]));
+    const double level = std::max(above, skewness[top]);
+    (void)exact_where([&](Index f) { return bound[f] > level && bound[f] <= threshold; });
     return skewness;
 }
 
