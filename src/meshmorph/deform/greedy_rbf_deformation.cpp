@@ -75,7 +75,7 @@ void GreedyRbfDeformation::prepare(const Eigen::Ref<const Points>& constraints,
     d.rms_history.clear();
     d.report = FitReport{};
     d.report.method = "greedy-rbf";
-    d.report.solver = "incremental Lagrange null-space Cholesky (dtrsm + dpotrf)";
+    d.report.solver = "incremental Lagrange null-space Cholesky";
     d.model = detail::normalised_model(d.setup, constraints);
     d.system.reset();
     d.merged = detail::merge_duplicates(constraints, d.model.normalise(constraints), displacements,

@@ -24,7 +24,7 @@ struct CentreMarks;
 //! Lagrange basis of a fixed polynomial-unisolvent set U (the first centres), z_j = e_j -
 //! sum_{u in U} lambda_uj e_u, so adding centres only appends rows and columns to the
 //! reduced matrix Z^T A Z; its Cholesky factor is extended per batch by a triangular solve
-//! for the new off-diagonal block (dtrsm) and a Cholesky of the Schur complement (dpotrf),
+//! for the new off-diagonal block and a Cholesky of the Schur complement (dense_kernels.h),
 //! never refactored from scratch. Residuals over all constraints use the blocked evaluator.
 //!
 //! Exactness: the result interpolates its centres exactly; the remaining constraint points

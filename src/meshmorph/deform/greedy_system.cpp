@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The greedy RBF fit's null-space system, extended per batch of centres by a triangular
-// solve (dtrsm) and a Cholesky of the Schur complement (dpotrf), never refactored.
+// solve and a Cholesky of the Schur complement, never refactored.
 #include "meshmorph/deform/greedy_system.h"
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/tie_break.h"
-#include "meshmorph/deform/lapack.h"
+#include "meshmorph/deform/dense_kernels.h"
 
 namespace meshmorph::detail
 {
@@ -99,24 +99,18 @@ Eigen::Index IncrementalSystem::add(const std::vector<Eigen::Index>& cand, Eigen
         Knn.col(j) *= sign_;
     }
     factor_.forward(Kon);
-    // The Schur complement S = Knn - Kon^T Kon (lower triangle, what dpotrf reads) by
-    // BLAS, which runs on one thread here: Eigen's product splits its blocks by the
-    // number of OpenMP threads, and the last bits of S, then the centres chosen from
-    // residuals amplified by the condition number, would follow the thread count.
+    // The Schur complement S = Knn - Kon^T Kon (lower triangle) and its Cholesky factor,
+    // on one thread (dense_kernels.h): the last bits of S, then the centres chosen from
+    // residuals amplified by the condition number, must not follow the thread count or the
+    // processor's BLAS kernel.
     Eigen::MatrixXd S = Knn;
-    const int n = lapack_int(b);
     if (r0 > 0)
-    {
-        const int k = lapack_int(r0);
-        const double minus_one = -1.0, one = 1.0;
-        dsyrk_("L", "T", &n, &k, &minus_one, Kon.data(), &k, &one, S.data(), &n);
-    }
-    int info = 0;
-    dpotrf_("L", &n, S.data(), &n, &info);
+        subtract_gram_lower(dense_block(S.data(), b, b, b), dense_block(Kon.data(), r0, b, r0));
+    const Eigen::Index failed = cholesky_lower(dense_block(S.data(), b, b, b));
     Eigen::Index keep = b;
-    if (info > 0)
+    if (failed >= 0)
     {
-        keep = info - 1;
+        keep = failed;
         rejected = cand[std::size_t(keep)];
     }
     factor_.append(Kon.leftCols(keep).transpose(), S.topLeftCorner(keep, keep));

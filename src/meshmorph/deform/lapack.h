@@ -1,23 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-//! \file Declarations of the few Fortran BLAS/LAPACK routines deform uses (OpenBLAS provides
-//! them; Debian ships no LAPACKE/CBLAS headers by default, so we declare the symbols).
+//! \file Declarations of the two Fortran BLAS/LAPACK routines deform uses: DM-FFD's SVD and
+//! the handle basis's product (OpenBLAS provides them; Debian ships no LAPACKE/CBLAS headers
+//! by default, so we declare the symbols). The RBF fits use none (dense_kernels.h).
 #pragma once
 
 extern "C"
 {
-    void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info);
-    void dpotrs_(const char* uplo, const int* n, const int* nrhs, const double* a, const int* lda,
-                 double* b, const int* ldb, int* info);
-    void dpocon_(const char* uplo, const int* n, const double* a, const int* lda,
-                 const double* anorm, double* rcond, double* work, int* iwork, int* info);
-    double dlansy_(const char* norm, const char* uplo, const int* n, const double* a,
-                   const int* lda, double* work);
-    void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag,
-                const int* m, const int* n, const double* alpha, const double* a, const int* lda,
-                double* b, const int* ldb);
-    void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k,
-                const double* alpha, const double* a, const int* lda, const double* beta, double* c,
-                const int* ldc);
     void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
                 const double* alpha, const double* a, const int* lda, const double* b,
                 const int* ldb, const double* beta, double* c, const int* ldc);
@@ -29,8 +17,8 @@ extern "C"
 namespace meshmorph::detail
 {
 
-//! Makes OpenBLAS's pthread build single-threaded (once per process), so that the fits give
-//! the same bits whatever OMP_NUM_THREADS or OPENBLAS_NUM_THREADS say. A no-op with another
+//! Makes OpenBLAS's pthread build single-threaded (once per process), so that DM-FFD's SVD
+//! gives the same bits whatever OMP_NUM_THREADS or OPENBLAS_NUM_THREADS say. A no-op with another
 //! BLAS, and with OpenBLAS's OpenMP build (its thread count is OpenMP's: there the fits agree
 //! across thread counts to round-off, docs/same-result.md).
 void use_one_blas_thread();

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// RBF deformation: null-space reduction of Eq. 8 and blocked Cholesky (dpotrf).
+// RBF deformation: null-space reduction of Eq. 8 and blocked Cholesky (dense_kernels.h).
 #include "meshmorph/deform/rbf_deformation.h"
 
 #include <algorithm>
@@ -17,8 +17,8 @@
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
+#include "meshmorph/deform/dense_kernels.h"
 #include "meshmorph/deform/field_stream.h"
-#include "meshmorph/deform/lapack.h"
 #include "meshmorph/deform/rbf_evaluator.h"
 #include "meshmorph/deform/rbf_setup.h"
 
@@ -104,49 +104,39 @@ void RbfDeformation::Impl::factor_dense()
                 T.col(i).head(i) = -tau[i] * tv;
             }
         }
-        Eigen::MatrixXd Y(m, p);
-        const int im = detail::lapack_int(m), ip = detail::lapack_int(p), i2p = 2 * ip;
-        const double one = 1.0, zero = 0.0, minus_one = -1.0;
-        dgemm_("N", "N", &im, &ip, &im, &one, A.data(), &im, V.data(), &im, &zero, Y.data(), &im);
+        detail::use_one_eigen_thread(); // the products' bits must not follow the thread count
+        const Eigen::MatrixXd Y = A * V;
         const Eigen::MatrixXd Z = V.transpose() * Y;
         Eigen::MatrixXd WV(m, 2 * p), VW(m, 2 * p);
         WV.leftCols(p) = Y * T - 0.5 * V * (T.transpose() * Z * T);
         WV.rightCols(p) = V;
         VW.leftCols(p) = V;
         VW.rightCols(p) = WV.leftCols(p);
-        dgemm_("N", "T", &im, &im, &i2p, &minus_one, WV.data(), &im, VW.data(), &im, &one, A.data(),
-               &im);
+        A.noalias() -= WV * VW.transpose();
     }
-    report.solver = p > 0 ? "null-space QR + LAPACK dpotrf" : "LAPACK dpotrf";
+    report.solver = p > 0 ? "null-space QR + blocked Cholesky" : "blocked Cholesky";
     report.condition_estimate = 1.0;
     if (r == 0)
         return;
-    const int n = detail::lapack_int(r);
-    const int lda = detail::lapack_int(m);
-    double* B = A.data() + p * m + p;
+    auto B = detail::dense_block(A.data() + p * m + p, r, r, m);
     if (setup.sign < 0)
     {
 #pragma omp parallel for schedule(static) if (r > 500)
         for (Eigen::Index j = 0; j < r; ++j)
             for (Eigen::Index i = j; i < r; ++i)
-                B[i + j * m] = -B[i + j * m];
+                B(i, j) = -B(i, j);
     }
-    std::vector<double> work(static_cast<std::size_t>(3 * r));
-    std::vector<int> iwork(static_cast<std::size_t>(r));
-    const double anorm = dlansy_("1", "L", &n, B, &lda, work.data());
-    int info = 0;
-    dpotrf_("L", &n, B, &lda, &info);
-    if (info != 0)
+    const double norm = detail::symmetric_norm1(B);
+    if (const Eigen::Index failed = detail::cholesky_lower(B); failed >= 0)
     {
         std::ostringstream s;
         s << "RBF (" << to_string(settings.kernel) << "): the reduced " << r << " x " << r
           << " system is not " << (setup.sign < 0 ? "negative" : "positive")
-          << " definite (Cholesky failed at column " << info
+          << " definite (Cholesky failed at column " << failed + 1
           << "): the handles nearly coincide for this kernel" << flatness_hint(settings.kernel);
         throw SolverError(s.str());
     }
-    double rcond = 0.0;
-    dpocon_("L", &n, B, &lda, &anorm, &rcond, work.data(), iwork.data(), &info);
+    const double rcond = detail::cholesky_reciprocal_condition(B, norm);
     report.condition_estimate = rcond > 0.0 ? 1.0 / rcond : std::numeric_limits<double>::infinity();
 }
 
@@ -211,13 +201,10 @@ void RbfDeformation::Impl::solve(const Eigen::MatrixXd& H, Eigen::MatrixXd& W,
     Eigen::MatrixXd Y = setup.sign * G.bottomRows(r);
     if (r > 0)
     {
-        const int n = detail::lapack_int(r);
-        const int lda = detail::lapack_int(m);
-        const int nrhs = detail::lapack_int(Y.cols());
-        int info = 0;
-        dpotrs_("L", &n, &nrhs, A.data() + p * m + p, &lda, Y.data(), &n, &info);
-        if (info != 0)
-            throw SolverError("RBF: dpotrs failed (info " + std::to_string(info) + ")");
+        const auto L = detail::dense_block(A.data() + p * m + p, r, r, m);
+        auto y = detail::dense_block(Y.data(), r, Y.cols(), r);
+        detail::solve_lower(L, y);
+        detail::solve_lower_transposed(L, y);
     }
     W.resize(m, H.cols());
     W.topRows(p).setZero();

@@ -18,7 +18,6 @@
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/core/log.h"
 #include "meshmorph/deform/field_stream.h"
-#include "meshmorph/deform/lapack.h"
 #include "meshmorph/deform/rbf_evaluator.h"
 #include "meshmorph/deform/rbf_setup.h"
 

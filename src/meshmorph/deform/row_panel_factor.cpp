@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Forward and back substitution over row panels: one dgemm with everything left of a panel
-// and one dtrsm with its diagonal block each (blocked substitution, BLAS level 3).
+// Forward and back substitution over row panels: one product with everything left of a
+// panel and one triangular solve with its diagonal block each (blocked substitution).
 #include "meshmorph/deform/row_panel_factor.h"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "meshmorph/deform/lapack.h"
+#include "meshmorph/deform/dense_kernels.h"
 
 namespace meshmorph::detail
 {
@@ -49,12 +49,10 @@ void RowPanelFactor::forward(Eigen::MatrixXd& X) const
 {
     if (X.rows() != size_)
         throw std::logic_error("RowPanelFactor::forward: wrong number of rows");
-    // Columns are independent: blocks of a fixed width, on OpenMP's threads, each block by
-    // single-threaded BLAS. The blocks do not depend on the thread count, so neither do
-    // the bits.
+    // Columns are independent: blocks of a fixed width, on OpenMP's threads, each block on
+    // one thread. The blocks do not depend on the thread count, so neither do the bits.
+    use_one_eigen_thread();
     const Eigen::Index n = X.cols();
-    (void)lapack_int(n); // dimensions checked here: nothing throws in the parallel loop
-    (void)lapack_int(X.rows());
     const Eigen::Index blocks = (n + forward_block - 1) / forward_block;
 #pragma omp parallel for schedule(dynamic) if (blocks > 1 && size_ * n > 100000)
     for (Eigen::Index k = 0; k < blocks; ++k)
@@ -66,23 +64,16 @@ void RowPanelFactor::forward(Eigen::MatrixXd& X) const
 
 void RowPanelFactor::forward_columns(double* x, Eigen::Index columns) const
 {
-    const int m = lapack_int(columns), ldx = lapack_int(size_);
-    const double one = 1.0, minus_one = -1.0;
-    if (m == 0)
+    if (columns == 0)
         return;
     for (const Panel& p : panels_)
     {
-        const int b = lapack_int(p.rows), ld = lapack_int(p.entries.rows());
-        double* xp = x + p.first;
-        if (p.first > 0)
-        {
-            // X_p -= L_p,left X_0..first
-            const int k = lapack_int(p.first);
-            dgemm_("N", "N", &b, &m, &k, &minus_one, p.entries.data(), &ld, x, &ldx, &one, xp,
-                   &ldx);
-        }
-        dtrsm_("L", "L", "N", "N", &b, &m, &one, p.entries.data() + p.first * p.entries.rows(), &ld,
-               xp, &ldx);
+        const Eigen::Index ld = p.entries.rows();
+        auto xp = dense_block(x + p.first, p.rows, columns, size_);
+        if (p.first > 0) // X_p -= L_p,left X_0..first
+            subtract_product(xp, dense_block(p.entries.data(), p.rows, p.first, ld),
+                             dense_block(static_cast<const double*>(x), p.first, columns, size_));
+        solve_lower(dense_block(p.entries.data() + p.first * ld, p.rows, p.rows, ld), xp);
     }
 }
 
@@ -90,25 +81,23 @@ void RowPanelFactor::backward(Eigen::MatrixXd& X) const
 {
     if (X.rows() != size_)
         throw std::logic_error("RowPanelFactor::backward: wrong number of rows");
-    const int m = lapack_int(X.cols()), ldx = lapack_int(X.rows());
-    const double one = 1.0, minus_one = -1.0;
+    const Eigen::Index m = X.cols();
     if (m == 0)
         return;
     for (auto k = panels_.rbegin(); k != panels_.rend(); ++k)
     {
-        const int b = lapack_int(k->rows);
-        double* xk = X.data() + k->first;
+        auto xk = dense_block(X.data() + k->first, k->rows, m, size_);
         // X_k -= sum over the later panels j of (L_j's columns of panel k)^T X_j
         for (auto j = panels_.rbegin(); j != k; ++j)
         {
-            const int bj = lapack_int(j->rows), ldj = lapack_int(j->entries.rows());
-            dgemm_("T", "N", &b, &m, &bj, &minus_one,
-                   j->entries.data() + k->first * j->entries.rows(), &ldj, X.data() + j->first,
-                   &ldx, &one, xk, &ldx);
+            const Eigen::Index ldj = j->entries.rows();
+            subtract_transposed_product(
+                xk, dense_block(j->entries.data() + k->first * ldj, j->rows, k->rows, ldj),
+                dense_block(static_cast<const double*>(X.data()) + j->first, j->rows, m, size_));
         }
-        const int ld = lapack_int(k->entries.rows());
-        dtrsm_("L", "L", "T", "N", &b, &m, &one, k->entries.data() + k->first * k->entries.rows(),
-               &ld, xk, &ldx);
+        const Eigen::Index ld = k->entries.rows();
+        solve_lower_transposed(dense_block(k->entries.data() + k->first * ld, k->rows, k->rows, ld),
+                               xk);
     }
 }
 

@@ -11,6 +11,7 @@ set(MESHMORPH_DEFORM_SOURCES
     meshmorph/deform/ffd_deformation.cpp
     meshmorph/deform/dmffd_deformation.cpp
     meshmorph/deform/jump_detection.cpp
+    meshmorph/deform/dense_kernels.cpp
     meshmorph/deform/row_panel_factor.cpp
     meshmorph/deform/greedy_system.cpp
     meshmorph/deform/greedy_centres.cpp

@@ -18,14 +18,15 @@ class FieldReader;
 struct FitReport
 {
     std::string method;    //!< "rbf", "ffd", "dmffd", "greedy-rbf", ...
-    std::string solver;    //!< factorisation used, e.g. "null-space + dpotrf"
+    std::string solver;    //!< factorisation used, e.g. "null-space QR + blocked Cholesky"
     Index num_handles = 0; //!< constraints after merging duplicates
     Index num_merged_duplicates = 0;
     Index num_centres = 0;      //!< RBF centres or FFD/DM-FFD control points (DoFs / 3)
     Index polynomial_terms = 0; //!< polynomial terms kept after the rank test (RBF)
     Index rank = 0;             //!< numerical rank after clamping (DM-FFD), else 0
     Index iterations = 0;       //!< refinement iterations (greedy), else 0
-    //! 1-norm condition-number estimate of the factored matrix (dpocon). 0: not estimated.
+    //! 1-norm condition-number estimate of the factored matrix (as LAPACK's dpocon). 0: not
+    //! estimated.
     //! For the sparse Wendland solve it is max(L_ii^2)/min(L_ii^2), a lower bound.
     //! For DM-FFD: sigma_max / smallest kept sigma.
     double condition_estimate = 0.0;
