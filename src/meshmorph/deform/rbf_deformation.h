@@ -19,8 +19,8 @@ namespace meshmorph
 //! principal frame of the handles with degenerate terms dropped by a pivoted QR; null-space
 //! reduction with the Householder QR of P (m x p): w = Q2 y, (Q2^T A Q2) y = Q2^T h; the
 //! reduced matrix is definite with a kernel-dependent sign and is factored by a blocked
-//! Cholesky on one thread (dense_kernels.h), its condition estimated as LAPACK's dpocon does. Wendland C2: sparse
-//! SimplicialLLT of A, polynomial by the range-space (Schur complement) method.
+//! Cholesky on one thread (dense_kernels.h), its condition estimated as LAPACK's dpocon does.
+//! Wendland C2: sparse SimplicialLLT of A, polynomial by the range-space (Schur complement) method.
 //! Evaluation is blocked over points and centres, OpenMP-parallel and SIMD, and never
 //! stores an n x m matrix.
 class RbfDeformation : public SpaceDeformation
