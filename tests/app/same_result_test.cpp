@@ -125,7 +125,9 @@ MorphOutcome expect_the_same_outcome_under_every_kernel(const fs::path& source)
         EXPECT_EQ(other.steps, first.steps) << which;
         EXPECT_EQ(other.points.rows(), first.points.rows()) << which;
         if (first.points.rows() > 0 && other.points.rows() == first.points.rows())
+        {
             EXPECT_EQ((other.points - first.points).cwiseAbs().maxCoeff(), 0.0) << which;
+        }
     }
     return first;
 }
