@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "design_pipe.h"
 #include "helpers.h"
 #include "meshmorph/io/read_poly_mesh.h"
 #include "meshmorph/io/write_poly_mesh.h"
@@ -27,18 +28,11 @@ namespace
 {
 
 namespace fs = std::filesystem;
-
-std::string read_text(const fs::path& path)
-{
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using namespace design_test;
 
 //! The pipe's core lifted by a handle, its wall squeezed and twisted, and the inner 2x2x2
 //! control points of a 4x4x4 lattice moving the wall sideways: 3 + 8 variables.
-const char* design_dict = R"dict(
+const std::string design_dict = R"dict(
 boundary
 {
     default { type fixed; }
@@ -50,65 +44,8 @@ handles
 }
 designVariables
 {
-    lift    { handle core; vector (0 0.1 0); bounds (-3 3); }
-    squeeze { patches (wall); type scale; origin (0 0 1); factor (0.9 0.9 1); }
-    twist   { patches (wall); type rotate; origin (0 0 0); axis (0 0 1); angle 2; }
-    bump
-    {
-        type        ffd;
-        patches     (wall);
-        lattice     (4 4 4);
-        box         ((-0.6 -0.6 0.4) (0.6 0.6 1.6));
-        directions  (x);
-        confine     (1 1 1);
-    }
-}
-)dict";
-
-fs::path pipe_case(const std::string& name, const std::string& dict_body)
-{
-    const fs::path dir = test::scratch_dir("design_variables/" + name);
-    const fs::path pipe = test::pipe_tutorial_dir();
-    const io::FoamPolyMesh shipped = test::read_shipped_pipe();
-    io::write_poly_mesh(shipped.mesh, io::default_poly_mesh_files(io::FoamFormat::binary), dir,
-                        "constant");
-    fs::create_directories(dir / "system");
-    fs::copy_file(pipe / "system/controlDict", dir / "system/controlDict");
-    test::write_text(dir / "system/morphDict",
-                     "FoamFile { version 2.0; format ascii; class dictionary; object "
-                     "morphDict; }\n" +
-                         dict_body);
-    return dir;
-}
-
-Points points_at(const fs::path& dir, const std::string& time)
-{
-    io::PolyMeshReadOptions o;
-    o.time = io::TimeSelection::at(time);
-    return io::read_poly_mesh(dir, o).mesh.points;
-}
-
-std::string amplitude_list(const std::vector<double>& a)
-{
-    std::ostringstream s;
-    s.precision(17);
-    s << "(";
-    for (double v : a)
-        s << v << " ";
-    s << ")";
-    return s.str();
-}
-
-//! The points of a variant (written into time 1, which is removed again).
-Points variant_points(const fs::path& dir, const std::vector<double>& a)
-{
-    const test::MorphRun r =
-        test::run_morph_mesh({"-case", dir.string(), "-variant", amplitude_list(a)});
-    EXPECT_EQ(r.code, 0) << r.log;
-    Points x = points_at(dir, "1");
-    fs::remove_all(dir / "1");
-    return x;
-}
+    lift    { handle core; vector (0 0.1 0); bounds (-3 3); })dict" +
+                                std::string(wall_variables) + "}\n";
 
 std::vector<double> amplitudes(double lift, double squeeze, double twist, double bump)
 {
@@ -173,22 +110,10 @@ TEST_F(DesignVariables, a_variant_is_linear_in_its_amplitudes_and_moves_the_hand
             EXPECT_NEAR(xa(i, 2) - x_without(i, 2), 0.0, 1e-12);
         }
     EXPECT_GT(in_handle, 0);
-    // The squeeze's own size: a wall point moves by -0.1 (x, y, 0) times its amplitude (the
-    // wall's end rings excepted: they are also on the slipping inlet and outlet).
+    // The squeeze's own size.
     std::vector<double> squeeze(a.size(), 0.0);
     squeeze[1] = 0.5;
-    const Points xq = variant_points(*dir_, squeeze);
-    int on_wall = 0;
-    for (Index i = 0; i < x0.rows(); ++i)
-    {
-        const double r = std::hypot(x0(i, 0), x0(i, 1));
-        if (std::abs(r - 0.5) > 1e-9 || x0(i, 2) < 0.05 || x0(i, 2) > 1.95)
-            continue;
-        ++on_wall;
-        EXPECT_NEAR(xq(i, 0) - x0(i, 0), -0.05 * x0(i, 0), 1e-12);
-        EXPECT_NEAR(xq(i, 1) - x0(i, 1), -0.05 * x0(i, 1), 1e-12);
-    }
-    EXPECT_GT(on_wall, 100);
+    expect_wall_squeezed(x0, variant_points(*dir_, squeeze), 0.5);
 }
 
 TEST_F(DesignVariables, a_variant_of_a_translation_equals_the_one_off_morph_of_the_same_motion)
@@ -208,71 +133,6 @@ TEST_F(DesignVariables, a_variant_of_a_translation_equals_the_one_off_morph_of_t
     EXPECT_GT((variant - x0).cwiseAbs().maxCoeff(), 0.05);
 }
 
-//! An ascii pointVectorField with `internal` and, per listed patch, fixedValue values.
-void write_point_field(const fs::path& path, const Points& internal,
-                       const std::vector<std::pair<std::string, Points>>& patches,
-                       const PolyMesh& mesh)
-{
-    std::ostringstream s;
-    s.precision(17);
-    s << "FoamFile { version 2.0; format ascii; class pointVectorField; object dJdx; }\n"
-      << "dimensions [0 0 0 0 0 0 0];\ninternalField nonuniform List<vector> " << internal.rows()
-      << "\n(\n";
-    for (Index i = 0; i < internal.rows(); ++i)
-        s << "(" << internal(i, 0) << " " << internal(i, 1) << " " << internal(i, 2) << ")\n";
-    s << ");\nboundaryField\n{\n";
-    for (const Patch& p : mesh.patches)
-    {
-        s << p.name << " { type calculated; value ";
-        bool listed = false;
-        for (const auto& [name, values] : patches)
-            if (name == p.name)
-            {
-                listed = true;
-                s << "nonuniform List<vector> " << values.rows() << "(";
-                for (Index i = 0; i < values.rows(); ++i)
-                    s << "(" << values(i, 0) << " " << values(i, 1) << " " << values(i, 2) << ")";
-                s << ")";
-            }
-        if (!listed)
-            s << "uniform (0 0 0)";
-        s << "; }\n";
-    }
-    s << "}\n";
-    test::write_text(path, s.str());
-}
-
-//! J(x) = sum_i w_i . x_i with w_i smooth, distinct per point and without the pipe's
-//! symmetries (which would make a squeeze's or a twist's dJ/da vanish).
-Points weights(const Points& x0)
-{
-    Points w(x0.rows(), 3);
-    for (Index i = 0; i < x0.rows(); ++i)
-    {
-        const double x = x0(i, 0), y = x0(i, 1), z = x0(i, 2);
-        w.row(i) << 1.0 + x + 0.3 * z, 2.0 + y + 0.5 * x + std::sin(3 * z), 0.5 + z * x;
-    }
-    return w;
-}
-
-double objective(const Points& w, const Points& x)
-{
-    return (w.array() * x.array()).sum();
-}
-
-std::vector<double> gradient_from(const fs::path& dir, const std::string& file)
-{
-    const fs::path json = dir / "sens.json";
-    const test::MorphRun r =
-        test::run_morph_mesh({"-case", dir.string(), "-sensitivity", file, "-json", json.string()});
-    EXPECT_EQ(r.code, 0) << r.log;
-    const nlohmann::json j = nlohmann::json::parse(read_text(json));
-    std::vector<double> g;
-    for (const auto& name : j["names"])
-        g.push_back(j["dJda"][name.get<std::string>()].get<double>());
-    return g;
-}
-
 TEST_F(DesignVariables, volume_sensitivity_equals_central_finite_differences)
 {
     const io::FoamPolyMesh foam = io::read_poly_mesh(*dir_);
@@ -286,19 +146,7 @@ TEST_F(DesignVariables, volume_sensitivity_equals_central_finite_differences)
         text.erase(at, std::string(" value uniform (0 0 0);").size());
     test::write_text(*dir_ / "0/dJdxNoValues", text);
     EXPECT_EQ(gradient_from(*dir_, "0/dJdxNoValues"), g);
-    const std::vector<double> a = amplitudes(0.2, 0.1, 0.5, 0.01);
-    for (std::size_t j : {0u, 1u, 2u, 4u, 9u})
-    {
-        const double h = 1e-3;
-        std::vector<double> up = a, down = a;
-        up[j] += h;
-        down[j] -= h;
-        const double fd =
-            (objective(w, variant_points(*dir_, up)) - objective(w, variant_points(*dir_, down))) /
-            (2 * h);
-        EXPECT_NEAR(g[j], fd, 1e-6 * std::max(1.0, std::abs(fd))) << "variable " << j;
-        EXPECT_GT(std::abs(fd), 1e-3) << "variable " << j << " should change J";
-    }
+    expect_central_differences(*dir_, w, g, amplitudes(0.2, 0.1, 0.5, 0.01), {0, 1, 2, 4, 9});
 }
 
 TEST_F(DesignVariables, surface_sensitivity_on_the_wall_equals_finite_differences_of_a_wall_sum)

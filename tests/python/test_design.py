@@ -388,3 +388,48 @@ def test_a_variant_failing_a_check_the_mesh_passed_is_warned_about(pipe, caplog)
     assert [f["check"] for f in report["newFailedChecks"]] == ["aspectRatio"], report
     warnings = [r.getMessage() for r in caplog.records if r.levelname == "WARNING"]
     assert any(w.startswith("the variant fails the check aspectRatio") for w in warnings), warnings
+
+
+SHARED_DICT = """
+method rbf;
+rbf { greedy { tolerance 1e-3; } }
+designBasis shared;
+boundary { default { type fixed; } "(inlet|outlet)" { type slip; } }
+designVariables
+{
+    squeeze { patches (wall); type scale; origin (0 0 1); factor (0.9 0.9 1); }
+    bump { type ffd; patches (wall); lattice (4 4 4); box ((-0.6 -0.6 0.4) (0.6 0.6 1.6));
+           directions (x y); confine (1 1 1); }
+}
+"""
+
+
+def test_a_shared_set_up_is_linear_and_its_gradient_equals_finite_differences(pipe):
+    # One held fit for the 17 variables: points(a) is linear in a to round-off (the fit's
+    # solve, the correction's single-precision far terms), and transpose_product is its
+    # transpose.
+    write_dict(pipe / "system" / "morphDict", SHARED_DICT)
+    report = meshmorph.setup_design(pipe)
+    assert report["storage"] == "shared"
+    assert report["storageReason"] == "designBasis shared"
+    study = meshmorph.DesignStudy(pipe)
+    n = len(study.names)
+    assert n == 17
+    x0 = study.initial_points
+    a = 0.05 * np.sin(np.arange(1, n + 1))
+    b = 0.03 * np.cos(np.arange(1, n + 1))
+    moved = study.points(a + b) - x0
+    assert np.abs(moved).max() > 1e-3
+    linear_error = np.abs(study.points(a) - x0 + study.points(b) - x0 - moved).max()
+    assert linear_error < 1e-8 * np.abs(moved).max()
+
+    g = np.random.default_rng(3).normal(size=x0.shape)
+    dJda = study.transpose_product(g)
+    h = 0.1
+    for j in (0, 1, 9, 16):
+        e = np.zeros(n)
+        e[j] = h
+        fd = (np.sum(g * study.points(a + e)) - np.sum(g * study.points(a - e))) / (2 * h)
+        assert fd == pytest.approx(dJda[j], rel=1e-6, abs=1e-6 * np.abs(dJda).max())
+    r = study.evaluate(a)
+    assert r["valid"] and r["relativeConstraintError"] < 1e-10

@@ -251,6 +251,8 @@ nlohmann::json setup_json(const design::DesignSetupResult& r)
             {"method", r.method},
             {"points", r.n_points},
             {"constrainedPoints", r.n_constrained},
+            {"storage", r.storage},
+            {"storageReason", r.storage_reason},
             {"variables", variables},
             {"bytes", r.bytes},
             {"seconds", r.seconds},

@@ -95,6 +95,23 @@ void CorrectedDeformation::fit(const Eigen::Ref<const Points>& handles,
         global_ = std::make_unique<GreedyRbfDeformation>(greedy);
         global_->fit(handles, displacements);
     }
+    handles_ = handles;
+    const double largest = displacements.rowwise().norm().maxCoeff();
+    quiet_ = quiet_handles(*global_, handles.rows(), largest);
+    fit_correction(displacements);
+}
+
+void CorrectedDeformation::refit(const Eigen::Ref<const Points>& displacements)
+{
+    if (!is_fitted())
+        throw InvalidInput("CorrectedDeformation: refit before fit");
+    global_->refit(displacements);
+    fit_correction(displacements);
+}
+
+void CorrectedDeformation::fit_correction(const Eigen::Ref<const Points>& displacements)
+{
+    const Points& handles = handles_;
     Points residual(handles.rows(), 3);
     handle_rows_ = {};
     global_at_handles_.resize(0, 3);
@@ -110,8 +127,7 @@ void CorrectedDeformation::fit(const Eigen::Ref<const Points>& handles,
         residual = displacements - residual;
     }
     const double largest = displacements.rowwise().norm().maxCoeff(&largest_row_);
-    handles_ = handles;
-    correction_.fit(handles, residual, quiet_handles(*global_, handles.rows(), largest));
+    correction_.fit(handles, residual, quiet_);
     largest_direction_ =
         largest > 0.0 ? Vector3(displacements.row(largest_row_) / largest) : Vector3::Zero();
     report_ = global_->report();

@@ -43,6 +43,10 @@ public:
     //! replaced by a GreedyRbfDeformation with the same kernel, with a warning.
     void fit(const Eigen::Ref<const Points>& handles,
              const Eigen::Ref<const Points>& displacements) override;
+    //! The global part refitted with its choices held, then the correction fitted to its
+    //! residual with the fit's quiet handles: linear in the data (the limit, if set, is not:
+    //! it projects onto the ball of the new data's largest prescription).
+    void refit(const Eigen::Ref<const Points>& displacements) override;
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     //! The global part's report; max/rms residual are those of the global part alone
     //! (what the correction takes up), max_displacement the prescriptions'.
@@ -62,6 +66,8 @@ private:
     //! fit (values_at_handles, bit for bit what its evaluation gives), elsewhere evaluated.
     void evaluate_global(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const;
 
+    //! The correction fitted to the residual of the global part at handles_, and the report.
+    void fit_correction(const Eigen::Ref<const Points>& displacements);
     //! g + c before the limit.
     void evaluate_unlimited(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const;
     //! Replaces g by the limit's transposed derivative applied to it; returns the weight
@@ -79,6 +85,8 @@ private:
     //! The handles of the fit, and the row and direction of its largest prescription (what
     //! the limit's radius follows), for transpose().
     Points handles_;
+    //! Per handle, quiet in the correction's tree (chosen by fit(), held by refit()).
+    std::vector<char> quiet_;
     Eigen::Index largest_row_ = 0;
     Vector3 largest_direction_ = Vector3::Zero();
 };

@@ -89,7 +89,7 @@ public:
     bool refinement_converged() const { return converged_; }
     //! New displacements for the same handles, reusing the SVD (O((m + n) r)). Timed against
     //! the handle basis in benchmarks/paper/performance.cpp (paper Sec. 3.1).
-    void refit(const Eigen::Ref<const Points>& displacements);
+    void refit(const Eigen::Ref<const Points>& displacements) override;
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     const FitReport& report() const override { return report_; }
     bool is_fitted() const override { return ffd_.has_value(); }

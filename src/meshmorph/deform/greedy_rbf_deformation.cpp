@@ -38,8 +38,10 @@ struct GreedyRbfDeformation::Impl
     Points values_at_handles;
     //! Per constraint of the last fit: on a jump (handles_left_out()).
     std::vector<char> left_out;
-    // Kept after fit for handle_basis(); system refers to model, merged.centres and P.
+    // Kept after fit for handle_basis() and refit(); system refers to model, merged.centres
+    // and P.
     Index num_inputs = 0;
+    Points inputs; //!< the constraints given to fit (physical)
     detail::MergedHandles merged;
     Eigen::MatrixXd P;
     std::unique_ptr<detail::IncrementalSystem> system;
@@ -81,6 +83,7 @@ void GreedyRbfDeformation::prepare(const Eigen::Ref<const Points>& constraints,
     d.merged = detail::merge_duplicates(constraints, d.model.normalise(constraints), displacements,
                                         d.settings.rbf.duplicate_tolerance);
     d.num_inputs = Index(constraints.rows());
+    d.inputs = constraints;
     detail::choose_polynomial(d.model, d.setup.degree, d.merged.centres,
                               d.settings.rbf.polynomial_rank_tolerance);
     d.P = d.model.polynomial_matrix(d.merged.centres);
@@ -244,6 +247,40 @@ Points GreedyRbfDeformation::values_at_constraints(const Impl& d,
     for (std::size_t k = 0; k < rest.size(); ++k)
         values.row(rest[k]) = got.row(Eigen::Index(k));
     return values;
+}
+
+void GreedyRbfDeformation::refit(const Eigen::Ref<const Points>& displacements)
+{
+    Impl& d = *impl_;
+    if (!d.fitted)
+        throw InvalidInput("greedy RBF: refit before fit");
+    if (Index(displacements.rows()) != d.num_inputs)
+        throw InvalidInput("greedy RBF refit: " + std::to_string(displacements.rows()) +
+                           " displacements for " + std::to_string(d.num_inputs) + " constraints");
+    detail::require_finite(displacements, "greedy RBF refit: displacement");
+    // Coincident constraints were merged into their first; the others must agree with it,
+    // as at the fit.
+    for (Index c = 0; c < d.num_inputs; ++c)
+    {
+        const Index first = d.merged.first[std::size_t(d.merged.representative[std::size_t(c)])];
+        if (displacements.row(c) != displacements.row(first))
+            throw InvalidInput("greedy RBF refit: constraints " + std::to_string(first) + " and " +
+                               std::to_string(c) + " coincide but their displacements differ");
+    }
+    for (Eigen::Index k = 0; k < d.merged.displacements.rows(); ++k)
+        d.merged.displacements.row(k) = displacements.row(d.merged.first[std::size_t(k)]);
+    set_model(d.merged.displacements);
+    d.values_at_handles = values_at_constraints(d, d.inputs, Points(0, 3));
+    detail::residual_report(d.values_at_handles, displacements, d.report);
+    if (d.jump_constraints > 0)
+    {
+        double fitted = 0.0; // the residual over the constraints the global part fits
+        for (Index c = 0; c < d.num_inputs; ++c)
+            if (!d.left_out[std::size_t(c)])
+                fitted =
+                    std::max(fitted, (d.values_at_handles.row(c) - displacements.row(c)).norm());
+        d.report.max_fitted_residual = fitted;
+    }
 }
 
 const std::vector<char>* GreedyRbfDeformation::handles_left_out() const

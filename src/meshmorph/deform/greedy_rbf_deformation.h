@@ -45,6 +45,10 @@ public:
     //! \throw InvalidInput (sizes, m == 0, NaN, conflicting duplicates), SolverError.
     void fit(const Eigen::Ref<const Points>& constraints,
              const Eigen::Ref<const Points>& displacements) override;
+    //! The selected centres, jump marks and factor held; the centres' coefficients solved
+    //! for the new data (two triangular solves) and the field evaluated at every constraint
+    //! for the residual report (values_at_handles). \throw InvalidInput.
+    void refit(const Eigen::Ref<const Points>& displacements) override;
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     //! num_handles: constraints; num_centres: centres used; iterations; residuals over all
     //! constraints; condition_estimate: (max L_ii / min L_ii)^2, a lower bound.

@@ -44,6 +44,15 @@ void IdwDeformation::fit(const Eigen::Ref<const Points>& handles,
     fit(handles, displacements, {});
 }
 
+void IdwDeformation::refit(const Eigen::Ref<const Points>& displacements)
+{
+    if (!is_fitted())
+        throw InvalidInput("IDW: refit before fit");
+    const Points handles = impl_->handles;
+    const std::vector<char> quiet = impl_->quiet;
+    fit(handles, displacements, quiet);
+}
+
 void IdwDeformation::fit(const Eigen::Ref<const Points>& handles,
                          const Eigen::Ref<const Points>& displacements,
                          const std::vector<char>& quiet)

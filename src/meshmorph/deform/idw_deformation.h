@@ -57,6 +57,8 @@ public:
     //! residual of a global fit, small but on the few handles the fit left out.
     void fit(const Eigen::Ref<const Points>& handles, const Eigen::Ref<const Points>& displacements,
              const std::vector<char>& quiet);
+    //! fit() again at the same handles with the same quiet flags: the tree is rebuilt alike.
+    void refit(const Eigen::Ref<const Points>& displacements) override;
     //! OpenMP over points; per point independent of the thread count.
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     //! Exact: the transpose of the tree's sums as evaluate() takes them (idw_tree.h).

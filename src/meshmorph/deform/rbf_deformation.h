@@ -42,7 +42,7 @@ public:
     //! \brief New displacements (m x 3, same handles as the last fit) reusing the
     //! factorisation: O(m^2) instead of O(m^3). Timed against the handle basis in
     //! benchmarks/paper/performance.cpp (paper Sec. 3.1). \throw InvalidInput.
-    void refit(const Eigen::Ref<const Points>& displacements);
+    void refit(const Eigen::Ref<const Points>& displacements) override;
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override;
     //! The transpose of d(points) = B H (handle_basis) without forming B: the kernel sums
     //! at the centres times the solve's unit-displacement coefficients.

@@ -22,6 +22,7 @@ set(MESHMORPH_DEFORM_SOURCES
     meshmorph/deform/idw_tree_transpose.cpp
     meshmorph/deform/idw_deformation.cpp
     meshmorph/deform/corrected_deformation.cpp
+    meshmorph/deform/held_fit.cpp
 )
 # sqrt in the blocked RBF evaluator vectorises only without errno semantics.
 set_source_files_properties(meshmorph/deform/rbf_evaluator.cpp meshmorph/deform/idw_tree.cpp

@@ -44,6 +44,11 @@ Points apply(const SpaceDeformation& deformation, const Eigen::Ref<const Points>
     return out;
 }
 
+void SpaceDeformation::refit(const Eigen::Ref<const Points>& /*displacements*/)
+{
+    throw InvalidInput(report().method + ": refit with the fit's choices held is not available");
+}
+
 namespace detail
 {
 

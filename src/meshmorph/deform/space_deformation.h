@@ -71,6 +71,12 @@ public:
     //! before fit(), or on sizes.
     virtual Points transpose(const Eigen::Ref<const Points>& points,
                              const Eigen::Ref<const Points>& weights) const;
+    //! \brief New displacements (m x 3) at the handles of the last fit(), every choice of that
+    //! fit held (a greedy RBF's centres and jump marks, an IDW tree and its quiet nodes): the
+    //! fitted field is then a linear map of its data, the one transpose() transposes. A
+    //! direct RBF and DM-FFD reuse their factorisations. \throw InvalidInput before fit(), on
+    //! sizes, for non-finite data or for a method without it.
+    virtual void refit(const Eigen::Ref<const Points>& displacements);
     //! d at the handles of the last fit() (m x 3, bit for bit what evaluate() gives there)
     //! when the method kept them from its own residual report, else nullptr. A caller that
     //! needs them (CorrectedDeformation) then does not evaluate d at every handle again.

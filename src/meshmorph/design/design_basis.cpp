@@ -40,7 +40,9 @@ nlohmann::json header_json(const DesignBasisHeader& h)
             {"names", h.names},
             {"bounds", bounds},
             {"negativeVolumeCellsBefore", h.negative_volume_cells_before},
-            {"incorrectlyOrientedFacePyramidsBefore", h.wrong_pyramids_before}};
+            {"incorrectlyOrientedFacePyramidsBefore", h.wrong_pyramids_before},
+            {"storage", h.shared ? "shared" : "fields"},
+            {"sharedTemplate", h.shared_template}};
 }
 
 DesignBasisHeader header_from_json(const nlohmann::json& j)
@@ -61,6 +63,15 @@ DesignBasisHeader header_from_json(const nlohmann::json& j)
                                                                       b.at(1).get<double>())));
     h.negative_volume_cells_before = j.at("negativeVolumeCellsBefore");
     h.wrong_pyramids_before = j.at("incorrectlyOrientedFacePyramidsBefore");
+    if (j.contains("storage")) // version 1 had fields only
+    {
+        if (j.at("storage") != "fields" && j.at("storage") != "shared")
+            throw InvalidInput("unknown storage");
+        h.shared = j.at("storage") == "shared";
+        h.shared_template = j.at("sharedTemplate");
+    }
+    if (h.shared && (h.shared_template < 0 || h.shared_template >= Index(h.names.size())))
+        throw InvalidInput("sharedTemplate out of range");
     if (h.bounds.size() != h.names.size() || h.n_points < 0)
         throw InvalidInput("inconsistent sizes");
     return h;
@@ -77,10 +88,19 @@ template <class T> bool read_raw(std::ifstream& in, T* data, std::size_t n)
     return bool(in);
 }
 
-//! Bytes of a block with c constrained points of n mesh points.
+//! Bytes of a block with c point labels and a field of n rows.
 std::uintmax_t block_bytes(std::uintmax_t c, std::uintmax_t n)
 {
     return 8 * (4 + 1 + c + 3 * c + 3 * n);
+}
+
+//! The versions read: 1 (fields only) and the current one.
+bool readable_version(const std::string& magic)
+{
+    for (int version = 1; version <= DesignBasisHeader::current_version; ++version)
+        if (magic == std::string(magic_line) + ' ' + std::to_string(version))
+            return true;
+    return false;
 }
 
 } // namespace
@@ -157,10 +177,10 @@ DesignBasisReader::DesignBasisReader(const fs::path& path) : path_(path)
         std::string(magic_line) + ' ' + std::to_string(DesignBasisHeader::current_version);
     if (magic.rfind(magic_line, 0) != 0)
         throw bad("it does not start with '" + std::string(magic_line) + "'");
-    if (magic != expected)
+    if (!readable_version(magic))
         throw ParseError(path.string(), 1,
-                         "design set-up format '" + magic + "', this morphMesh reads '" + expected +
-                             "' (run morphMesh -variables again)");
+                         "design set-up format '" + magic + "', this morphMesh reads up to '" +
+                             expected + "' (run morphMesh -variables again)");
     std::getline(in_, header);
     try
     {
@@ -182,7 +202,7 @@ void DesignBasisReader::check_blocks(const std::function<ParseError(const std::s
     const std::uintmax_t size = fs::file_size(path_, ec);
     if (ec)
         throw bad("cannot read its size (" + ec.message() + ")");
-    const std::uintmax_t n = std::uintmax_t(header_.n_points);
+    const std::uintmax_t n = std::uintmax_t(header_.field_rows());
     if (n > size / 24)
         throw bad("its header's " + std::to_string(n) + " points do not fit in its size");
     std::uintmax_t at = std::uintmax_t(blocks_start_);
@@ -217,7 +237,7 @@ void DesignBasisReader::next(VariableBlock& block)
         throw ParseError(path_.string(), 0, "truncated design set-up");
     std::vector<std::int64_t> labels(static_cast<std::size_t>(c));
     block.prescribed.resize(Index(c), 3);
-    block.field.resize(header_.n_points, 3);
+    block.field.resize(header_.field_rows(), 3);
     if (!read_raw(in_, labels.data(), labels.size()) ||
         !read_raw(in_, block.prescribed.data(), std::size_t(block.prescribed.size())) ||
         !read_raw(in_, block.field.data(), std::size_t(block.field.size())))
@@ -240,8 +260,9 @@ void DesignBasisReader::skip()
     in_.seekg(32, std::ios::cur);
     if (!read_raw(in_, &c, 1) || c < 0)
         throw ParseError(path_.string(), 0, "truncated design set-up");
-    in_.seekg(std::streamoff(block_bytes(std::uintmax_t(c), std::uintmax_t(header_.n_points)) - 40),
-              std::ios::cur);
+    in_.seekg(
+        std::streamoff(block_bytes(std::uintmax_t(c), std::uintmax_t(header_.field_rows())) - 40),
+        std::ios::cur);
 }
 
 void DesignBasisReader::rewind()

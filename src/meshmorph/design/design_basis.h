@@ -4,18 +4,21 @@
 //! at every mesh point, so that a variant is x = x0 + sum_j a_j F_j and a gradient
 //! dJ/da_j = sum_i g_i . F_j(i) (the transpose product) without any fit.
 //!
-//! File `constant[/<region>]/designBasis` (version 1), written atomically:
-//! - line 1: `meshMorph designBasis 1`
+//! File `constant[/<region>]/designBasis` (version 2), written atomically:
+//! - line 1: `meshMorph designBasis 2`
 //! - line 2: a one-line JSON header (DesignBasisHeader: fingerprints of the points, the
 //!   topology and the morphDict, the instance the points were read from, variable names and
-//!   bounds, method, point count, the invalid cells of the mesh before)
+//!   bounds, method, point count, the invalid cells of the mesh before, the storage)
 //! - binary, little-endian, per variable a block: 4 doubles of fit statistics (max
 //!   constraint error, relative constraint error, centres, fit seconds), int64 c_j, the
-//!   constrained point labels (int64, c_j), P_j (c_j x 3 doubles, row-major), F_j (nPoints x
-//!   3 doubles, row-major); nothing after the last block. (Variables constrain different
-//!   points: a handle is constrained only in its own variable's set.)
+//!   point labels (int64, c_j), P_j (c_j x 3 doubles, row-major), then with storage `fields`
+//!   F_j (nPoints x 3 doubles, row-major); nothing after the last block.
+//!   - `fields`: the labels are every point variable j constrains (variables constrain
+//!     different points: a handle is constrained only in its own variable's set).
+//!   - `shared` (shared_design_fit.h): the labels are the points P_j moves (not zero), and
+//!     there is no field: the variables share one fit, chosen again when the file is read.
 //! The blocks are read one at a time, so applying a variant or a gradient needs memory for
-//! one field, not for all.
+//! one field, not for all. Version 1 is version 2 with storage `fields` and is still read.
 #pragma once
 
 #include <filesystem>
@@ -35,7 +38,7 @@ namespace meshmorph::design
 //! What a set-up was computed from and for.
 struct DesignBasisHeader
 {
-    static constexpr int current_version = 1;
+    static constexpr int current_version = 2;
     int version = current_version;
     std::string points_fingerprint, topology_fingerprint, dict_fingerprint;
     std::string instance; //!< the time the points were read from ("constant" or a time)
@@ -45,6 +48,11 @@ struct DesignBasisHeader
     std::vector<std::optional<std::pair<double, double>>> bounds;
     Index negative_volume_cells_before = 0;
     Index wrong_pyramids_before = 0;
+    bool shared = false; //!< storage `shared` (else `fields`)
+    //! shared: the variable whose constraints the others share (the first that moves).
+    Index shared_template = -1;
+    //! The rows of a block's field: nPoints (fields) or 0 (shared).
+    Index field_rows() const { return shared ? 0 : n_points; }
 };
 
 //! The statistics of one variable's fit, stored with its fields.
@@ -62,7 +70,7 @@ struct VariableBlock
     VariableFit fit;
     std::vector<Index> constrained; //!< the points variable j prescribes (sorted)
     Points prescribed;              //!< constrained.size() x 3, P_j
-    Points field;                   //!< nPoints x 3, F_j
+    Points field;                   //!< header.field_rows() x 3, F_j
 };
 
 //! Writes a set-up block by block into a temporary file; commit() renames it over the

@@ -65,6 +65,7 @@ DesignCase read_design_case(const morph::MorphOptions& options)
     dc.untangle = steps.untangle;
     dc.max_untangle_cells = steps.max_untangle_cells;
     dc.refuse_new_check_failures = morph::read_new_check_failures(parsed);
+    dc.storage = read_design_storage(parsed);
     if (dc.variables.empty())
         throw InvalidInput(dc.dict_path.string() +
                            ": no designVariables (see tutorials/designVariables)");

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "meshmorph/design/design_storage.h"
 #include "meshmorph/design/design_variables.h"
 #include "meshmorph/io/read_poly_mesh.h"
 #include "meshmorph/morph/decomposition.h"
@@ -33,6 +34,7 @@ struct DesignCase
     //! morphDict `newCheckFailures refuse`: a variant failing a check the set-up's mesh
     //! passed is refused (default: a warning, and the report's newFailedChecks).
     bool refuse_new_check_failures = false;
+    DesignStorage storage = DesignStorage::automatic; //!< morphDict `designBasis`
     io::FoamPolyMesh foam;
     bool parallel = false;
     morph::Decomposition decomposition; //!< -parallel: this rank's part

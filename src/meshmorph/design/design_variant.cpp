@@ -2,6 +2,7 @@
 // Variants from a stored set-up: combine the fields, check, judge, write.
 #include "meshmorph/design/design_variant.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -9,10 +10,13 @@
 #include "meshmorph/core/log.h"
 #include "meshmorph/core/number_format.h"
 #include "meshmorph/core/stopwatch.h"
+#include "meshmorph/design/shared_design_fit.h"
+#include "meshmorph/design/variable_constraints.h"
 #include "meshmorph/io/case_instance.h"
 #include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/morph/distributed_case.h"
 #include "meshmorph/morph/morph_output.h"
+#include "meshmorph/morph/point_displacement_input.h"
 #include "meshmorph/morph/point_morph.h"
 #include "meshmorph/parallel/collective.h"
 #include "meshmorph/quality/cell_validity.h"
@@ -53,6 +57,24 @@ std::string refusal_text(const InvalidCells& after, const DesignBasisHeader& h)
     return text;
 }
 
+//! While it lives, the study's mesh holds the set-up's points x0 (and x0 the mesh's): the
+//! shared fit is of the set-up's points, the study's mesh holds the last variant's.
+class SetupPointsInMesh
+{
+public:
+    SetupPointsInMesh(Points& mesh_points, Points& x0) : mesh_points_(mesh_points), x0_(x0)
+    {
+        std::swap(mesh_points_, x0_);
+    }
+    ~SetupPointsInMesh() { std::swap(mesh_points_, x0_); }
+    SetupPointsInMesh(const SetupPointsInMesh&) = delete;
+    SetupPointsInMesh& operator=(const SetupPointsInMesh&) = delete;
+
+private:
+    Points& mesh_points_;
+    Points& x0_;
+};
+
 } // namespace
 
 DesignStudy::DesignStudy(const morph::MorphOptions& options) : options_(options)
@@ -66,9 +88,52 @@ DesignStudy::DesignStudy(const morph::MorphOptions& options) : options_(options)
     parallel::collective(comm, [&] { require_current(case_, header(), basis_file().string()); });
     cell_faces_ = cell_faces(case_.foam.mesh);
     x0_ = case_.foam.mesh.points;
+    if (header().shared)
+        load_shared_fit();
     read_seconds_ = clock.seconds();
     log::info() << "Reusing the design set-up " << basis_file().string() << " (" << names().size()
-                << " variables, method " << header().method << "): no fit";
+                << " variables, method " << header().method
+                << (shared() ? "): one shared fit" : "): no fit");
+}
+
+DesignStudy::~DesignStudy() = default;
+
+void DesignStudy::load_shared_fit()
+{
+    const PolyMesh& mesh = case_.foam.mesh;
+    morph::PointDisplacementInputs field;
+    if (case_.variables.reads_point_displacement())
+        field = morph::read_point_displacement(case_.mesh_case, case_.foam, options_.region,
+                                               parallel::Communicator::world());
+    const VariableConstraints constraints(mesh, case_.setup, case_.variables, &field, nullptr);
+    morph::Constraints shared = constraints.unit(header().shared_template);
+    std::vector<Index> row_of(std::size_t(mesh.n_points()), -1);
+    for (std::size_t i = 0; i < shared.points.size(); ++i)
+        row_of[std::size_t(shared.points[i])] = Index(i);
+    std::vector<SparsePrescription> units(names().size());
+    reader_->rewind();
+    VariableBlock block;
+    for (std::size_t j = 0; j < names().size(); ++j)
+    {
+        reader_->next(block);
+        for (const Index label : block.constrained)
+        {
+            if (row_of[std::size_t(label)] < 0)
+                throw InvalidInput("the design set-up " + basis_file().string() +
+                                   " prescribes a point that its constraints do not hold: run "
+                                   "morphMesh -variables again");
+            units[j].rows.push_back(row_of[std::size_t(label)]);
+        }
+        units[j].values = block.prescribed;
+    }
+    shared_ = std::make_unique<SharedDesignFit>(mesh, case_.settings, std::move(shared),
+                                                std::move(units));
+}
+
+Points DesignStudy::apply_shared(const Points& prescription)
+{
+    const SetupPointsInMesh at_setup(case_.foam.mesh.points, x0_);
+    return shared_->apply(prescription);
 }
 
 void DesignStudy::check_amplitudes(const std::vector<double>& a) const
@@ -91,6 +156,23 @@ void DesignStudy::check_amplitudes(const std::vector<double>& a) const
 
 Points DesignStudy::combine(const std::vector<double>& a, ConstraintMisfit* misfit)
 {
+    if (shared_)
+    {
+        const Points p = shared_->prescription(a);
+        Points d = apply_shared(p);
+        if (misfit != nullptr)
+        {
+            *misfit = {Points::Zero(header().n_points, 3),
+                       std::vector<char>(std::size_t(header().n_points), 0)};
+            const std::vector<Index>& points = shared_->constraints().points;
+            for (std::size_t i = 0; i < points.size(); ++i)
+            {
+                misfit->error.row(points[i]) = d.row(points[i]) - p.row(Eigen::Index(i));
+                misfit->constrained[std::size_t(points[i])] = 1;
+            }
+        }
+        return d;
+    }
     Points sum = Points::Zero(header().n_points, 3);
     if (misfit != nullptr)
         *misfit = {Points::Zero(header().n_points, 3),
@@ -120,6 +202,11 @@ Points DesignStudy::combine(const std::vector<double>& a, ConstraintMisfit* misf
 
 std::vector<double> DesignStudy::transpose_product(const Points& g)
 {
+    if (shared_)
+    {
+        const SetupPointsInMesh at_setup(case_.foam.mesh.points, x0_);
+        return shared_->transpose(g);
+    }
     // A point shared by ranks counts once: on the lowest rank holding it.
     const Eigen::VectorXd weight = ownership_weights();
     std::vector<double> out;
@@ -175,7 +262,16 @@ std::string DesignStudy::next_instance(const std::string& instance) const
 
 std::string DesignStudy::back_off(const Points& moved, const std::vector<double>& a, Index invalid)
 {
-    // The variable whose removal leaves the fewest invalid cells.
+    // The variable whose removal leaves the fewest invalid cells: a variant per variable,
+    // which for a shared set-up is a held evaluation each.
+    const auto nonzero = std::count_if(a.begin(), a.end(), [](double v) { return v != 0.0; });
+    if (shared_ && nonzero > max_back_off_evaluations)
+    {
+        log::info()
+            << "No back-off search: " << nonzero
+            << " variables are not zero, and each would cost a variant of the shared set-up";
+        return "";
+    }
     std::string best;
     Index best_count = invalid;
     PolyMesh& trial = case_.foam.mesh;
@@ -237,6 +333,12 @@ bool DesignStudy::has_new_invalid_cells(const QualityReport& report) const
 std::vector<char> DesignStudy::prescribed_points()
 {
     std::vector<char> prescribed(std::size_t(header().n_points), 0);
+    if (shared_)
+    {
+        for (const Index i : shared_->constraints().points)
+            prescribed[std::size_t(i)] = 1;
+        return prescribed;
+    }
     reader_->rewind();
     VariableBlock block;
     for (std::size_t j = 0; j < names().size(); ++j)

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,11 +23,17 @@
 namespace meshmorph::design
 {
 
+class SharedDesignFit;
+
 //! A variant whose linear combination adds more new invalid cells and face pyramids than
 //! this fraction of the cells is refused without untangling: the local repair is for a few
 //! cells (a sliver between a moving wall and a fixed one), and on damage that wide it only
 //! spends time (41% of the tutorial pipe's cells: 2 s, then 760 cells still invalid).
 inline constexpr double max_untangled_fraction = 0.05;
+
+//! A shared set-up's refusal names a variable to back off only when at most this many are
+//! not zero: each one tried is a variant (a held evaluation), not a sum of stored fields.
+inline constexpr long max_back_off_evaluations = 16;
 
 //! What one variant did.
 struct VariantResult
@@ -68,6 +75,9 @@ public:
     //! names one) and the morphDict, and refuses a stale set-up.
     //! \throw IoError, ParseError, InvalidInput (stale set-up, no designVariables).
     explicit DesignStudy(const morph::MorphOptions& options);
+    ~DesignStudy();
+    DesignStudy(const DesignStudy&) = delete;
+    DesignStudy& operator=(const DesignStudy&) = delete;
 
     const DesignCase& design_case() const { return case_; }
     const std::filesystem::path& basis_file() const { return reader_->path(); }
@@ -104,13 +114,22 @@ public:
     //! The instance after `instance` (the next time), for a new variant.
     std::string next_instance(const std::string& instance) const;
 
-    //! sum_j a_j F_j (nPoints x 3) and, if asked, its misfit at the constrained points.
+    //! sum_j a_j F_j (nPoints x 3) and, if asked, its misfit at the constrained points. With
+    //! a shared set-up: the shared fit applied to sum_j a_j P_j (shared_design_fit.h).
     Points combine(const std::vector<double>& a, ConstraintMisfit* misfit = nullptr);
     //! sum_i g_i . F_j(i) for every variable j (g: nPoints x 3); with -parallel summed over
     //! the ranks, each point once (a collective).
     std::vector<double> transpose_product(const Points& g);
 
+    //! Whether the set-up is shared (one fit for every variable) rather than fields.
+    bool shared() const { return shared_ != nullptr; }
+
 private:
+    //! The shared fit chosen again (a shared set-up): its constraints from the morphDict,
+    //! each variable's prescription from the file.
+    void load_shared_fit();
+    //! The shared fit applied to `prescription`, on the set-up's points.
+    Points apply_shared(const Points& prescription);
     Eigen::VectorXd ownership_weights() const;
     void measure_misfit(const Points& d, const ConstraintMisfit& misfit, VariantResult& r) const;
     //! Whether counts (or a report's) are higher than the set-up mesh's.
@@ -148,6 +167,7 @@ private:
     std::optional<QualityReport> setup_report_; //!< see setup_report()
     Points x0_; //!< the set-up's points (the study's mesh holds the last variant's)
     std::optional<VariantRepairer> repairer_; //!< made when a variant first needs it
+    std::unique_ptr<SharedDesignFit> shared_; //!< a shared set-up's fit (else null)
     double read_seconds_ = 0.0;
 };
 

@@ -11,6 +11,8 @@ set(MESHMORPH_DESIGN_SOURCES
     meshmorph/design/case_fingerprint.cpp
     meshmorph/design/design_basis.cpp
     meshmorph/design/design_case.cpp
+    meshmorph/design/design_storage.cpp
+    meshmorph/design/shared_design_fit.cpp
     meshmorph/design/design_setup.cpp
     meshmorph/design/amplitude_table.cpp
     meshmorph/design/design_variant.cpp

@@ -3,6 +3,7 @@
 // handle, rotations linearised.
 #include "meshmorph/design/variable_constraints.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -166,18 +167,61 @@ VariableConstraints::VariableConstraints(const PolyMesh& mesh, const morph::Morp
     }
 }
 
-double VariableConstraints::control_weight(const DesignVariable& v, Index point) const
+namespace
 {
+
+//! A control point's key as written: (i, j, k), 0 on an axis written with count 1 (its
+//! four control points move together, DesignLattice::belongs).
+std::array<int, 3> written_key(const DesignLattice& design, Index p)
+{
+    const std::array<int, 3>& n = design.lattice.counts();
+    const std::array<int, 3> at{int(p % n[0]), int((p / n[0]) % n[1]), int(p / (n[0] * n[1]))};
+    std::array<int, 3> key{0, 0, 0};
+    for (std::size_t a = 0; a < 3; ++a)
+        key[a] = design.counts[a] > 1 ? at[a] : 0;
+    return key;
+}
+
+std::array<int, 3> written_key(const DesignLattice& design, const std::array<int, 3>& ijk)
+{
+    std::array<int, 3> key = ijk;
+    for (std::size_t a = 0; a < 3; ++a)
+        if (design.counts[a] <= 1)
+            key[a] = 0;
+    return key;
+}
+
+} // namespace
+
+const VariableConstraints::PointWeights& VariableConstraints::control_weights(Index j) const
+{
+    const DesignVariable& v = variables_.variables[std::size_t(j)];
     const DesignLattice& design = variables_.lattices[v.lattice];
-    Index index[64];
-    double weight[64];
-    const int n =
-        design.lattice.basis(mesh_.points.row(point).transpose(), FfdOutside::zero, index, weight);
-    double sum = 0.0;
-    for (int k = 0; k < n; ++k)
-        if (design.belongs(index[k], v.control_point))
-            sum += weight[k];
-    return sum;
+    lattice_weights_.resize(variables_.lattices.size());
+    auto& by_key = lattice_weights_[v.lattice];
+    if (by_key.empty())
+    {
+        // The lattice's variables share its patches: those of this one.
+        std::vector<Index> points = points_moved_by(j);
+        std::sort(points.begin(), points.end());
+        points.erase(std::unique(points.begin(), points.end()), points.end());
+        for (const Index i : points)
+        {
+            Index index[64];
+            double weight[64];
+            const int n = design.lattice.basis(mesh_.points.row(i).transpose(), FfdOutside::zero,
+                                               index, weight);
+            std::map<std::array<int, 3>, double> at_point; // summed in basis order
+            for (int k = 0; k < n; ++k)
+                at_point[written_key(design, index[k])] += weight[k];
+            for (const auto& [key, w] : at_point)
+                by_key[key].emplace_back(i, w);
+        }
+        by_key.try_emplace({-1, -1, -1}); // computed, even if no point is in any support
+    }
+    static const PointWeights none;
+    const auto it = by_key.find(written_key(design, v.control_point));
+    return it != by_key.end() ? it->second : none;
 }
 
 std::vector<Index> VariableConstraints::points_moved_by(Index j) const
@@ -197,8 +241,8 @@ Points VariableConstraints::lattice_field(Index j) const
     // Only the points of the lattice's patches take the field's values (claims.h).
     const DesignVariable& v = variables_.variables[std::size_t(j)];
     Points field = Points::Zero(mesh_.n_points(), 3);
-    for (Index i : points_moved_by(j))
-        field(i, v.direction) = control_weight(v, i);
+    for (const auto& [i, w] : control_weights(j))
+        field(i, v.direction) = w;
     return field;
 }
 
@@ -213,10 +257,9 @@ bool VariableConstraints::moves_any_local_point(Index j) const
     const DesignVariable& v = variables_.variables[std::size_t(j)];
     if (v.kind != DesignVariable::Kind::lattice_point)
         return true;
-    for (Index i : points_moved_by(j))
-        if (control_weight(v, i) != 0.0)
-            return true;
-    return false;
+    const PointWeights& weights = control_weights(j);
+    return std::any_of(weights.begin(), weights.end(),
+                       [](const std::pair<Index, double>& w) { return w.second != 0.0; });
 }
 
 morph::Constraints VariableConstraints::unit(Index j) const

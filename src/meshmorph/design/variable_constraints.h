@@ -11,6 +11,9 @@
 //! variable): that keeps x0 the zero variant.
 #pragma once
 
+#include <array>
+#include <map>
+#include <utility>
 #include <vector>
 
 #include "meshmorph/core/poly_mesh.h"
@@ -52,8 +55,11 @@ private:
     bool moves_any_local_point(Index j) const;
     //! The points of the patches variable j moves (a point on two of them twice).
     std::vector<Index> points_moved_by(Index j) const;
-    //! A lattice variable's B-spline weight at a mesh point (0 outside its support).
-    double control_weight(const DesignVariable& v, Index point) const;
+    //! A lattice's B-spline weights at the points of its patches: per control point as
+    //! written (i, j, k), the points in its support and its weight there (summed over an
+    //! axis written with count 1). Computed once per lattice: its variables share it.
+    using PointWeights = std::vector<std::pair<Index, double>>;
+    const PointWeights& control_weights(Index j) const;
     //! A lattice variable's unit prescription: its weight times its direction at the points
     //! of its patches, zero elsewhere.
     Points lattice_field(Index j) const;
@@ -65,6 +71,8 @@ private:
     const morph::Decomposition* decomposition_;
     std::vector<morph::PatchAssignment> frozen_;   //!< every patch a variable moves: fixed
     std::vector<std::vector<char>> moved_patches_; //!< per variable: its patches
+    //! Per lattice, once computed: control point (i, j, k) -> its points and weights.
+    mutable std::vector<std::map<std::array<int, 3>, PointWeights>> lattice_weights_;
 };
 
 } // namespace meshmorph::design

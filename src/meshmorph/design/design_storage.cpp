@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// morphDict `designBasis`.
+#include "meshmorph/design/design_storage.h"
+
+#include "meshmorph/io/foam_dictionary.h"
+
+namespace meshmorph::design
+{
+
+DesignStorage read_design_storage(const io::FoamDictionary& dict)
+{
+    const io::FoamEntry* e = dict.find("designBasis");
+    if (e == nullptr)
+        return DesignStorage::automatic;
+    const std::vector<io::FoamValueToken>& t = e->tokens();
+    if (t.size() == 1 && t[0].is_word())
+    {
+        if (t[0].text == "auto")
+            return DesignStorage::automatic;
+        if (t[0].text == "fields")
+            return DesignStorage::fields;
+        if (t[0].text == "shared")
+            return DesignStorage::shared;
+    }
+    throw e->error("expected 'auto' (the default), 'fields' (a fit and a stored field per "
+                   "variable) or 'shared' (one fit for every variable, held)");
+}
+
+std::string to_string(DesignStorage storage)
+{
+    switch (storage)
+    {
+    case DesignStorage::fields:
+        return "fields";
+    case DesignStorage::shared:
+        return "shared";
+    default:
+        return "auto";
+    }
+}
+
+} // namespace meshmorph::design
