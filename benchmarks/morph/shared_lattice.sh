@@ -88,7 +88,7 @@ run_storage() {
     local best=""
     for k in 1 2 3; do
         timed "$out/log.$storage.variant.$k" "$morph_mesh" -case "$dir" -variant "$amps" -json "$out/$storage.variant.json"
-        [ -z "$best" ] || awk -v a="$wall" -v b="$best" 'BEGIN { exit !(a < b) }' && { best=$wall; best_rss=$rss; }
+        [ -z "$best" ] || awk -v a="$wall" -v b="$best" 'BEGIN { exit !(a < b) }' && best=$wall
         [ "$k" = 3 ] || rm -rf "${dir:?}"/[1-9]*
     done
     local valid quality

@@ -20,11 +20,13 @@ public:
     void fit(const Eigen::Ref<const Points>& handles,
              const Eigen::Ref<const Points>& displacements) override
     {
-        current_ = &owner_.fit(handles, displacements);
+        index_ = owner_.fit(handles, displacements);
+        current_ = &owner_.deformation(index_);
     }
     void refit(const Eigen::Ref<const Points>& displacements) override
     {
-        fitted().refit(displacements);
+        fitted();
+        owner_.refit(index_, displacements);
     }
     void evaluate(const Eigen::Ref<const Points>& points, Eigen::Ref<Points> out) const override
     {
@@ -56,9 +58,11 @@ private:
     }
 
     HeldFits& owner_;
+    std::size_t index_ = 0;
     SpaceDeformation* current_ = nullptr;
 };
 
+//! Equal row for row, bit for bit (handles, or the data fitted to them).
 bool same_handles(const Points& a, const Eigen::Ref<const Points>& b)
 {
     return a.rows() == b.rows() && (a.rows() == 0 || a == b);
@@ -77,23 +81,32 @@ std::unique_ptr<SpaceDeformation> HeldFits::view()
     return std::make_unique<HeldFitView>(*this);
 }
 
-SpaceDeformation& HeldFits::fit(const Eigen::Ref<const Points>& handles,
-                                const Eigen::Ref<const Points>& displacements)
+std::size_t HeldFits::fit(const Eigen::Ref<const Points>& handles,
+                          const Eigen::Ref<const Points>& displacements)
 {
-    for (Held& held : fits_)
-        if (same_handles(held.handles, handles))
+    for (std::size_t k = 0; k < fits_.size(); ++k)
+        if (same_handles(fits_[k].handles, handles))
         {
-            held.deformation->refit(displacements);
-            return *held.deformation;
+            refit(k, displacements);
+            return k;
         }
     if (frozen_)
         throw InvalidInput("held fit: " + std::to_string(handles.rows()) +
                            " handles that the chosen fits do not have (the constraints "
                            "changed after the set-up)");
-    Held held{handles, make_()};
+    Held held{handles, displacements, make_()};
     held.deformation->fit(handles, displacements);
     fits_.push_back(std::move(held));
-    return *fits_.back().deformation;
+    return fits_.size() - 1;
+}
+
+void HeldFits::refit(std::size_t k, const Eigen::Ref<const Points>& displacements)
+{
+    Held& held = fits_.at(k);
+    if (same_handles(held.displacements, displacements))
+        return;
+    held.deformation->refit(displacements);
+    held.displacements = displacements;
 }
 
 } // namespace meshmorph

@@ -4,7 +4,8 @@
 //!
 //! The first fit() to a set of handles fits a fresh deformation (its centres, jump marks,
 //! IDW tree); every later fit() to the same handles, bit for bit, refits it with those
-//! choices held (SpaceDeformation::refit). A morph with slip points fits twice, without
+//! choices held (SpaceDeformation::refit), unless the data are those it holds already (a
+//! transpose after a variant refits nothing). A morph with slip points fits twice, without
 //! and with them, so one HeldFits keeps a fitted deformation per set of handles; the
 //! deformations it hands out (view()) all fit through it. Evaluating a view evaluates the
 //! deformation of its last fit, as last (re)fitted: views are for one thread, used in turn.
@@ -35,14 +36,19 @@ public:
     //! Sets of handles fitted so far.
     std::size_t size() const { return fits_.size(); }
 
-    //! The deformation for `handles`, fitted to `displacements` (see the file comment).
-    SpaceDeformation& fit(const Eigen::Ref<const Points>& handles,
-                          const Eigen::Ref<const Points>& displacements);
+    //! The deformation for `handles`, fitted to `displacements` (see the file comment): its
+    //! index for deformation() and refit().
+    std::size_t fit(const Eigen::Ref<const Points>& handles,
+                    const Eigen::Ref<const Points>& displacements);
+    //! Deformation `k` refitted to `displacements` at its own handles.
+    void refit(std::size_t k, const Eigen::Ref<const Points>& displacements);
+    SpaceDeformation& deformation(std::size_t k) { return *fits_.at(k).deformation; }
 
 private:
     struct Held
     {
         Points handles;
+        Points displacements; //!< what the deformation was last (re)fitted to
         std::unique_ptr<SpaceDeformation> deformation;
     };
     Maker make_;

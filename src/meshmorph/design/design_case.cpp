@@ -90,6 +90,15 @@ DesignCase read_design_case(const morph::MorphOptions& options)
     return dc;
 }
 
+morph::PointDisplacementInputs read_variable_fields(const DesignCase& dc,
+                                                    const morph::MorphOptions& options)
+{
+    if (!dc.variables.reads_point_displacement())
+        return {};
+    return morph::read_point_displacement(dc.mesh_case, dc.foam, options.region,
+                                          parallel::Communicator::world());
+}
+
 void require_current(const DesignCase& dc, const DesignBasisHeader& header,
                      const std::string& basis_file)
 {

@@ -13,6 +13,7 @@
 #include "meshmorph/morph/deformation_settings.h"
 #include "meshmorph/morph/morph_result.h"
 #include "meshmorph/morph/morph_setup.h"
+#include "meshmorph/morph/point_displacement_input.h"
 
 namespace meshmorph::design
 {
@@ -49,6 +50,11 @@ std::filesystem::path design_mesh_case(const morph::MorphOptions& options);
 //! With -parallel every rank reads its processor directory's mesh (a collective).
 //! \throw ParseError, IoError; InvalidInput when the dictionary has no designVariables.
 DesignCase read_design_case(const morph::MorphOptions& options);
+
+//! The case's pointDisplacement field when a design variable reads it (a collective with
+//! -parallel), else empty: what VariableConstraints takes.
+morph::PointDisplacementInputs read_variable_fields(const DesignCase& dc,
+                                                    const morph::MorphOptions& options);
 
 //! \brief Refuse a set-up that was made for other points, topology or dictionary.
 //! \throw InvalidInput saying which differs and to run morphMesh -variables again.

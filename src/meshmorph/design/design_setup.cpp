@@ -237,10 +237,7 @@ DesignSetupResult setup_design(const morph::MorphOptions& options)
     DesignCase dc = read_design_case(options);
     require_fitted_method(dc.settings);
     const PolyMesh& mesh = dc.foam.mesh;
-    morph::PointDisplacementInputs field;
-    if (dc.variables.reads_point_displacement())
-        field = morph::read_point_displacement(dc.mesh_case, dc.foam, options.region,
-                                               parallel::Communicator::world());
+    const morph::PointDisplacementInputs field = read_variable_fields(dc, options);
     const VariableConstraints constraints(mesh, dc.setup, dc.variables, &field, dc.parts());
 
     DesignSetupResult result;

@@ -101,10 +101,7 @@ DesignStudy::~DesignStudy() = default;
 void DesignStudy::load_shared_fit()
 {
     const PolyMesh& mesh = case_.foam.mesh;
-    morph::PointDisplacementInputs field;
-    if (case_.variables.reads_point_displacement())
-        field = morph::read_point_displacement(case_.mesh_case, case_.foam, options_.region,
-                                               parallel::Communicator::world());
+    const morph::PointDisplacementInputs field = read_variable_fields(case_, options_);
     const VariableConstraints constraints(mesh, case_.setup, case_.variables, &field, nullptr);
     morph::Constraints shared = constraints.unit(header().shared_template);
     std::vector<Index> row_of(std::size_t(mesh.n_points()), -1);

@@ -86,10 +86,9 @@ SharedDesignFit::SharedDesignFit(const PolyMesh& mesh, const morph::DeformationS
     held_ = std::make_unique<HeldFits>([linear, &x, n_fit]
                                        { return morph::make_deformation(linear, x, n_fit); });
     const Stopwatch clock;
-    choice_ = choosing_prescription();
+    constraints_.displacements = choosing_prescription();
     log::info() << "Choosing the shared fit of " << units_.size()
                 << " variables on a combination of their prescriptions";
-    constraints_.displacements = choice_;
     const std::unique_ptr<SpaceDeformation> view = held_->view();
     morph::PointMorph pm = morph::morph_points(mesh_, constraints_, *view, true, false);
     morph::measure_constraint_error(constraints_, mesh_.points, pm, nullptr);
@@ -153,8 +152,8 @@ Points SharedDesignFit::apply(const Points& prescription)
 std::vector<double> SharedDesignFit::transpose(const Points& g)
 {
     // The held map is linear: its transpose does not depend on the data it was last fitted
-    // to (the choosing prescription here).
-    constraints_.displacements = choice_;
+    // to, so the constraints keep those (the last variant's, or the choosing prescription)
+    // and the held fits refit nothing.
     const morph::FieldMaker make = [this] { return held_->view(); };
     const Points at_points = morph::morph_points_transpose(mesh_, constraints_, make, g);
     std::vector<double> out(units_.size(), 0.0);

@@ -84,7 +84,6 @@ private:
     morph::Constraints constraints_;
     std::vector<SparsePrescription> units_;
     std::unique_ptr<HeldFits> held_;
-    Points choice_; //!< the choosing prescription (what the transpose refits to)
     FitReport report_;
     double max_constraint_error_ = 0.0, relative_constraint_error_ = 0.0;
     double choice_seconds_ = 0.0;
