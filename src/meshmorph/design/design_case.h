@@ -35,7 +35,7 @@ struct DesignCase
     //! morphDict `newCheckFailures refuse`: a variant failing a check the set-up's mesh
     //! passed is refused (default: a warning, and the report's newFailedChecks).
     bool refuse_new_check_failures = false;
-    DesignStorage storage = DesignStorage::automatic; //!< morphDict `designBasis`
+    DesignStorage storage = DesignStorage::fields; //!< morphDict `designBasis`
     io::FoamPolyMesh foam;
     bool parallel = false;
     morph::Decomposition decomposition; //!< -parallel: this rank's part

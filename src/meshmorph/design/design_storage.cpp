@@ -11,7 +11,7 @@ DesignStorage read_design_storage(const io::FoamDictionary& dict)
 {
     const io::FoamEntry* e = dict.find("designBasis");
     if (e == nullptr)
-        return DesignStorage::automatic;
+        return DesignStorage::fields;
     const std::vector<io::FoamValueToken>& t = e->tokens();
     if (t.size() == 1 && t[0].is_word())
     {
@@ -22,8 +22,9 @@ DesignStorage read_design_storage(const io::FoamDictionary& dict)
         if (t[0].text == "shared")
             return DesignStorage::shared;
     }
-    throw e->error("expected 'auto' (the default), 'fields' (a fit and a stored field per "
-                   "variable) or 'shared' (one fit for every variable, held)");
+    throw e->error("expected 'fields' (the default: a fit and a stored field per variable), "
+                   "'shared' (one fit for every variable, held) or 'auto' (shared above " +
+                   std::to_string(shared_above) + " moving variables)");
 }
 
 std::string to_string(DesignStorage storage)
