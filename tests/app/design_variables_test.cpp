@@ -553,6 +553,72 @@ TEST(DesignVariableSetUp, a_2d_lattice_moves_both_empty_planes_alike)
     EXPECT_GT(largest, 1e-3) << "the floor moves";
 }
 
+//! A 2D channel over x in [0, 2] whose floor (yMin) a lattice over x in [0.5, 1.5] moves,
+//! `confine (c 0 0)`; returns the case directory.
+fs::path channel_with_a_lattice_cutting_its_floor(const std::string& name, int confine)
+{
+    const fs::path dir = test::scratch_dir("design_variables/" + name);
+    const PolyMesh mesh = test::make_block_mesh(
+        20, 4, 1, [](double u, double v, double w) { return Vector3(2.0 * u, 0.4 * v, 0.1 * w); },
+        {"patch", "patch", "wall", "wall", "empty", "empty"});
+    io::write_poly_mesh(mesh, io::default_poly_mesh_files(io::FoamFormat::binary), dir, "constant");
+    fs::create_directories(dir / "system");
+    fs::copy_file(test::pipe_tutorial_dir() / "system/controlDict", dir / "system/controlDict");
+    test::write_text(dir / "system/morphDict",
+                     "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n"
+                     "boundary { default { type fixed; } }\n"
+                     "designVariables { floor { type ffd; patches (yMin); lattice (7 4 1);\n"
+                     "  box ((0.5 -0.1 -0.5) (1.5 0.5 0.6)); directions (y); confine (" +
+                         std::to_string(confine) + " 0 0); } }\n");
+    return dir;
+}
+
+//! The largest |y-displacement| of the floor's points at x = 0.5 and 1.5 (the box's faces)
+//! after a variant with every amplitude 0.01.
+double floor_motion_at_the_box_faces(const fs::path& dir, std::size_t n_variables)
+{
+    std::string amplitudes = "(";
+    for (std::size_t j = 0; j < n_variables; ++j)
+        amplitudes += " 0.01";
+    const test::MorphRun r =
+        test::run_morph_mesh({"-case", dir.string(), "-variant", amplitudes + " )"});
+    EXPECT_EQ(r.code, 0) << r.log;
+    const Points x0 = points_at(dir, "constant"), x = points_at(dir, "1");
+    double largest = 0.0;
+    for (Index i = 0; i < x0.rows(); ++i)
+        if (x0(i, 1) == 0.0 &&
+            (std::abs(x0(i, 0) - 0.5) < 1e-12 || std::abs(x0(i, 0) - 1.5) < 1e-12))
+            largest = std::max(largest, std::abs(x(i, 1) - x0(i, 1)));
+    return largest;
+}
+
+TEST(DesignVariableSetUp, a_lattice_box_cutting_its_walls_without_confine_3_is_said_and_steps_them)
+{
+    // The uniform cubic lattice's box faces carry (P0 + 4 P1 + P2) / 6 of the outer layers:
+    // with 2 held, 1/6 of the third layer's motion, and the floor just outside the box does
+    // not move: a step, said at -variables. With 3 held the motion fades to zero at the face.
+    const fs::path two = channel_with_a_lattice_cutting_its_floor("box_cut_2", 2);
+    const test::MorphRun said = test::run_morph_mesh({"-case", two.string(), "-variables"});
+    ASSERT_EQ(said.code, 0) << said.log;
+    EXPECT_NE(said.err.find("Warning: designVariables floor (line 3): its box cuts the patches "
+                            "it moves across x"),
+              std::string::npos)
+        << said.err;
+    EXPECT_NE(said.err.find("up to 1/6 of a control point's motion"), std::string::npos)
+        << said.err;
+    EXPECT_NE(said.err.find("confine 3 along x"), std::string::npos) << said.err;
+    EXPECT_EQ(said.err.find("across y"), std::string::npos) << "the box holds the floor in y";
+    // 3 free layers in x (2, 3, 4) x 4 in y (their weights sum to 1), moving in y: the face
+    // moves 0.01 / 6.
+    EXPECT_NEAR(floor_motion_at_the_box_faces(two, 12), 0.01 / 6.0, 1e-12);
+
+    const fs::path three = channel_with_a_lattice_cutting_its_floor("box_cut_3", 3);
+    const test::MorphRun quiet = test::run_morph_mesh({"-case", three.string(), "-variables"});
+    ASSERT_EQ(quiet.code, 0) << quiet.log;
+    EXPECT_EQ(quiet.err.find("its box cuts"), std::string::npos) << quiet.err;
+    EXPECT_LT(floor_motion_at_the_box_faces(three, 4), 1e-15);
+}
+
 TEST(DesignVariableSetUp, a_moving_boundary_entry_and_a_surface_variable_are_refused_by_name)
 {
     const fs::path moving = pipe_case(

@@ -9,6 +9,8 @@ optimise.py direction STATE DJDA      reads dJ/da (morphMesh -sensitivity's JSON
                                       direction d (one number per variable) and its kind
 optimise.py step STATE ETA D...       a <- a + ETA d; prints the new amplitudes
 optimise.py undo STATE                a <- the amplitudes before the last step
+optimise.py retreat STATE             the last step at half its length from where it
+                                      started (J rose): prints the new amplitudes
 """
 import json
 import os
@@ -73,8 +75,18 @@ def step(state_path, eta, d):
     a = state["a"]
     state["a_prev"] = list(a)
     state["a"] = [x + eta * y for x, y in zip(a, d)]
+    state["eta"], state["d"] = eta, d
     save(state_path, state)
     print(" ".join(repr(x) for x in state["a"]))
+
+
+def retreat(state_path):
+    """The design the last step reached made J rise: half the step from where it began
+    (the BFGS pair of the next direction then spans the shorter step)."""
+    state = load(state_path)
+    state["a"] = state["a_prev"]
+    save(state_path, state)
+    step(state_path, 0.5 * state["eta"], state["d"])
 
 
 def undo(state_path):
@@ -88,7 +100,9 @@ if __name__ == "__main__":
         direction(sys.argv[2], sys.argv[3])
     elif sys.argv[1] == "undo":
         undo(sys.argv[2])
+    elif sys.argv[1] == "retreat":
+        retreat(sys.argv[2])
     elif sys.argv[1] == "step":
         step(sys.argv[2], float(sys.argv[3]), [float(x) for x in sys.argv[4:]])
     else:
-        sys.exit("usage: optimise.py direction STATE DJDA | step STATE ETA D...")
+        sys.exit("usage: optimise.py direction STATE DJDA | step STATE ETA D... | undo STATE | retreat STATE")

@@ -7,7 +7,10 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <mutex>
+#include <set>
 #include <sstream>
+#include <utility>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -26,6 +29,29 @@ namespace meshmorph
 
 namespace detail
 {
+
+namespace
+{
+
+//! The log line for a polynomial the handles cannot determine, once per process for each
+//! (terms, kept) pair: a 2D case's handles are coplanar in every fit of a design set-up and
+//! every step of a morph, and the same line for each would bury the log.
+void say_polynomial_terms_dropped(std::size_t terms, Eigen::Index kept)
+{
+    static std::mutex mutex;
+    static std::set<std::pair<std::size_t, Eigen::Index>> said;
+    {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (!said.insert({terms, kept}).second)
+            return;
+    }
+    log::info() << "RBF: handles do not determine all " << terms
+                << " polynomial terms (coplanar, collinear or too few); keeping " << kept
+                << " (said once: later fits of this run with the same handles' shape keep "
+                   "them without a word)";
+}
+
+} // namespace
 
 RbfKernelSetup rbf_kernel_setup(const RbfSettings& s)
 {
@@ -221,8 +247,7 @@ void choose_polynomial(RbfModel& model, int degree, const Eigen::Ref<const Point
     for (Eigen::Index k : keep)
         model.exponents.push_back(all[std::size_t(k)]);
     if (rank < Eigen::Index(all.size()))
-        log::info() << "RBF: handles do not determine all " << all.size()
-                    << " polynomial terms (coplanar, collinear or too few); keeping " << rank;
+        say_polynomial_terms_dropped(all.size(), rank);
 }
 
 } // namespace detail

@@ -12,6 +12,7 @@
 #include "meshmorph/core/stopwatch.h"
 #include "meshmorph/design/case_fingerprint.h"
 #include "meshmorph/design/design_case.h"
+#include "meshmorph/design/lattice_box_cut.h"
 #include "meshmorph/design/shared_design_fit.h"
 #include "meshmorph/design/variable_constraints.h"
 #include "meshmorph/mesh/mesh_geometry.h"
@@ -239,6 +240,7 @@ DesignSetupResult setup_design(const morph::MorphOptions& options)
     const PolyMesh& mesh = dc.foam.mesh;
     const morph::PointDisplacementInputs field = read_variable_fields(dc, options);
     const VariableConstraints constraints(mesh, dc.setup, dc.variables, &field, dc.parts());
+    warn_lattice_box_cuts(mesh, dc.variables, constraints, parallel::Communicator::world());
 
     DesignSetupResult result;
     result.method = morph::describe(dc.settings, 0);

@@ -130,8 +130,8 @@ std::vector<int> read_directions(const io::FoamDictionary& d)
     return axes;
 }
 
-//! `confine (cx cy cz);`: outer layers of control points per axis that stay fixed (so the
-//! lattice's motion fades to zero at its box, as OpenFOAM's confineBoundaryControlPoints).
+//! `confine (cx cy cz);`: outer layers of control points per axis that stay fixed. Three
+//! make the lattice's motion fade to zero at its box (lattice_box_cut.h says why).
 std::array<int, 3> read_confine(const io::FoamDictionary& d, const std::array<int, 3>& counts)
 {
     const io::FoamEntry* e = d.find("confine");
@@ -183,9 +183,10 @@ void read_lattice_variables(const io::FoamEntry& e, DesignVariables& out)
     std::array<int, 3> cubic = n;
     for (int& c : cubic)
         c = std::max(c, 4);
-    DesignLattice lattice{e.keyword(), FfdLattice(*box, cubic), n, {}, {}, e.line()};
+    DesignLattice lattice{e.keyword(), FfdLattice(*box, cubic), n, read_confine(d, n), {}, {},
+                          e.line()};
     read_patch_keys(d.entry("patches"), lattice.patch_keys, lattice.key_is_regex);
-    const std::array<int, 3> confine = read_confine(d, n);
+    const std::array<int, 3> confine = lattice.confine;
     const std::vector<int> directions = read_directions(d);
     const auto bounds = read_amplitude_bounds(d);
     const std::size_t index = out.lattices.size();

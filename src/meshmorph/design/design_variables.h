@@ -40,6 +40,8 @@ struct DesignLattice
     //! same at every coordinate along that axis inside the box).
     FfdLattice lattice;
     std::array<int, 3> counts{4, 4, 4}; //!< as written
+    //! Outer layers of control points held fixed at each side, per axis (`confine`).
+    std::array<int, 3> confine{0, 0, 0};
     //! Whether control point p (linear index) belongs to the variable of (i, j, k) (counts
     //! as written).
     bool belongs(Index p, const std::array<int, 3>& ijk) const;

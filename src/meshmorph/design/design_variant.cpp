@@ -90,6 +90,9 @@ DesignStudy::DesignStudy(const morph::MorphOptions& options) : options_(options)
     x0_ = case_.foam.mesh.points;
     if (header().shared)
         load_shared_fit();
+    // Checked once here, not in the first variant: the topology part of every variant's
+    // check, and the set-up mesh's own failures, which a variant's are compared with.
+    setup_report();
     read_seconds_ = clock.seconds();
     log::info() << "Reusing the design set-up " << basis_file().string() << " (" << names().size()
                 << " variables, method " << header().method

@@ -149,7 +149,7 @@ private:
                 VariantResult& r, bool search_back_off);
     //! r.new_failed_checks, and with morphDict `newCheckFailures refuse` the refusal.
     void judge_new_check_failures(VariantResult& r);
-    //! The check of the set-up's mesh, made when a variant first fails a check (collective).
+    //! The check of the set-up's mesh, made when the study opens (collective).
     const QualityReport& setup_report();
     std::string back_off(const Points& moved, const std::vector<double>& a, Index invalid);
 
@@ -162,7 +162,7 @@ private:
     std::optional<DesignBasisReader> reader_;
     DesignCase case_;
     CompactList cell_faces_;
-    //! The first variant's report, for its topology part and corners (check_variant).
+    //! The set-up mesh's report, for its topology part and corners (check_variant).
     std::optional<QualityReport> topology_;
     std::optional<QualityReport> setup_report_; //!< see setup_report()
     Points x0_; //!< the set-up's points (the study's mesh holds the last variant's)

@@ -1,5 +1,6 @@
 # design: design variables for optimisers, on top of morph. The designVariables of a
-# morphDict (design_variables), their unit constraint sets (variable_constraints), the
+# morphDict (design_variables), their unit constraint sets (variable_constraints), a
+# lattice's box cutting its patches (lattice_box_cut), the
 # fingerprints that tie a set-up to its case (case_fingerprint), the stored set-up
 # (design_basis), what every design command reads (design_case), the set-up itself
 # (design_setup), variants (design_variant, with their amplitudes: amplitude_table) and the
@@ -8,6 +9,7 @@
 set(MESHMORPH_DESIGN_SOURCES
     meshmorph/design/design_variables.cpp
     meshmorph/design/variable_constraints.cpp
+    meshmorph/design/lattice_box_cut.cpp
     meshmorph/design/case_fingerprint.cpp
     meshmorph/design/design_basis.cpp
     meshmorph/design/design_case.cpp

@@ -51,6 +51,9 @@ public:
     //! holds none of its patches' points does not).
     bool moves_anything(Index j) const;
 
+    //! Per patch of this rank's mesh, 1 when variable j moves it.
+    const std::vector<char>& moved_patches(Index j) const { return moved_patches_[std::size_t(j)]; }
+
 private:
     bool moves_any_local_point(Index j) const;
     //! The points of the patches variable j moves (a point on two of them twice).
