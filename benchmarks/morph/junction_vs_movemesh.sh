@@ -97,12 +97,15 @@ for path in sorted(glob.glob(os.path.join(sweep, "cases", "*", "meshes", "*", "r
     tutorial = path.split(os.sep)[-4].split("@")[0].replace("+", "/")  # as -cases matches it
     if r.get("verdict") == "skipped" or "instance" not in r or (cases and not re.search(cases, tutorial)):
         continue
-    mesh = os.path.join(r["case"], r["instance"], r.get("region", ""), "polyMesh")
-    if not os.path.exists(os.path.join(mesh, "faces")):  # the time reads constant's mesh
-        mesh = os.path.join(r["case"], "constant", r.get("region", ""), "polyMesh")
+    # Each file where OpenFOAM reads it: the instance's polyMesh, else constant's (points may
+    # be in a time, the rest in constant), plain or gzipped.
+    dirs = [os.path.join(r["case"], t, r.get("region", ""), "polyMesh") for t in (r["instance"], "constant")]
     digest = hashlib.sha256()
     for name in ("points", "faces", "owner", "boundary"):
-        with open(os.path.join(mesh, name), "rb") as f:
+        found = [p for d in dirs for p in (os.path.join(d, name), os.path.join(d, name + ".gz")) if os.path.exists(p)]
+        if not found:
+            sys.exit(f"{path}: no polyMesh/{name} in {' or '.join(dirs)}")
+        with open(found[0], "rb") as f:
             digest.update(f.read())
     key = digest.hexdigest()
     if key in seen:
