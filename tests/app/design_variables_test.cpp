@@ -515,23 +515,36 @@ TEST(DesignVariableSetUp, dmffd_targets_are_design_variables_too)
     EXPECT_GT(j["maxDisplacement"].get<double>(), 0.01);
 }
 
-TEST(DesignVariableSetUp, a_2d_lattice_moves_both_empty_planes_alike)
+//! A 2D channel (nx x 4 x 1 cells over x in [0, length], y in [0, 0.4], z in [0, 0.1]; zMin
+//! and zMax empty, yMin and yMax walls) whose floor (yMin) the lattice variable `floor` moves:
+//! `lattice` holds its entries after `type ffd; patches (yMin);`. Returns the case directory.
+fs::path channel_with_a_floor_lattice(const std::string& name, int nx, double length,
+                                      const std::string& lattice)
 {
-    // A 2D channel (one cell thick, zMin and zMax empty) whose bottom wall is moved by a
-    // lattice that does not vary along z (`lattice (5 4 1)`): the case stays 2D.
-    const fs::path dir = test::scratch_dir("design_variables/two_d");
+    const fs::path dir = test::scratch_dir("design_variables/" + name);
     const PolyMesh mesh = test::make_block_mesh(
-        10, 4, 1, [](double u, double v, double w) { return Vector3(u, 0.4 * v, 0.1 * w); },
+        nx, 4, 1,
+        [length](double u, double v, double w) { return Vector3(length * u, 0.4 * v, 0.1 * w); },
         {"patch", "patch", "wall", "wall", "empty", "empty"});
     io::write_poly_mesh(mesh, io::default_poly_mesh_files(io::FoamFormat::binary), dir, "constant");
     fs::create_directories(dir / "system");
     fs::copy_file(test::pipe_tutorial_dir() / "system/controlDict", dir / "system/controlDict");
-    test::write_text(
-        dir / "system/morphDict",
-        "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n"
-        "boundary { default { type fixed; } }\n"
-        "designVariables { floor { type ffd; patches (yMin); lattice (5 4 1);\n"
-        "  box ((-0.1 -0.1 -0.5) (1.1 0.5 0.6)); directions (y); confine (1 1 0); } }\n");
+    test::write_text(dir / "system/morphDict",
+                     "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n"
+                     "boundary { default { type fixed; } }\n"
+                     "designVariables { floor { type ffd; patches (yMin); " +
+                         lattice + " } }\n");
+    return dir;
+}
+
+TEST(DesignVariableSetUp, a_2d_lattice_moves_both_empty_planes_alike)
+{
+    // A 2D channel (one cell thick, zMin and zMax empty) whose bottom wall is moved by a
+    // lattice that does not vary along z (`lattice (5 4 1)`): the case stays 2D.
+    const fs::path dir =
+        channel_with_a_floor_lattice("two_d", 10, 1.0,
+                                     "lattice (5 4 1);\n  box ((-0.1 -0.1 -0.5) (1.1 0.5 0.6)); "
+                                     "directions (y); confine (1 1 0);");
     const test::MorphRun set_up = test::run_morph_mesh({"-case", dir.string(), "-variables"});
     ASSERT_EQ(set_up.code, 0) << set_up.log;
     EXPECT_NE(set_up.log.find("Variable floor.2.1.0.y"), std::string::npos) << set_up.log;
@@ -553,24 +566,14 @@ TEST(DesignVariableSetUp, a_2d_lattice_moves_both_empty_planes_alike)
     EXPECT_GT(largest, 1e-3) << "the floor moves";
 }
 
-//! A 2D channel over x in [0, 2] whose floor (yMin) a lattice over x in [0.5, 1.5] moves,
+//! A 2D channel over x in [0, 2] whose floor a lattice over x in [0.5, 1.5] moves,
 //! `confine (c 0 0)`; returns the case directory.
 fs::path channel_with_a_lattice_cutting_its_floor(const std::string& name, int confine)
 {
-    const fs::path dir = test::scratch_dir("design_variables/" + name);
-    const PolyMesh mesh = test::make_block_mesh(
-        20, 4, 1, [](double u, double v, double w) { return Vector3(2.0 * u, 0.4 * v, 0.1 * w); },
-        {"patch", "patch", "wall", "wall", "empty", "empty"});
-    io::write_poly_mesh(mesh, io::default_poly_mesh_files(io::FoamFormat::binary), dir, "constant");
-    fs::create_directories(dir / "system");
-    fs::copy_file(test::pipe_tutorial_dir() / "system/controlDict", dir / "system/controlDict");
-    test::write_text(dir / "system/morphDict",
-                     "FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }\n"
-                     "boundary { default { type fixed; } }\n"
-                     "designVariables { floor { type ffd; patches (yMin); lattice (7 4 1);\n"
-                     "  box ((0.5 -0.1 -0.5) (1.5 0.5 0.6)); directions (y); confine (" +
-                         std::to_string(confine) + " 0 0); } }\n");
-    return dir;
+    return channel_with_a_floor_lattice(name, 20, 2.0,
+                                        "lattice (7 4 1);\n  box ((0.5 -0.1 -0.5) (1.5 0.5 0.6)); "
+                                        "directions (y); confine (" +
+                                            std::to_string(confine) + " 0 0);");
 }
 
 //! The largest |y-displacement| of the floor's points at x = 0.5 and 1.5 (the box's faces)

@@ -91,8 +91,10 @@ DesignStudy::DesignStudy(const morph::MorphOptions& options) : options_(options)
     if (header().shared)
         load_shared_fit();
     // Checked once here, not in the first variant: the topology part of every variant's
-    // check, and the set-up mesh's own failures, which a variant's are compared with.
-    setup_report();
+    // check (check_variant), and the set-up mesh's own failures, which a variant's are
+    // compared with. The mesh holds the set-up's points until the first variant.
+    setup_report_ = check_variant(compute_geometry(case_.foam.mesh, cell_faces_));
+    setup_report_->cell_scaled_jacobian = Eigen::VectorXd(); // its corners are what is reused
     read_seconds_ = clock.seconds();
     log::info() << "Reusing the design set-up " << basis_file().string() << " (" << names().size()
                 << " variables, method " << header().method
@@ -446,25 +448,13 @@ VariantResult DesignStudy::evaluate(const std::vector<double>& amplitudes, bool 
     return r;
 }
 
-const QualityReport& DesignStudy::setup_report()
-{
-    if (setup_report_)
-        return *setup_report_;
-    PolyMesh& mesh = case_.foam.mesh;
-    Points variant = std::move(mesh.points);
-    mesh.points = x0_;
-    setup_report_ = check_variant(compute_geometry(mesh, cell_faces_));
-    mesh.points = std::move(variant);
-    return *setup_report_;
-}
-
 void DesignStudy::judge_new_check_failures(VariantResult& r)
 {
     // The master holds the whole report in a -parallel run: its verdict is every rank's.
     const parallel::Communicator& comm = parallel::Communicator::world();
     if (comm.broadcast(comm.master() && !r.after.mesh_ok() ? "fails" : "").empty())
-        return; // fails nothing: no need for the set-up mesh's report
-    const QualityReport& before = setup_report();
+        return; // fails nothing: nothing to compare
+    const QualityReport& before = *setup_report_;
     std::string refusal;
     if (comm.master())
     {
@@ -494,15 +484,9 @@ QualityReport DesignStudy::check_variant(const MeshGeometry& geometry)
 {
     CheckMeshSettings settings;
     settings.cell_fields = false;
-    settings.unchanged_topology = topology_ ? &*topology_ : nullptr;
-    QualityReport report = morph::check_morph_mesh(case_.foam.mesh, cell_faces_, geometry, settings,
-                                                   case_.decomposition);
-    if (!topology_)
-    {
-        topology_ = report;
-        topology_->cell_scaled_jacobian = Eigen::VectorXd(); // the corners are what is reused
-    }
-    return report;
+    settings.unchanged_topology = setup_report_ ? &*setup_report_ : nullptr;
+    return morph::check_morph_mesh(case_.foam.mesh, cell_faces_, geometry, settings,
+                                   case_.decomposition);
 }
 
 bool DesignStudy::is_valid(const std::vector<double>& amplitudes)

@@ -149,22 +149,21 @@ private:
                 VariantResult& r, bool search_back_off);
     //! r.new_failed_checks, and with morphDict `newCheckFailures refuse` the refusal.
     void judge_new_check_failures(VariantResult& r);
-    //! The check of the set-up's mesh, made when the study opens (collective).
-    const QualityReport& setup_report();
     std::string back_off(const Points& moved, const std::vector<double>& a, Index invalid);
 
     //! The check of the variant in the study's mesh. Without per-cell fields (a variant's
     //! report is its summary), and with the topology part and the scaled Jacobian's corners
-    //! of the study's first check: a variant moves points only.
+    //! of the set-up mesh's check (setup_report_): a variant moves points only.
     QualityReport check_variant(const MeshGeometry& geometry);
 
     morph::MorphOptions options_;
     std::optional<DesignBasisReader> reader_;
     DesignCase case_;
     CompactList cell_faces_;
-    //! The set-up mesh's report, for its topology part and corners (check_variant).
-    std::optional<QualityReport> topology_;
-    std::optional<QualityReport> setup_report_; //!< see setup_report()
+    //! The check of the set-up's mesh, made when the study opens (collective; empty only
+    //! while it is made): the topology part and corners every variant's check reuses
+    //! (check_variant), and the failures a variant's are compared with.
+    std::optional<QualityReport> setup_report_;
     Points x0_; //!< the set-up's points (the study's mesh holds the last variant's)
     std::optional<VariantRepairer> repairer_; //!< made when a variant first needs it
     std::unique_ptr<SharedDesignFit> shared_; //!< a shared set-up's fit (else null)

@@ -14,19 +14,6 @@ namespace meshmorph::design
 namespace
 {
 
-//! The labels of the points of the patches whose mask is set (a point on two of them twice).
-std::vector<Index> points_of(const PolyMesh& mesh, const std::vector<char>& patches)
-{
-    std::vector<Index> points;
-    for (std::size_t p = 0; p < patches.size(); ++p)
-        if (patches[p])
-        {
-            const std::vector<Index> on = patch_points(mesh, mesh.patches[p]);
-            points.insert(points.end(), on.begin(), on.end());
-        }
-    return points;
-}
-
 //! Per axis, how many of `points` lie inside the box's slab along it and how many outside.
 struct AxisSides
 {
@@ -90,8 +77,7 @@ void warn_lattice_box_cuts(const PolyMesh& mesh, const DesignVariables& variable
         const Index j = first_variable_of(variables, l);
         if (j < 0)
             continue;
-        const AxisSides s =
-            sides_of(mesh, lattice.lattice.box(), points_of(mesh, constraints.moved_patches(j)));
+        const AxisSides s = sides_of(mesh, lattice.lattice.box(), constraints.points_moved_by(j));
         for (std::size_t a = 0; a < 3; ++a)
         {
             const int held = lattice.confine[a];

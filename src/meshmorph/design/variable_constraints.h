@@ -51,13 +51,12 @@ public:
     //! holds none of its patches' points does not).
     bool moves_anything(Index j) const;
 
-    //! Per patch of this rank's mesh, 1 when variable j moves it.
-    const std::vector<char>& moved_patches(Index j) const { return moved_patches_[std::size_t(j)]; }
+    //! The points of this rank's mesh on the patches variable j moves (a point on two of
+    //! them twice).
+    std::vector<Index> points_moved_by(Index j) const;
 
 private:
     bool moves_any_local_point(Index j) const;
-    //! The points of the patches variable j moves (a point on two of them twice).
-    std::vector<Index> points_moved_by(Index j) const;
     //! A lattice's B-spline weights at the points of its patches: per control point as
     //! written (i, j, k), the points in its support and its weight there (summed over an
     //! axis written with count 1). Computed once per lattice: its variables share it.
