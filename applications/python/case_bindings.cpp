@@ -344,8 +344,9 @@ void bind_case(py::module_& m)
             "prescribe). The exact transpose of the morph's field with its choices held "
             "(greedy centres, jump constraints, the IDW tree), so that dJ = sum(dJ/dd * dd) to "
             "first order. For a morph in one step (points its repair moved are taken as "
-            "following the field, with a warning), without wedges, cyclic patches or "
-            "jumpSmoothing (an InputError says which).")
+            "following the field, with a warning), without wedges or cyclic patches (an "
+            "InputError says which); a smoothed jump band is transposed with it (serial, "
+            "without slip patches).")
         .def(
             "is_valid",
             [](PyCase& c) { return without_gil(*c.busy, [&] { return c.session->is_valid(); }); },

@@ -3,11 +3,13 @@
 // run_morph_mesh): what is written where, exactness at constraints, dictionary errors that
 // write nothing, refusal of invalid morphs, JSON, and OpenFOAM's checkMesh on the result.
 #include "meshmorph/app/morph_mesh.h"
+#include "meshmorph/app/morph_session.h"
 #include "meshmorph/app/options.h"
 
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <regex>
 #include <sstream>
@@ -24,6 +26,7 @@
 #include "meshmorph/io/read_poly_mesh.h"
 #include "meshmorph/io/temp_file.h"
 #include "meshmorph/io/write_poly_mesh.h"
+#include "meshmorph/morph/jump_smoothing_guard.h"
 #include "morph_run.h"
 #include "shipped_pipe.h"
 
@@ -439,34 +442,87 @@ TEST(MorphMesh, a_wedge_case_keeps_its_symmetry_exactly)
     }
 }
 
-TEST(MorphMesh, jump_smoothing_when_asked_spreads_the_band_and_keeps_the_morph_exact)
+TEST(MorphMesh, the_sensitivity_of_a_smoothed_morph_equals_central_differences)
+{
+    // The lid lifted against fixed sides with the band smoothed: dJ/dXs carries dJ/dx at
+    // the band's points back through the Laplacian to the points it reads. For J = g . x and
+    // the lift scaled by 1 +- 1% (the morph is linear in it with its choices held: the
+    // greedy centres, the jump band), central differences equal the sum of dJ/dXs . dlift.
+    const std::string lid = "boundary { zMax { type translate; vector (0 0 LIFT); } }\n";
+    const auto with_lift = [&](const char* lift)
+    { return std::regex_replace(lid, std::regex("LIFT"), lift); };
+    const fs::path dir = make_case("smoothed_sensitivity", test::make_box_mesh(24, 24, 12),
+                                   "jumpSmoothing yes;\n" + with_lift("0.2"));
+    for (const char* lift : {"0.202", "0.198"})
+        write_text(dir / "system" / (std::string("morphDict.") + lift),
+                   std::string(dict_header) + "jumpSmoothing yes;\n" + with_lift(lift));
+    morph::MorphOptions options;
+    options.case_dir = dir;
+    app::MorphSession session(options);
+    ASSERT_GT(session.morph().steps.back().jump_smoothed_points, 0);
+    ASSERT_EQ(session.result().steps.size(), 1u);
+    std::srand(11);
+    const Points g = Points::Random(session.mesh().n_points(), 3);
+    const Points sensitivity = session.sensitivity(g);
+    const auto objective = [&](const char* lift)
+    {
+        session.reset();
+        session.morph(dir / "system" / (std::string("morphDict.") + lift));
+        return (g.array() * session.points().array()).sum();
+    };
+    const double central = (objective("0.202") - objective("0.198")) / 2.0;
+    // The lid's points off its rim (the rim is held: conflicts fixed) take the lift.
+    const Points& x = session.initial_points();
+    const Vector3 lo = x.colwise().minCoeff(), hi = x.colwise().maxCoeff();
+    double predicted = 0.0;
+    for (Index p = 0; p < x.rows(); ++p)
+        if (x(p, 2) == hi.z() && x(p, 0) > lo.x() && x(p, 0) < hi.x() && x(p, 1) > lo.y() &&
+            x(p, 1) < hi.y())
+            predicted += 0.002 * sensitivity(p, 2);
+    EXPECT_NEAR(central, predicted, 1e-8 * std::abs(predicted));
+}
+
+TEST(MorphMesh, jump_smoothing_auto_keeps_the_smoothed_band_only_where_it_is_better)
 {
     // The lid lifted against fixed sides (conflicts fixed: its edges stay; the band, 0.1
-    // wide, spans a cell of 1/12 below the rim): the prescription
-    // jumps along the lid's rim. Asked for, the band's free points are smoothed and reported;
-    // by default nothing is.
+    // wide, spans a cell of 1/12 below the rim): the prescription jumps along the lid's rim.
+    // `no` leaves the fitted field, `yes` smooths the band, the default `auto` compares the
+    // two on the band's cells and keeps the one with the lower non-orthogonality: its mesh
+    // is the better of the two, and every one is exact.
     const std::string lid = "boundary { zMax { type translate; vector (0 0 0.2); } }\n";
-    for (const bool asked : {false, true})
+    std::map<std::string, nlohmann::json> runs;
+    for (const std::string mode : {"no", "yes", "auto", ""})
     {
-        const fs::path dir =
-            make_case(asked ? "jump_smoothing" : "no_jump_smoothing",
-                      test::make_box_mesh(24, 24, 12), (asked ? "jumpSmoothing yes;\n" : "") + lid);
+        const std::string keys = mode.empty() ? "" : "jumpSmoothing " + mode + ";\n";
+        const fs::path dir = make_case("jump_smoothing_" + (mode.empty() ? "default" : mode),
+                                       test::make_box_mesh(24, 24, 12), keys + lid);
         const RunResult r = run({"-case", dir.string(), "-json", (dir / "morph.json").string()});
         ASSERT_EQ(r.code, 0) << r.err;
-        const nlohmann::json j = nlohmann::json::parse(read_text(dir / "morph.json"));
-        const int smoothed = j["steps"].back()["jumpSmoothedPoints"].get<int>();
-        if (asked)
-        {
-            EXPECT_GT(smoothed, 0) << r.out;
-            EXPECT_NE(r.out.find("jump smoothing: "), std::string::npos) << r.out;
-        }
-        else
-        {
-            EXPECT_EQ(smoothed, 0);
-        }
-        EXPECT_LE(j["maxConstraintError"].get<double>(), 1e-9 * 0.2);
-        EXPECT_EQ(j["after"]["negativeVolumeCells"].get<int>(), 0);
+        runs[mode] = nlohmann::json::parse(read_text(dir / "morph.json"));
+        const nlohmann::json& j = runs[mode];
+        EXPECT_EQ(j["jumpSmoothing"], mode.empty() ? "auto" : mode);
+        EXPECT_LE(j["maxConstraintError"].get<double>(), 1e-9 * 0.2) << mode;
+        EXPECT_EQ(j["after"]["negativeVolumeCells"].get<int>(), 0) << mode;
+        if (mode == "auto")
+            EXPECT_NE(r.out.find("    jump smoothing "), std::string::npos) << r.out;
     }
+    const auto smoothed = [&](const std::string& m)
+    { return runs[m]["steps"].back()["jumpSmoothedPoints"].get<int>(); };
+    const auto non_ortho = [&](const std::string& m)
+    { return runs[m]["after"]["maxNonOrthogonality"].get<double>(); };
+    EXPECT_EQ(smoothed("no"), 0);
+    EXPECT_GT(smoothed("yes"), 0);
+    EXPECT_TRUE(runs["yes"]["steps"].back()["jumpSmoothingChoice"].is_null());
+    const nlohmann::json choice = runs["auto"]["steps"].back()["jumpSmoothingChoice"];
+    ASSERT_TRUE(choice.is_object());
+    const bool kept = choice["kept"].get<bool>();
+    const double with = choice["smoothed"]["maxNonOrthogonality"].get<double>();
+    const double without = choice["fitted"]["maxNonOrthogonality"].get<double>();
+    EXPECT_EQ(kept, with < without - morph::margin_degrees);
+    EXPECT_EQ(smoothed("auto"), kept ? smoothed("yes") : 0);
+    EXPECT_EQ(non_ortho("auto"), kept ? non_ortho("yes") : non_ortho("no"));
+    EXPECT_LE(non_ortho("auto"), std::min(non_ortho("yes"), non_ortho("no")) + 1e-12);
+    EXPECT_EQ(runs[""]["after"], runs["auto"]["after"]) << "auto is the default";
 }
 
 TEST(MorphMesh, json_has_the_interface_keys)

@@ -2,11 +2,16 @@
 // Tests of smooth_jumps() (src/meshmorph/morph/jump_smoothing.*): a box whose top face moves
 // up on one half and stays on the other, so that the prescription jumps along the middle.
 #include <algorithm>
+#include <cstdlib>
 
 #include <gtest/gtest.h>
 
 #include "helpers.h"
+#include "meshmorph/mesh/mesh_geometry.h"
 #include "meshmorph/morph/jump_smoothing.h"
+#include "meshmorph/morph/jump_smoothing_guard.h"
+#include "meshmorph/parallel/communicator.h"
+#include "meshmorph/quality/face_orthogonality.h"
 
 namespace meshmorph::morph
 {
@@ -137,6 +142,120 @@ TEST(JumpSmoothing, does_nothing_where_the_prescription_has_no_jump)
     EXPECT_EQ(s.jump_constraints, 0);
     EXPECT_EQ(s.band_points, 0);
     EXPECT_EQ(d, before);
+}
+
+TEST(JumpSmoothing, its_transpose_is_the_adjoint_of_the_smoothing)
+{
+    // The smoothing is linear in the field: <w, S d> = <S^T w, d> for any d and w.
+    const SteppedBox box;
+    std::srand(7);
+    const Points d = Points::Random(box.mesh.points.rows(), 3);
+    const Points w = Points::Random(box.mesh.points.rows(), 3);
+    Points smoothed = d;
+    const JumpSmoothing s = smooth_jumps(box.mesh, box.constrained, box.values, smoothed);
+    ASSERT_GT(s.band_points, 0);
+    Points transposed = w;
+    smooth_jumps_transpose(box.mesh, box.constrained, box.values, transposed);
+    const double forward = (w.array() * smoothed.array()).sum();
+    const double reverse = (transposed.array() * d.array()).sum();
+    EXPECT_NEAR(forward, reverse, 1e-12 * (w.norm() * d.norm()));
+    for (const Index p : s.band)
+        EXPECT_EQ(transposed.row(p).norm(), 0.0) << "band point " << p;
+}
+
+//! The largest non-orthogonality [deg] of the internal faces of `mesh` beside a cell with a
+//! point of `band` (computed afresh, from the whole mesh's geometry).
+double band_non_orthogonality(const PolyMesh& mesh, const std::vector<Index>& band)
+{
+    const MeshGeometry g = compute_geometry(mesh);
+    std::vector<char> in_band(std::size_t(mesh.n_points()), 0);
+    for (const Index p : band)
+        in_band[std::size_t(p)] = 1;
+    std::vector<char> touched(std::size_t(mesh.n_cells), 0);
+    for (Index f = 0; f < mesh.n_faces(); ++f)
+        for (const Index p : mesh.faces[f])
+            if (in_band[std::size_t(p)] != 0)
+            {
+                touched[std::size_t(mesh.owner[std::size_t(f)])] = 1;
+                if (mesh.is_internal_face(f))
+                    touched[std::size_t(mesh.neighbour[std::size_t(f)])] = 1;
+            }
+    double largest = 0.0;
+    for (Index f = 0; f < mesh.n_internal_faces(); ++f)
+        if (touched[std::size_t(mesh.owner[std::size_t(f)])] != 0 ||
+            touched[std::size_t(mesh.neighbour[std::size_t(f)])] != 0)
+            largest = std::max(largest,
+                               non_orthogonality_degrees(internal_face_orthogonality(mesh, g, f)));
+    return largest;
+}
+
+//! The guard on the stepped box: the trial mesh at x0 + `applied` (band rows: `applied`'s),
+//! with `other` as the band's alternative. Returns the choice; trial and applied updated.
+JumpSmoothingChoice guard(const SteppedBox& box, const JumpSmoothing& s, Points& applied,
+                          PolyMesh& trial, MeshGeometry& geometry)
+{
+    trial = box.mesh;
+    trial.points = box.mesh.points + applied;
+    const CompactList cells = cell_faces(trial);
+    geometry = compute_geometry(trial, cells);
+    return choose_jump_smoothing(trial, cells, geometry, box.mesh.points, s, applied,
+                                 parallel::Communicator::world());
+}
+
+TEST(JumpSmoothingGuard, keeps_the_field_with_the_lower_non_orthogonality_either_way)
+{
+    const SteppedBox box;
+    const Points fitted = box.nearest_field();
+    Points smoothed = fitted;
+    const JumpSmoothing s = smooth_jumps(box.mesh, box.constrained, box.values, smoothed);
+    ASSERT_GT(s.band_points, 0);
+    PolyMesh with_fitted = box.mesh, with_smoothed = box.mesh;
+    with_fitted.points += fitted;
+    with_smoothed.points += smoothed;
+    const double fitted_max = band_non_orthogonality(with_fitted, s.band);
+    const double smoothed_max = band_non_orthogonality(with_smoothed, s.band);
+    ASSERT_LT(smoothed_max, fitted_max - 1.0) << "the jump in one column shears it most";
+
+    // As the morph calls it: the smoothed field applied, the fitted one the alternative.
+    Points applied = smoothed;
+    PolyMesh trial;
+    MeshGeometry geometry;
+    JumpSmoothingChoice c = guard(box, s, applied, trial, geometry);
+    EXPECT_TRUE(c.compared && c.kept);
+    EXPECT_EQ(applied, smoothed);
+    EXPECT_DOUBLE_EQ(c.smoothed.max_non_ortho, smoothed_max);
+    EXPECT_DOUBLE_EQ(c.fitted.max_non_ortho, fitted_max);
+
+    // The roles swapped (the worse field applied): the alternative is put back, and the
+    // trial mesh and its geometry are exactly those of the field kept.
+    JumpSmoothing swapped = s;
+    for (std::size_t i = 0; i < s.band.size(); ++i)
+        swapped.fitted.row(Eigen::Index(i)) = smoothed.row(s.band[i]);
+    applied = fitted;
+    c = guard(box, swapped, applied, trial, geometry);
+    EXPECT_TRUE(c.compared && !c.kept);
+    EXPECT_EQ(applied, smoothed);
+    EXPECT_EQ(trial.points, Points(box.mesh.points + smoothed));
+    const MeshGeometry fresh = compute_geometry(trial);
+    EXPECT_EQ(geometry.face_centres, fresh.face_centres);
+    EXPECT_EQ(geometry.face_areas, fresh.face_areas);
+    EXPECT_EQ(geometry.cell_centres, fresh.cell_centres);
+    EXPECT_EQ(geometry.cell_volumes, fresh.cell_volumes);
+}
+
+TEST(JumpSmoothingGuard, does_not_keep_a_smoothing_that_changes_nothing)
+{
+    // Equal figures (within the margin): the fitted field stays, whatever the round-off.
+    const SteppedBox box;
+    Points applied = box.nearest_field();
+    JumpSmoothing s = smooth_jumps(box.mesh, box.constrained, box.values, applied);
+    for (std::size_t i = 0; i < s.band.size(); ++i)
+        s.fitted.row(Eigen::Index(i)) = applied.row(s.band[i]);
+    PolyMesh trial;
+    MeshGeometry geometry;
+    const JumpSmoothingChoice c = guard(box, s, applied, trial, geometry);
+    EXPECT_TRUE(c.compared);
+    EXPECT_FALSE(c.kept);
 }
 
 } // namespace

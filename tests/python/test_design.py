@@ -433,3 +433,4 @@ def test_a_shared_set_up_is_linear_and_its_gradient_equals_finite_differences(pi
         assert fd == pytest.approx(dJda[j], rel=1e-6, abs=1e-6 * np.abs(dJda).max())
     r = study.evaluate(a)
     assert r["valid"] and r["relativeConstraintError"] < 1e-10
+

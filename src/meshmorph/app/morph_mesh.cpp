@@ -25,6 +25,25 @@ namespace meshmorph::app
 
 namespace fs = std::filesystem;
 
+namespace
+{
+
+//! `jumpSmoothing auto`'s comparison of a step (null: none, no band or not auto).
+nlohmann::json jump_choice_json(const morph::JumpSmoothingChoice& c)
+{
+    if (!c.compared)
+        return nullptr;
+    const auto quality = [](const morph::BandQuality& q)
+    {
+        return nlohmann::json{{"invalidCells", q.invalid_cells},
+                              {"maxNonOrthogonality", q.max_non_ortho},
+                              {"facesAbove70", q.faces_above_70}};
+    };
+    return {{"kept", c.kept}, {"smoothed", quality(c.smoothed)}, {"fitted", quality(c.fitted)}};
+}
+
+} // namespace
+
 std::string morph_json(const morph::MorphResult& result, int exit_status)
 {
     nlohmann::json j;
@@ -47,6 +66,7 @@ std::string morph_json(const morph::MorphResult& result, int exit_status)
     j["conditionEstimate"] = result.morph.report.condition_estimate;
     j["validFraction"] = result.valid_fraction;
     j["maxDisplacement"] = result.max_displacement;
+    j["jumpSmoothing"] = morph::to_string(result.constraints.jump_smoothing);
     j["steps"] = nlohmann::json::array();
     for (const morph::StepRecord& s : result.steps)
         j["steps"].push_back({{"from", s.from},
@@ -55,6 +75,7 @@ std::string morph_json(const morph::MorphResult& result, int exit_status)
                               {"globalResidual", s.max_global_residual},
                               {"jumpConstraints", s.jump_constraints},
                               {"jumpSmoothedPoints", s.jump_smoothed_points},
+                              {"jumpSmoothingChoice", jump_choice_json(s.jump_choice)},
                               {"negativeVolumeCells", s.invalid.negative_volume_cells},
                               {"incorrectlyOrientedFacePyramids", s.invalid.wrong_pyramids},
                               {"untangle",

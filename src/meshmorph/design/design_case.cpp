@@ -59,6 +59,11 @@ DesignCase read_design_case(const morph::MorphOptions& options)
     const io::FoamDictionary parsed = io::read_dictionary(dc.dict_path);
     dc.dict_fingerprint = dictionary_fingerprint(parsed);
     dc.setup = morph::read_morph_setup(parsed);
+    // A variant is a linear combination of the variables' fields; auto's choice between the
+    // smoothed and the fitted band is not linear, so design fields are not smoothed unless
+    // `jumpSmoothing yes;` asks for it (linear, fields storage only).
+    if (dc.setup.jump_smoothing == morph::JumpSmoothingMode::automatic)
+        dc.setup.jump_smoothing = morph::JumpSmoothingMode::off;
     dc.settings = morph::read_deformation_settings(parsed, options.method);
     dc.variables = read_design_variables(parsed);
     const morph::StepSettings steps = morph::read_step_settings(parsed);

@@ -62,7 +62,7 @@ std::string why_not_shared(const morph::Constraints& c, bool parallel)
         return "a wedge case (its transpose is not available yet)";
     if (!c.cyclic_pairs.empty())
         return "cyclic patches (their transpose is not available yet)";
-    if (c.jump_smoothing)
+    if (c.jump_smoothing == morph::JumpSmoothingMode::on)
         return "jumpSmoothing (its transpose is not available yet)";
     return "";
 }

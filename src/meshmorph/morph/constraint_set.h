@@ -59,7 +59,7 @@ struct Constraints
     Index n_near_agreements = 0;
     double max_near_agreement = 0.0; //!< their largest difference / shortest edge
     ConflictRule conflict_rule = ConflictRule::fixed;
-    bool jump_smoothing = false; //!< MorphSetup::jump_smoothing
+    JumpSmoothingMode jump_smoothing = JumpSmoothingMode::automatic; //!< MorphSetup's
     //! Patch pairs involved in conflicts, e.g. "frontWheel/lowerWall: 120 points".
     std::vector<std::string> conflict_summary;
 };

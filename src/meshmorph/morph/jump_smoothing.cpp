@@ -117,20 +117,26 @@ std::vector<Index> moving_seeds(const PolyMesh& mesh, const std::vector<Index>& 
     return out;
 }
 
-//! The band's linear system: one unknown per free point (row of `band`), the rest Dirichlet.
+//! The band's linear system: one unknown per free point (row of `band`), the rest Dirichlet:
+//! A u = sum over `border` of weight * d(point), A symmetric positive definite.
 struct BandSystem
 {
     Eigen::SparseMatrix<double> matrix;
-    Eigen::MatrixXd rhs;
+    struct Coupling
+    {
+        Eigen::Index row;
+        Index point;
+        double weight;
+    };
+    std::vector<Coupling> border;
 };
 
 BandSystem assemble(const PolyMesh& mesh, const CompactList& point_faces,
                     const std::vector<Index>& band, const std::vector<Index>& unknown,
-                    const std::vector<double>& wall_distance, double floor,
-                    const Points& displacement)
+                    const std::vector<double>& wall_distance, double floor)
 {
     const Eigen::Index n = Eigen::Index(band.size());
-    BandSystem s{Eigen::SparseMatrix<double>(n, n), Eigen::MatrixXd::Zero(n, 3)};
+    BandSystem s{Eigen::SparseMatrix<double>(n, n), {}};
     std::vector<Eigen::Triplet<double>> entries;
     for (Eigen::Index i = 0; i < n; ++i)
     {
@@ -146,7 +152,7 @@ BandSystem assemble(const PolyMesh& mesh, const CompactList& point_faces,
             if (const Index j = unknown[std::size_t(q)]; j >= 0)
                 entries.emplace_back(i, j, -w);
             else
-                s.rhs.row(i) += w * displacement.row(q);
+                s.border.push_back({i, q, w});
         }
         entries.emplace_back(i, i, diagonal);
     }
@@ -154,50 +160,115 @@ BandSystem assemble(const PolyMesh& mesh, const CompactList& point_faces,
     return s;
 }
 
-} // namespace
-
-JumpSmoothing smooth_jumps(const PolyMesh& mesh, const std::vector<Index>& constrained,
-                           const Points& values, Points& displacement)
+//! The band around the jumps and its factored system (empty band: nothing to do).
+struct Band
 {
-    const Stopwatch clock;
-    JumpSmoothing out;
+    JumpSmoothing report;
+    BandSystem system;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor;
+};
+
+//! The band of the prescription (constrained, values) on `mesh`, its system factored.
+void make_band(const PolyMesh& mesh, const std::vector<Index>& constrained, const Points& values,
+               Band& b)
+{
+    JumpSmoothing& out = b.report;
     const std::vector<Index> seeds = jump_seeds(mesh, constrained, values, out.width);
     out.jump_constraints = Index(seeds.size());
     if (seeds.empty())
-        return out;
+        return;
     const CompactList point_faces = meshmorph::point_faces(mesh);
     const std::vector<double> from_jump = edge_distances(mesh, point_faces, seeds, out.width);
     std::vector<char> is_constrained(std::size_t(mesh.points.rows()), 0);
     for (const Index p : constrained)
         is_constrained[std::size_t(p)] = 1;
-    std::vector<Index> band;
     std::vector<Index> unknown(std::size_t(mesh.points.rows()), -1);
     for (Index p = 0; p < mesh.points.rows(); ++p)
         if (from_jump[std::size_t(p)] != unreached && is_constrained[std::size_t(p)] == 0)
         {
-            unknown[std::size_t(p)] = Index(band.size());
-            band.push_back(p);
+            unknown[std::size_t(p)] = Index(out.band.size());
+            out.band.push_back(p);
         }
-    out.band_points = Index(band.size());
-    if (band.empty())
-        return out;
+    out.band_points = Index(out.band.size());
+    if (out.band.empty())
+        return;
+    // The diffusivity's distances are capped at the band's depth: the largest distance of a
+    // band point from the jump, a length of the mesh and of the band's points alone. (The
+    // band's width grows with the motion where the jumps are steep, so a cap at the width
+    // would make the smoothing depend on the motion's amplitude, not only on its shape: the
+    // smoothing stays linear in the prescription while the band keeps its points.)
+    double depth = 0.0;
+    for (const Index p : out.band)
+        depth = std::max(depth, from_jump[std::size_t(p)]);
     std::vector<double> wall_distance = edge_distances(
         mesh, point_faces, moving_seeds(mesh, seeds, constrained, values), out.width);
     for (double& d : wall_distance)
-        d = std::min(d, out.width);
-    const BandSystem s =
-        assemble(mesh, point_faces, band, unknown, wall_distance, 1e-3 * out.width, displacement);
-    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor(s.matrix);
-    if (factor.info() != Eigen::Success)
+        d = std::min(d, depth);
+    b.system = assemble(mesh, point_faces, out.band, unknown, wall_distance, 1e-3 * depth);
+    b.factor.compute(b.system.matrix);
+    if (b.factor.info() != Eigen::Success)
         throw SolverError("jump smoothing: the Laplacian of the band around the jumps (" +
-                          std::to_string(band.size()) +
+                          std::to_string(out.band.size()) +
                           " points) could not be factored; set 'jumpSmoothing no;' in the "
                           "morphDict to morph without it");
-    const Eigen::MatrixXd solved = factor.solve(s.rhs);
-    for (std::size_t i = 0; i < band.size(); ++i)
-        displacement.row(band[i]) = solved.row(Eigen::Index(i));
+}
+
+} // namespace
+
+std::string to_string(JumpSmoothingMode mode)
+{
+    switch (mode)
+    {
+    case JumpSmoothingMode::off:
+        return "no";
+    case JumpSmoothingMode::on:
+        return "yes";
+    case JumpSmoothingMode::automatic:
+        break;
+    }
+    return "auto";
+}
+
+JumpSmoothing smooth_jumps(const PolyMesh& mesh, const std::vector<Index>& constrained,
+                           const Points& values, Points& displacement)
+{
+    const Stopwatch clock;
+    Band b;
+    make_band(mesh, constrained, values, b);
+    JumpSmoothing& out = b.report;
+    if (out.band.empty())
+        return out;
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(Eigen::Index(out.band.size()), 3);
+    for (const BandSystem::Coupling& c : b.system.border)
+        rhs.row(c.row) += c.weight * displacement.row(c.point);
+    const Eigen::MatrixXd solved = b.factor.solve(rhs);
+    out.fitted.resize(Eigen::Index(out.band.size()), 3);
+    for (std::size_t i = 0; i < out.band.size(); ++i)
+    {
+        out.fitted.row(Eigen::Index(i)) = displacement.row(out.band[i]);
+        displacement.row(out.band[i]) = solved.row(Eigen::Index(i));
+    }
     out.seconds = clock.seconds();
     return out;
+}
+
+void smooth_jumps_transpose(const PolyMesh& mesh, const std::vector<Index>& constrained,
+                            const Points& values, Points& weights)
+{
+    Band b;
+    make_band(mesh, constrained, values, b);
+    const std::vector<Index>& band = b.report.band;
+    if (band.empty())
+        return;
+    // u = A^-1 B d_border, so dJ/dd_border += B^T A^-T dJ/du, with A symmetric.
+    Eigen::MatrixXd at_band(Eigen::Index(band.size()), 3);
+    for (std::size_t i = 0; i < band.size(); ++i)
+        at_band.row(Eigen::Index(i)) = weights.row(band[i]);
+    const Eigen::MatrixXd y = b.factor.solve(at_band);
+    for (const Index p : band)
+        weights.row(p).setZero();
+    for (const BandSystem::Coupling& c : b.system.border)
+        weights.row(c.point) += c.weight * y.row(c.row);
 }
 
 } // namespace meshmorph::morph

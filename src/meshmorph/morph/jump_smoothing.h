@@ -14,32 +14,39 @@
 //! stays exact and changes nowhere else.
 //!
 //! Edge weights 1 / (|e| dist), dist the distance along the edges to the nearest moving
-//! jump constraint: OpenFOAM's inverseDistance diffusivity. Cells next to the moving wall
-//! are stiff and move with it; cells far from it (next to the fixed wall) take the shear.
-//! The band: the free points within the jump band's width (deform/jump_detection.h, the
-//! greedy RBF's default slope and width) of a constraint on a jump, along the edges.
+//! jump constraint (capped at the band's depth): OpenFOAM's inverseDistance diffusivity.
+//! Cells next to the moving wall are stiff and move with it; cells far from it (next to the
+//! fixed wall) take the shear. The band: the free points within the jump band's width
+//! (deform/jump_detection.h, the greedy RBF's default slope and width) of a constraint on a
+//! jump, along the edges. Uniform weights gave 68.7 degrees on the motorBike's 5% lift,
+//! 1 / |e|^2 72.2, these 66.4 (they stiffen the small cells by the floor).
 //!
-//! Measured on the motorBike (benchmarks/morph/motorbike_vs_movemesh.sh -keys
-//! "jumpSmoothing yes;"), max non-orthogonality / faces above 70 degrees, with the bike's
-//! prescription winning where the tyres touch the floor (the motion moveMesh makes):
-//! lift 5% 66.4 / 0 (without: 72.0 / 8; moveMesh 70.3 / 1), 9% 76.4 / 32 (79.8 / 33;
-//! moveMesh 78.6 / 20 and a wrongly oriented pyramid), 13.5% 80.8 / 65 (83.3 / 181;
-//! moveMesh 82.2 / 65 and a pyramid). With the contacts held (conflicts fixed): 5% 78.1 / 8
-//! (77.7 / 8), 13.5% 84.9 / 9 (84.7 / 111). 0.04 s for the 3,300 points of the 5% band.
-//! Uniform weights gave 68.7 at 5%, 1 / |e|^2 72.2 (they stiffen the small cells by the
-//! floor). Off by default: on the tutorials' morph sweep (scripts/openfoam/checkmesh_sweep.sh
-//! -morph -morph-keys "jumpSmoothing yes;", the smallest wall patch scaled 1%) no verdict
-//! changed, but of the 154 meshes with a band max non-orthogonality rose on 99 (pitzDaily
-//! 8.3 -> 20.8 degrees) and fell on 37: the weights stiffen the cells by the moving wall
-//! only, and on graded meshes the small cells by the fixed wall take the shear. Serial only.
+//! On graded meshes the small cells by the fixed wall take the shear instead: on the
+//! tutorials' morph sweep it raised the largest non-orthogonality about as often as it
+//! lowered it (pitzDaily 8.3 -> 20.8 degrees). So the default, `jumpSmoothing auto`, keeps
+//! it only where it is better (jump_smoothing_guard.h). Serial only.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "meshmorph/core/poly_mesh.h"
 
 namespace meshmorph::morph
 {
+
+//! morphDict `jumpSmoothing`: `no`, `yes` (always) or `auto` (the default: smoothed, and the
+//! smoothing kept only where it lowers the band's largest non-orthogonality, see
+//! jump_smoothing_guard.h).
+enum class JumpSmoothingMode
+{
+    off,
+    on,
+    automatic
+};
+
+//! "no", "yes" or "auto", as the morphDict spells it.
+std::string to_string(JumpSmoothingMode mode);
 
 //! What the smoothing did (for the log and the JSON report).
 struct JumpSmoothing
@@ -48,6 +55,8 @@ struct JumpSmoothing
     Index band_points = 0;      //!< free points whose displacement was replaced
     double width = 0.0;         //!< the band's width (distance along the edges)
     double seconds = 0.0;
+    std::vector<Index> band; //!< those points' labels, ascending
+    Points fitted;           //!< their displacement before the smoothing (one row each)
 };
 
 //! \brief Replace the displacement of the free points within the jump band by the harmonic
@@ -60,5 +69,13 @@ struct JumpSmoothing
 //! that touches a constrained point, which every band does).
 JumpSmoothing smooth_jumps(const PolyMesh& mesh, const std::vector<Index>& constrained,
                            const Points& values, Points& displacement);
+
+//! \brief The transpose of smooth_jumps as a linear map of the displacement (the band and its
+//! weights held, as they depend on the prescription's shape only): `weights` (dJ/dd per
+//! point, nPoints x 3) after the smoothing becomes dJ/dd before it: the band's rows are
+//! carried to the points their Laplacian reads (the band's border and the constrained
+//! points) and zeroed. Same arguments as smooth_jumps. \throw as smooth_jumps.
+void smooth_jumps_transpose(const PolyMesh& mesh, const std::vector<Index>& constrained,
+                            const Points& values, Points& weights);
 
 } // namespace meshmorph::morph

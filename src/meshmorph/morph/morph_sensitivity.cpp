@@ -43,6 +43,9 @@ Points morph_sensitivity(const MorphCase& in, const MorphResult& result, const P
     const PolyMesh& mesh = in.foam.mesh;
     Constraints full = c; // the one step's constraints: the whole motion from x0
     full.displacements = prescribed_at(c, mesh.points, 1.0);
+    // The smoothing as the morph applied it: `auto` may have put the fitted field back.
+    full.jump_smoothing = result.steps.front().jump_smoothed_points > 0 ? JumpSmoothingMode::on
+                                                                        : JumpSmoothingMode::off;
     const Points corners = bounding_corners(mesh.points, parts); // a collective: every rank
     const Index n_fit = c.n_prescribed_points + c.n_slip_points;
     const FieldMaker make = [&] { return make_deformation(in.settings, corners, n_fit); };

@@ -233,6 +233,32 @@ Motion read_motion(const io::FoamEntry& e, const std::vector<std::string>& other
     return motion;
 }
 
+namespace
+{
+
+//! `jumpSmoothing auto | <switch>` (absent: auto).
+JumpSmoothingMode read_jump_smoothing(const io::FoamDictionary& dict)
+{
+    const io::FoamEntry* e = dict.find("jumpSmoothing");
+    if (e == nullptr)
+        return JumpSmoothingMode::automatic;
+    const std::vector<io::FoamValueToken>& t = e->tokens();
+    if (t.size() == 1 && t[0].is_word("auto"))
+        return JumpSmoothingMode::automatic;
+    try
+    {
+        return dict.get<bool>("jumpSmoothing") ? JumpSmoothingMode::on : JumpSmoothingMode::off;
+    }
+    catch (const ParseError&)
+    {
+        throw e->error("expected auto, yes or no (or another switch: on/off, true/false) but "
+                       "found '" +
+                       (t.empty() ? std::string() : t[0].text) + "'");
+    }
+}
+
+} // namespace
+
 MorphSetup read_morph_setup(const io::FoamDictionary& dict)
 {
     MorphSetup setup;
@@ -244,7 +270,7 @@ MorphSetup read_morph_setup(const io::FoamDictionary& dict)
                         "morphDict", dict.referenced_variables());
     if (const io::FoamEntry* e = dict.find("conflicts"))
         setup.conflicts = read_conflict_rule(*e);
-    setup.jump_smoothing = dict.get_or<bool>("jumpSmoothing", setup.jump_smoothing);
+    setup.jump_smoothing = read_jump_smoothing(dict);
     if (dict.found("boundary"))
         for (const io::FoamEntry& e : dict.sub_dict("boundary").entries())
             setup.boundary.push_back(read_boundary_entry(e));

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "meshmorph/core/types.h"
+#include "meshmorph/morph/jump_smoothing.h"
 #include "meshmorph/morph/motion.h"
 
 namespace meshmorph::io
@@ -65,9 +66,10 @@ struct MorphSetup
     std::vector<BoundaryEntry> boundary;
     std::vector<HandleEntry> handles;
     ConflictRule conflicts = ConflictRule::fixed;
-    //! `jumpSmoothing yes | no` (default no: measured on too few cases to be the default, see
-    //! jump_smoothing.h): a Laplacian on the band around jumps of the prescription.
-    bool jump_smoothing = false;
+    //! `jumpSmoothing auto | yes | no`: a Laplacian on the band around jumps of the
+    //! prescription, kept (auto) where it lowers the band's non-orthogonality
+    //! (jump_smoothing_guard.h).
+    JumpSmoothingMode jump_smoothing = JumpSmoothingMode::automatic;
 };
 
 //! \brief The motion of a sub-dictionary entry { type <fixed|translate|...>; <parameters> }

@@ -286,15 +286,39 @@ PointMorph fit_step(const PolyMesh& current, const Constraints& step, const Defo
     return m;
 }
 
+//! `jumpSmoothing auto`: keep the step's smoothed band or put its fitted field back
+//! (jump_smoothing_guard.h), before the check counts the invalid cells; said in the log.
+void choose_band(PolyMesh& current, const CompactList& cell_faces, MeshGeometry& geometry,
+                 const Points& accepted, PointMorph& m, const parallel::Communicator& comm,
+                 StepRecord& record)
+{
+    record.jump_choice = choose_jump_smoothing(current, cell_faces, geometry, accepted,
+                                               m.jump_smoothing, m.displacement, comm);
+    const JumpSmoothingChoice& c = record.jump_choice;
+    if (!c.compared)
+        return;
+    if (!c.kept)
+        record.jump_smoothed_points = 0;
+    log::info() << "    jump smoothing " << (c.kept ? "kept" : "not kept")
+                << ": near the jumps max non-orthogonality " << c.smoothed.max_non_ortho << " ("
+                << c.smoothed.faces_above_70 << " faces above 70), without it "
+                << c.fitted.max_non_ortho << " (" << c.fitted.faces_above_70 << ")"
+                << (c.smoothed.invalid_cells + c.fitted.invalid_cells > 0
+                        ? "; invalid cells " + std::to_string(c.smoothed.invalid_cells) +
+                              ", without it " + std::to_string(c.fitted.invalid_cells)
+                        : std::string());
+}
+
 //! The trial's check: its geometry, pyramid errors and invalid cells (in the record), after
 //! the repair when `untangle` and it made cells invalid that were not before.
 void check_step(PolyMesh& current, const CompactList& cell_faces, const InvalidCells& before,
                 const StepSettings& settings, OriginalState& original,
                 const parallel::Communicator& comm, StepRecord& record, MeshGeometry& geometry,
-                std::vector<char>& pyramid_errors)
+                std::vector<char>& pyramid_errors, const std::function<void()>& choose)
 {
     const Stopwatch check_clock;
     geometry = compute_geometry(current, cell_faces);
+    choose();
     record.invalid = global_invalid_cells(current, geometry, comm, pyramid_errors);
     record.check_seconds = comm.max(check_clock.seconds());
     if (settings.untangle && record.invalid.worse_than(before))
@@ -376,8 +400,13 @@ SteppedMorph morph_in_steps(const PolyMesh& mesh, const CompactList& cell_faces,
         std::swap(current.points, other); // current: the trial; other: the accepted state
         MeshGeometry geometry;
         std::vector<char> pyramid_errors;
+        const auto choose = [&]
+        {
+            if (fit && c.jump_smoothing == JumpSmoothingMode::automatic)
+                choose_band(current, cell_faces, geometry, other, m, comm, record);
+        };
         check_step(current, cell_faces, before, settings, original, comm, record, geometry,
-                   pyramid_errors);
+                   pyramid_errors, choose);
         const bool failed = record.invalid.worse_than(before);
         const bool redo = failed && is_auto && !stuck && length > shortest * 1.5;
         record.accepted = !redo;

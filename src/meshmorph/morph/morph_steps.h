@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "meshmorph/morph/jump_smoothing_guard.h"
 #include "meshmorph/morph/local_untangle.h"
 #include "meshmorph/morph/point_morph.h"
 #include "meshmorph/quality/cell_validity.h"
@@ -60,7 +61,8 @@ struct StepRecord
     //! fits (all but the jump constraints, which the correction takes up alone).
     double max_global_residual = 0.0;
     Index jump_constraints = 0;
-    Index jump_smoothed_points = 0; //!< free points the jump smoothing set (jump_smoothing.h)
+    Index jump_smoothed_points = 0;  //!< free points the jump smoothing set (jump_smoothing.h)
+    JumpSmoothingChoice jump_choice; //!< `jumpSmoothing auto`: what was compared and kept
     double fit_seconds = 0.0, evaluate_seconds = 0.0, check_seconds = 0.0;
     InvalidCells invalid;    //!< after the repair, if there was one
     UntangleReport untangle; //!< the repair (invalid_before 0: none was needed)

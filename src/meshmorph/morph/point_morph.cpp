@@ -394,7 +394,7 @@ PointMorph morph_points_distributed(const PolyMesh& mesh, const Constraints& c,
 {
     const parallel::Communicator& comm = *d.comm;
     // Every rank alike, before any communication.
-    if (fit && c.jump_smoothing)
+    if (fit && c.jump_smoothing == JumpSmoothingMode::on)
         throw InvalidInput("morphDict 'jumpSmoothing yes;' is not available with -parallel yet "
                            "(the band's Laplacian is solved on one process): remove it, or "
                            "morph the reconstructed case");
@@ -431,6 +431,9 @@ PointMorph morph_points_distributed(const PolyMesh& mesh, const Constraints& c,
         field = received.get();
     }
     result.report = field->report();
+    if (fit && c.jump_smoothing == JumpSmoothingMode::automatic &&
+        result.report.jump_constraints > 0)
+        log::info() << "    jump smoothing: not in -parallel runs yet (jumpSmoothing auto)";
     result.fit_seconds = fit_clock.seconds();
     result.n_constraints = static_cast<Index>(counts[0]);
     result.n_slip = static_cast<Index>(counts[1]);
@@ -472,7 +475,7 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
 
     const Stopwatch eval_clock;
     evaluate_with_progress(deformation, x_eval, result.displacement, "evaluate");
-    if (fit && c.jump_smoothing)
+    if (fit && c.jump_smoothing != JumpSmoothingMode::off)
         result.jump_smoothing = smooth_jumps_logged(mesh, p.points, p.values, result.displacement);
     keep_planes(result.displacement, c);
     coupled_mean(c.cyclic_pairs, result.displacement);
@@ -640,9 +643,15 @@ void distributed_transpose(const Points& x_eval, const Constraints& c, const Fie
 Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c, const FieldMaker& make,
                               const Points& weights, const Decomposition* decomposition)
 {
-    if (c.wedge || !c.cyclic_pairs.empty() || c.jump_smoothing)
-        throw InvalidInput("the sensitivity is not available yet for a morph with wedges, "
-                           "cyclic patches or jumpSmoothing");
+    if (c.wedge || !c.cyclic_pairs.empty())
+        throw InvalidInput("the sensitivity is not available yet for a morph with wedges or "
+                           "cyclic patches");
+    const bool smoothed = c.jump_smoothing == JumpSmoothingMode::on;
+    if (smoothed &&
+        (!c.slip_points.empty() || (decomposition != nullptr && decomposition->is_distributed())))
+        throw InvalidInput("the sensitivity is not available yet for a morph whose jump smoothing "
+                           "was kept together with slip patches or -parallel: set "
+                           "'jumpSmoothing no;' in the morphDict");
     if (weights.rows() != mesh.n_points())
         throw InvalidInput("sensitivity: " + std::to_string(weights.rows()) +
                            " rows of dJ/dx for a mesh of " + std::to_string(mesh.n_points()) +
@@ -657,7 +666,10 @@ Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c, const 
         distributed_transpose(x_eval, c, make, g, *decomposition, out);
         return out;
     }
-    const Points at_constraints = fitted_transpose(local_fit_input(x_eval, c), c, make, x_eval, g);
+    const FitInput in = local_fit_input(x_eval, c);
+    if (smoothed) // d = S f: dJ/df = S^T dJ/dd, the band's rows carried to its border
+        smooth_jumps_transpose(mesh, in.labels, in.values, g);
+    const Points at_constraints = fitted_transpose(in, c, make, x_eval, g);
     for (std::size_t i = 0; i < c.points.size(); ++i)
         out.row(c.points[i]) = at_constraints.row(Eigen::Index(i));
     return out;

@@ -30,6 +30,7 @@ set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/duplicate_points.cpp
     meshmorph/morph/distributed_constraints.cpp
     meshmorph/morph/jump_smoothing.cpp
+    meshmorph/morph/jump_smoothing_guard.cpp
     meshmorph/morph/point_morph.cpp
     meshmorph/morph/morph_sensitivity.cpp
     meshmorph/morph/morph_steps.cpp

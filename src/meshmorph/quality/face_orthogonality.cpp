@@ -25,6 +25,12 @@ double orthogonality(const FoamVector& own_cc, const FoamVector& nei_cc, const F
 
 } // namespace
 
+double internal_face_orthogonality(const PolyMesh& mesh, const MeshGeometry& g, Index f, double eps)
+{
+    return orthogonality(row(g.cell_centres, mesh.owner[f]), row(g.cell_centres, mesh.neighbour[f]),
+                         row(g.face_areas, f), eps);
+}
+
 Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& g, double eps)
 {
     const Index n_int = mesh.n_internal_faces();
@@ -32,8 +38,7 @@ Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& g, 
 #pragma omp parallel for schedule(dynamic, detail::loop_piece) if (mesh.n_faces() >                \
                                                                    detail::parallel_threshold)
     for (Index f = 0; f < n_int; ++f)
-        ortho[f] = orthogonality(row(g.cell_centres, mesh.owner[f]),
-                                 row(g.cell_centres, mesh.neighbour[f]), row(g.face_areas, f), eps);
+        ortho[f] = internal_face_orthogonality(mesh, g, f, eps);
     return ortho;
 }
 

@@ -18,6 +18,10 @@ namespace meshmorph
 Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& geometry,
                                    double eps = constants::rootvsmall);
 
+//! \brief face_orthogonality's value for the internal face f alone.
+double internal_face_orthogonality(const PolyMesh& mesh, const MeshGeometry& geometry, Index f,
+                                   double eps = constants::rootvsmall);
+
 //! \brief checkMesh's (polyMeshTools::faceOrthogonality): as above, with cyclic and processor
 //! faces measured against the cell across them. \return nFaces values.
 Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& geometry,
