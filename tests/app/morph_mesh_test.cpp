@@ -504,7 +504,9 @@ TEST(MorphMesh, jump_smoothing_auto_keeps_the_smoothed_band_only_where_it_is_bet
         EXPECT_LE(j["maxConstraintError"].get<double>(), 1e-9 * 0.2) << mode;
         EXPECT_EQ(j["after"]["negativeVolumeCells"].get<int>(), 0) << mode;
         if (mode == "auto")
+        {
             EXPECT_NE(r.out.find("    jump smoothing "), std::string::npos) << r.out;
+        }
     }
     const auto smoothed = [&](const std::string& m)
     { return runs[m]["steps"].back()["jumpSmoothedPoints"].get<int>(); };
