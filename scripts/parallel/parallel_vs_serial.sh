@@ -8,7 +8,7 @@
 # and OpenMPI.
 #
 #   parallel_vs_serial.sh -bin DIR -out DIR [-np N] [-method simple|scotch]
-#                         [-field | -design | -sensitivity]
+#                         [-field | -design | -sensitivity | -jump]
 #
 # -field: the wall and inlet take their motion from 0/pointDisplacement
 # (write_point_displacement.py), and the case is written in binary, so that decomposePar
@@ -23,12 +23,17 @@
 # scaled, the outlet slipping, the inlet fixed) serially and under mpirun; every
 # processor's dJdXs against the serial one at its pointProcAddressing labels, to 1e-9 of
 # the largest value (the master sums the gathered points in its own order: round-off).
+# -jump: a box (blockMesh, 24 x 24 x 12 cells) whose lid is lifted against its fixed sides,
+# so that the prescription jumps along the rim and the jump smoothing (jumpSmoothing auto)
+# keeps the band's Laplacian; the band crosses the processor boundary (-method hierarchical
+# splits along x). Both logs must say the smoothing was kept, for the same number of
+# points.
 # -bin: the directory holding morphMesh. Exit 0 when the results agree, 77 when OpenFOAM or
 # mpirun is missing (a skip), 1 otherwise.
 set -u
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 source_dir=$(cd "$here/../.." && pwd)
-bin="" out="" np=2 method=simple field=0 design=0 sensitivity=0
+bin="" out="" np=2 method=simple field=0 design=0 sensitivity=0 jump=0
 while [ $# -gt 0 ]; do
     case "$1" in
         -bin) bin=$2; shift 2 ;;
@@ -38,7 +43,8 @@ while [ $# -gt 0 ]; do
         -field) field=1; shift ;;
         -design) design=1; shift ;;
         -sensitivity) sensitivity=1; shift ;;
-        -help|-h) sed -n '3,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -jump) jump=1; shift ;;
+        -help|-h) sed -n '3,30p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "parallel_vs_serial.sh: unknown option '$1' (try -help)" >&2; exit 2 ;;
     esac
 done
@@ -61,6 +67,11 @@ boundary
     wall { type scale; origin (0 0 1); factor (1.02 1.03 1); }
     outlet { type slip; }
 }
+DICT
+    elif [ "$jump" = 1 ]; then
+        cat <<'DICT'
+FoamFile { version 2.0; format ascii; class dictionary; object morphDict; }
+boundary { lid { type translate; vector (0 0 0.2); } }
 DICT
     elif [ "$design" = 1 ]; then
         cat "$source_dir/tutorials/designVariables/system/morphDict"
@@ -88,10 +99,31 @@ conflicts last;
 DICT
     fi
 }
+# The lidded box of -jump.
+box_case() {
+    cat > "$1/system/blockMeshDict" <<'DICT'
+FoamFile { version 2.0; format ascii; class dictionary; object blockMeshDict; }
+vertices ((0 0 0) (1 0 0) (1 1 0) (0 1 0) (0 0 1) (1 0 1) (1 1 1) (0 1 1));
+blocks (hex (0 1 2 3 4 5 6 7) (24 24 12) simpleGrading (1 1 1));
+boundary
+(
+    lid { type wall; faces ((4 5 6 7)); }
+    sides { type wall; faces ((0 3 2 1) (0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2)); }
+);
+DICT
+    cp "$source_dir/tutorials/pipe/system/controlDict" "$1/system/" &&
+        (cd "$1" && blockMesh > log.blockMesh 2>&1) ||
+        { echo "blockMesh failed (see $1/log.blockMesh)"; return 1; }
+}
 make_case() {
-    mkdir -p "$1/system" "$1/0" && cp -r "$source_dir/tutorials/pipe/constant" "$1/" &&
-        cp "$source_dir/tutorials/pipe/system/controlDict" "$1/system/" &&
-        motion_dict > "$1/system/morphDict" || return 1
+    mkdir -p "$1/system" "$1/0" || return 1
+    if [ "$jump" = 1 ]; then
+        box_case "$1" || return 1
+    else
+        cp -r "$source_dir/tutorials/pipe/constant" "$1/" &&
+            cp "$source_dir/tutorials/pipe/system/controlDict" "$1/system/" || return 1
+    fi
+    motion_dict > "$1/system/morphDict" || return 1
     if [ "$design" = 1 ] || [ "$sensitivity" = 1 ]; then
         /usr/bin/python3 "$source_dir/benchmarks/morph/write_point_field.py" "$1" 0/dJdx || return 1
     fi
@@ -170,6 +202,14 @@ PY
 fi
 /usr/bin/python3 "$here/compare_decomposed.py" "$out/parallel" 1 "$np" "$out/serial/1/polyMesh/points" ||
     exit 1
+if [ "$jump" = 1 ]; then
+    kept() { grep -ao "jump smoothing: [0-9]* points" "$1" | head -1; }
+    serial_band=$(grep -aq "jump smoothing kept" "$out/log.serial" && kept "$out/log.serial")
+    parallel_band=$(grep -aq "jump smoothing kept" "$out/log.parallel" && kept "$out/log.parallel")
+    echo "serial: ${serial_band:-not kept}; -parallel: ${parallel_band:-not kept}"
+    [ -n "$serial_band" ] && [ "$serial_band" = "$parallel_band" ] || exit 1
+    exit 0
+fi
 if [ "$design" != 1 ] && [ "$field" != 1 ]; then
     # A morph both refuse (the wall squeezed to 5% against fixed ends): the same refusal,
     # naming the same patches (their counts are a collective sum over the ranks).

@@ -73,7 +73,8 @@ TEST(JumpSmoothing, changes_only_free_points_in_the_band_and_keeps_every_constra
     const SteppedBox box;
     const Points before = box.nearest_field();
     Points after = before;
-    const JumpSmoothing s = smooth_jumps(box.mesh, box.constrained, box.values, after);
+    const JumpSmoothing s =
+        smooth_jumps(box.mesh, box.mesh.points, box.constrained, box.values, after);
     ASSERT_GT(s.jump_constraints, 0);
     ASSERT_GT(s.band_points, 0);
     Index changed = 0;
@@ -98,7 +99,7 @@ TEST(JumpSmoothing, spreads_the_jump_within_the_range_of_its_data)
 {
     const SteppedBox box;
     Points d = box.nearest_field();
-    smooth_jumps(box.mesh, box.constrained, box.values, d);
+    smooth_jumps(box.mesh, box.mesh.points, box.constrained, box.values, d);
     // A maximum principle: every value between the data's extremes; and the free point just
     // below the top face on the lifted side of the jump now moves less than the lift, the
     // one on the fixed side more than nothing: the shear is spread, not left in one column.
@@ -126,8 +127,8 @@ TEST(JumpSmoothing, is_linear_in_the_amplitude_of_the_motion)
     const SteppedBox box;
     Points once = box.nearest_field();
     Points twice = 2.0 * once;
-    smooth_jumps(box.mesh, box.constrained, box.values, once);
-    smooth_jumps(box.mesh, box.constrained, 2.0 * box.values, twice);
+    smooth_jumps(box.mesh, box.mesh.points, box.constrained, box.values, once);
+    smooth_jumps(box.mesh, box.mesh.points, box.constrained, 2.0 * box.values, twice);
     EXPECT_LE((twice - 2.0 * once).cwiseAbs().maxCoeff(), 1e-14 * lift);
 }
 
@@ -138,7 +139,7 @@ TEST(JumpSmoothing, does_nothing_where_the_prescription_has_no_jump)
     Points d = Points::Constant(box.mesh.points.rows(), 3, 0.0);
     d.col(2).setConstant(lift);
     const Points before = d;
-    const JumpSmoothing s = smooth_jumps(box.mesh, box.constrained, box.values, d);
+    const JumpSmoothing s = smooth_jumps(box.mesh, box.mesh.points, box.constrained, box.values, d);
     EXPECT_EQ(s.jump_constraints, 0);
     EXPECT_EQ(s.band_points, 0);
     EXPECT_EQ(d, before);
@@ -152,10 +153,11 @@ TEST(JumpSmoothing, its_transpose_is_the_adjoint_of_the_smoothing)
     const Points d = Points::Random(box.mesh.points.rows(), 3);
     const Points w = Points::Random(box.mesh.points.rows(), 3);
     Points smoothed = d;
-    const JumpSmoothing s = smooth_jumps(box.mesh, box.constrained, box.values, smoothed);
+    const JumpSmoothing s =
+        smooth_jumps(box.mesh, box.mesh.points, box.constrained, box.values, smoothed);
     ASSERT_GT(s.band_points, 0);
     Points transposed = w;
-    smooth_jumps_transpose(box.mesh, box.constrained, box.values, transposed);
+    smooth_jumps_transpose(box.mesh, box.mesh.points, box.constrained, box.values, transposed);
     const double forward = (w.array() * smoothed.array()).sum();
     const double reverse = (transposed.array() * d.array()).sum();
     EXPECT_NEAR(forward, reverse, 1e-12 * (w.norm() * d.norm()));
@@ -207,7 +209,8 @@ TEST(JumpSmoothingGuard, keeps_the_field_with_the_lower_non_orthogonality_either
     const SteppedBox box;
     const Points fitted = box.nearest_field();
     Points smoothed = fitted;
-    const JumpSmoothing s = smooth_jumps(box.mesh, box.constrained, box.values, smoothed);
+    const JumpSmoothing s =
+        smooth_jumps(box.mesh, box.mesh.points, box.constrained, box.values, smoothed);
     ASSERT_GT(s.band_points, 0);
     PolyMesh with_fitted = box.mesh, with_smoothed = box.mesh;
     with_fitted.points += fitted;
@@ -248,7 +251,7 @@ TEST(JumpSmoothingGuard, does_not_keep_a_smoothing_that_changes_nothing)
     // Equal figures (within the margin): the fitted field stays, whatever the round-off.
     const SteppedBox box;
     Points applied = box.nearest_field();
-    JumpSmoothing s = smooth_jumps(box.mesh, box.constrained, box.values, applied);
+    JumpSmoothing s = smooth_jumps(box.mesh, box.mesh.points, box.constrained, box.values, applied);
     for (std::size_t i = 0; i < s.band.size(); ++i)
         s.fitted.row(Eigen::Index(i)) = applied.row(s.band[i]);
     PolyMesh trial;

@@ -24,7 +24,8 @@
 //! On graded meshes the small cells by the fixed wall take the shear instead: on the
 //! tutorials' morph sweep it raised the largest non-orthogonality about as often as it
 //! lowered it (pitzDaily 8.3 -> 20.8 degrees). So the default, `jumpSmoothing auto`, keeps
-//! it only where it is better (jump_smoothing_guard.h). Serial only.
+//! it only where it is better (jump_smoothing_guard.h). The band's graph and system:
+//! jump_band_graph.h; -parallel: jump_smoothing_parallel.h.
 #pragma once
 
 #include <string>
@@ -55,27 +56,31 @@ struct JumpSmoothing
     Index band_points = 0;      //!< free points whose displacement was replaced
     double width = 0.0;         //!< the band's width (distance along the edges)
     double seconds = 0.0;
-    std::vector<Index> band; //!< those points' labels, ascending
+    std::vector<Index> band; //!< those points' labels (this rank's, in label order)
     Points fitted;           //!< their displacement before the smoothing (one row each)
 };
 
 //! \brief Replace the displacement of the free points within the jump band by the harmonic
-//! one (see the file comment). \param constrained sorted mesh point labels of every
-//! constrained point (prescribed and slip), \param values their prescribed displacements
-//! (one row each), \param displacement nPoints x 3, the fitted field: changed in place on
-//! the band's free points only. Nothing happens where the prescription has no jump (the
-//! band of deform/jump_detection.h with the greedy RBF's default slope and width).
+//! one (see the file comment). \param x_eval the points where the field is evaluated (2D: on
+//! the reference empty plane; the jumps are found there, as the fit finds them), \param
+//! constrained sorted mesh point labels of every constrained point (prescribed and slip),
+//! \param values their prescribed displacements (one row each), \param displacement nPoints
+//! x 3, the fitted field: changed in place on the band's free points only. Nothing happens
+//! where the prescription has no jump (the band of deform/jump_detection.h with the greedy
+//! RBF's default slope and width).
 //! \throw SolverError if the band's system cannot be factored (it cannot happen for a band
 //! that touches a constrained point, which every band does).
-JumpSmoothing smooth_jumps(const PolyMesh& mesh, const std::vector<Index>& constrained,
-                           const Points& values, Points& displacement);
+JumpSmoothing smooth_jumps(const PolyMesh& mesh, const Points& x_eval,
+                           const std::vector<Index>& constrained, const Points& values,
+                           Points& displacement);
 
 //! \brief The transpose of smooth_jumps as a linear map of the displacement (the band and its
 //! weights held, as they depend on the prescription's shape only): `weights` (dJ/dd per
 //! point, nPoints x 3) after the smoothing becomes dJ/dd before it: the band's rows are
 //! carried to the points their Laplacian reads (the band's border and the constrained
 //! points) and zeroed. Same arguments as smooth_jumps. \throw as smooth_jumps.
-void smooth_jumps_transpose(const PolyMesh& mesh, const std::vector<Index>& constrained,
-                            const Points& values, Points& weights);
+void smooth_jumps_transpose(const PolyMesh& mesh, const Points& x_eval,
+                            const std::vector<Index>& constrained, const Points& values,
+                            Points& weights);
 
 } // namespace meshmorph::morph

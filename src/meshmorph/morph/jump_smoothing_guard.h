@@ -48,8 +48,9 @@ constexpr double margin_degrees = 1e-3;
 //! \param geometry its geometry; \param accepted the points the step started from;
 //! \param s the smoothing (its band and the fitted values); \param displacement the step's
 //! field (smoothed). On return trial, geometry and displacement hold the choice. In a
-//! -parallel run a collective (the figures are reduced over every rank; faces on processor
-//! patches are not among those compared).
+//! -parallel run a collective: the figures are reduced over every rank, and the processor
+//! faces beside a band cell on either side are measured against the cell across, as
+//! checkMesh -parallel does, so the choice is the serial one.
 JumpSmoothingChoice choose_jump_smoothing(PolyMesh& trial, const CompactList& cell_faces,
                                           MeshGeometry& geometry, const Points& accepted,
                                           const JumpSmoothing& s, Points& displacement,

@@ -3,6 +3,7 @@
 #include "meshmorph/morph/point_morph.h"
 
 #include "meshmorph/morph/cyclic_coupling.h"
+#include "meshmorph/morph/jump_smoothing_parallel.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -73,11 +74,22 @@ void evaluate_with_progress(const SpaceDeformation& deformation, const Points& x
     }
 }
 
-//! smooth_jumps and its log line.
-JumpSmoothing smooth_jumps_logged(const PolyMesh& mesh, const std::vector<Index>& constrained,
-                                  const Points& values, Points& displacement)
+//! Whether the morph smooths the band around jumps: asked (`yes` or the default `auto`) and
+//! not a wedge case, whose two planes the band's Laplacian would not keep each other's
+//! rotation (`yes` is refused there: Constraints' wedge check).
+bool smooths_jumps(const Constraints& c)
 {
-    const JumpSmoothing s = smooth_jumps(mesh, constrained, values, displacement);
+    if (c.wedge && c.jump_smoothing == JumpSmoothingMode::on)
+        throw InvalidInput("morphDict 'jumpSmoothing yes;' is not available for a wedge "
+                           "(axisymmetric) case: the band's Laplacian would not keep the two "
+                           "wedge planes rotations of each other; use 'jumpSmoothing auto;' "
+                           "(which leaves wedge cases unsmoothed) or 'no'");
+    return c.jump_smoothing != JumpSmoothingMode::off && !c.wedge;
+}
+
+//! The jump smoothing's log line.
+JumpSmoothing log_jump_smoothing(JumpSmoothing s)
+{
     if (s.band_points > 0)
         log::info() << "    jump smoothing: " << s.band_points << " points within " << s.width
                     << " of " << s.jump_constraints << " constraints on jumps (Laplacian, "
@@ -393,17 +405,13 @@ PointMorph morph_points_distributed(const PolyMesh& mesh, const Constraints& c,
                                     SpaceDeformation& deformation, bool fit, const Decomposition& d)
 {
     const parallel::Communicator& comm = *d.comm;
-    // Every rank alike, before any communication.
-    if (fit && c.jump_smoothing == JumpSmoothingMode::on)
-        throw InvalidInput("morphDict 'jumpSmoothing yes;' is not available with -parallel yet "
-                           "(the band's Laplacian is solved on one process): remove it, or "
-                           "morph the reconstructed case");
     PointMorph result;
     const Points x_eval = evaluation_positions(mesh.points, c);
     const Stopwatch fit_clock;
     std::unique_ptr<SpaceDeformation> received;
     const SpaceDeformation* field = &deformation;
     std::vector<double> counts(4, 0.0); // constraints, slip points, max prescribed, residual
+    Prescription fitted;                // the master's
     if (fit)
     {
         const FitInput in = gathered_fit_input(x_eval, c, d);
@@ -415,7 +423,8 @@ PointMorph morph_points_distributed(const PolyMesh& mesh, const Constraints& c,
         parallel::on_master(comm,
                             [&]
                             {
-                                const Prescription p = fit_constraints(in, c, deformation);
+                                fitted = fit_constraints(in, c, deformation);
+                                const Prescription& p = fitted;
                                 Points at_handles(p.positions.rows(), 3);
                                 deformation.evaluate(p.positions, at_handles);
                                 remove_empty_normal(at_handles, c);
@@ -431,15 +440,15 @@ PointMorph morph_points_distributed(const PolyMesh& mesh, const Constraints& c,
         field = received.get();
     }
     result.report = field->report();
-    if (fit && c.jump_smoothing == JumpSmoothingMode::automatic &&
-        result.report.jump_constraints > 0)
-        log::info() << "    jump smoothing: not in -parallel runs yet (jumpSmoothing auto)";
     result.fit_seconds = fit_clock.seconds();
     result.n_constraints = static_cast<Index>(counts[0]);
     result.n_slip = static_cast<Index>(counts[1]);
 
     const Stopwatch eval_clock;
     evaluate_with_progress(*field, x_eval, result.displacement, "evaluate");
+    if (fit && smooths_jumps(c))
+        result.jump_smoothing = log_jump_smoothing(smooth_jumps_distributed(
+            mesh, x_eval, d, fitted.points, fitted.positions, fitted.values, result.displacement));
     keep_planes(result.displacement, c);
     coupled_mean(c.cyclic_pairs, result.displacement);
     synchronise_shared_points(mesh, d, result.displacement);
@@ -475,8 +484,9 @@ PointMorph morph_points(const PolyMesh& mesh, const Constraints& c, SpaceDeforma
 
     const Stopwatch eval_clock;
     evaluate_with_progress(deformation, x_eval, result.displacement, "evaluate");
-    if (fit && c.jump_smoothing != JumpSmoothingMode::off)
-        result.jump_smoothing = smooth_jumps_logged(mesh, p.points, p.values, result.displacement);
+    if (fit && smooths_jumps(c))
+        result.jump_smoothing =
+            log_jump_smoothing(smooth_jumps(mesh, x_eval, p.points, p.values, result.displacement));
     keep_planes(result.displacement, c);
     coupled_mean(c.cyclic_pairs, result.displacement);
     result.evaluate_seconds = eval_clock.seconds();
@@ -668,7 +678,7 @@ Points morph_points_transpose(const PolyMesh& mesh, const Constraints& c, const 
     }
     const FitInput in = local_fit_input(x_eval, c);
     if (smoothed) // d = S f: dJ/df = S^T dJ/dd, the band's rows carried to its border
-        smooth_jumps_transpose(mesh, in.labels, in.values, g);
+        smooth_jumps_transpose(mesh, x_eval, in.labels, in.values, g);
     const Points at_constraints = fitted_transpose(in, c, make, x_eval, g);
     for (std::size_t i = 0; i < c.points.size(); ++i)
         out.row(c.points[i]) = at_constraints.row(Eigen::Index(i));

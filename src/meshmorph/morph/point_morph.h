@@ -40,7 +40,7 @@ struct PointMorph
     double relative_fit_residual = 0.0;
     bool snapped = false;         //!< constrained points were set to their prescriptions
     FitReport report;             //!< of the final fit
-    JumpSmoothing jump_smoothing; //!< the band around jumps (serial morphs)
+    JumpSmoothing jump_smoothing; //!< the band around jumps (jump_smoothing.h)
     double fit_seconds = 0.0;
     double evaluate_seconds = 0.0;
 };

@@ -29,8 +29,10 @@ set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/cyclic_coupling.cpp
     meshmorph/morph/duplicate_points.cpp
     meshmorph/morph/distributed_constraints.cpp
+    meshmorph/morph/jump_band_graph.cpp
     meshmorph/morph/jump_smoothing.cpp
     meshmorph/morph/jump_smoothing_guard.cpp
+    meshmorph/morph/jump_smoothing_parallel.cpp
     meshmorph/morph/point_morph.cpp
     meshmorph/morph/morph_sensitivity.cpp
     meshmorph/morph/morph_steps.cpp
