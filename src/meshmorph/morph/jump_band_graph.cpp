@@ -152,13 +152,19 @@ std::vector<char> within_reach(const Points& x, const Points& seeds, double widt
         return out;
     const meshmorph::detail::UniformGrid grid(seeds, width);
     const double width2 = width * width;
-    for (Eigen::Index p = 0; p < x.rows(); ++p)
-        grid.for_each_near(x(p, 0), x(p, 1), x(p, 2),
-                           [&](std::int64_t s)
-                           {
-                               if ((x.row(p) - seeds.row(s)).squaredNorm() <= width2)
-                                   out[std::size_t(p)] = 1;
-                           });
+    // Most points are far from every jump: their box test is all they cost.
+    const Eigen::RowVector3d low = seeds.colwise().minCoeff().array() - width;
+    const Eigen::RowVector3d high = seeds.colwise().maxCoeff().array() + width;
+    const std::int64_t n = x.rows();
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (std::int64_t p = 0; p < n; ++p)
+        if ((x.row(p).array() >= low.array()).all() && (x.row(p).array() <= high.array()).all())
+            grid.for_each_near(x(p, 0), x(p, 1), x(p, 2),
+                               [&](std::int64_t s)
+                               {
+                                   if ((x.row(p) - seeds.row(s)).squaredNorm() <= width2)
+                                       out[std::size_t(p)] = 1;
+                               });
     return out;
 }
 
