@@ -84,7 +84,7 @@ void coupled_faces(const PolyMesh& mesh, const Coupling& c, const std::vector<ch
 }
 
 BandCells band_cells(const PolyMesh& mesh, const CompactList& cell_faces,
-                     const std::vector<Index>& band, const Coupling& c)
+                     const std::vector<Index>& band, const Coupling& coupled)
 {
     std::vector<char> in_band(std::size_t(mesh.n_points()), 0);
     for (const Index p : band)
@@ -120,8 +120,8 @@ BandCells band_cells(const PolyMesh& mesh, const CompactList& cell_faces,
                 out.measured.push_back(f);
             }
     std::sort(out.measured.begin(), out.measured.end());
-    if (c.parallel)
-        coupled_faces(mesh, c, cell_seen, out);
+    if (coupled.parallel)
+        coupled_faces(mesh, coupled, cell_seen, out);
     return out;
 }
 
