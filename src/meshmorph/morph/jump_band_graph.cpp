@@ -176,18 +176,20 @@ Index BandGraph::node(Index label) const
 
 BandGraph local_band_graph(const PolyMesh& mesh, const std::vector<char>& reached,
                            const std::vector<char>& constrained, const Points& d,
-                           const std::vector<Index>& label_of)
+                           const std::vector<Index>* label_of)
 {
+    const auto label_of_point = [&](Index p)
+    { return label_of != nullptr ? (*label_of)[std::size_t(p)] : p; };
     const CompactList point_faces = meshmorph::point_faces(mesh);
     std::map<Index, Index> nodes; // label -> mesh point
     std::vector<std::vector<Index>> around(std::size_t(mesh.n_points()));
     for (Index p = 0; p < mesh.n_points(); ++p)
         if (reached[std::size_t(p)] != 0)
         {
-            nodes.emplace(label_of[std::size_t(p)], p);
+            nodes.emplace(label_of_point(p), p);
             around[std::size_t(p)] = edge_neighbours(mesh, point_faces, p);
             for (const Index q : around[std::size_t(p)])
-                nodes.emplace(label_of[std::size_t(q)], q);
+                nodes.emplace(label_of_point(q), q);
         }
     BandGraph g;
     const Eigen::Index n = Eigen::Index(nodes.size());
@@ -206,7 +208,7 @@ BandGraph local_band_graph(const PolyMesh& mesh, const std::vector<char>& reache
     for (std::size_t i = 0; i < g.points.size(); ++i)
     {
         for (const Index q : around[std::size_t(g.points[i])])
-            g.neighbours[i].push_back(g.node(label_of[std::size_t(q)]));
+            g.neighbours[i].push_back(g.node(label_of_point(q)));
         std::sort(g.neighbours[i].begin(), g.neighbours[i].end());
     }
     return g;

@@ -55,10 +55,11 @@ struct BandGraph
 };
 
 //! \brief The graph of `mesh` around the points `reached` (flags per point), with the field
-//! `d` and the constrained flags per point; `label_of` maps a mesh point to its label.
+//! `d` and the constrained flags per point; `label_of` maps a mesh point to its label (null:
+//! a serial mesh, whose points are their own labels).
 BandGraph local_band_graph(const PolyMesh& mesh, const std::vector<char>& reached,
                            const std::vector<char>& constrained, const Points& d,
-                           const std::vector<Index>& label_of);
+                           const std::vector<Index>* label_of = nullptr);
 
 //! The band's system on a graph: A u = sum over `border` of weight * d(node).
 struct BandSystem

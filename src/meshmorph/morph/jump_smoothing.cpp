@@ -3,7 +3,6 @@
 // prescription, with the fitted field as Dirichlet data.
 #include "meshmorph/morph/jump_smoothing.h"
 
-#include <numeric>
 #include <string>
 
 #include "meshmorph/core/stopwatch.h"
@@ -36,11 +35,8 @@ BandGraph serial_graph(const PolyMesh& mesh, const Points& x_eval,
     std::vector<char> is_constrained(std::size_t(mesh.n_points()), 0);
     for (const Index p : constrained)
         is_constrained[std::size_t(p)] = 1;
-    std::vector<Index> identity(std::size_t(mesh.n_points()));
-    std::iota(identity.begin(), identity.end(), Index{0});
-    return detail::local_band_graph(mesh,
-                                    detail::within_reach(x_eval, seeds.positions, seeds.width),
-                                    is_constrained, d, identity);
+    return detail::local_band_graph(
+        mesh, detail::within_reach(x_eval, seeds.positions, seeds.width), is_constrained, d);
 }
 
 //! The band's solved values into `displacement` (the fitted ones kept in `out`).

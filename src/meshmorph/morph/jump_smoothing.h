@@ -53,7 +53,7 @@ std::string to_string(JumpSmoothingMode mode);
 struct JumpSmoothing
 {
     Index jump_constraints = 0; //!< constraints on a jump (the band's seeds)
-    Index band_points = 0;      //!< free points whose displacement was replaced
+    Index band_points = 0;      //!< free points whose displacement was replaced (every rank)
     double width = 0.0;         //!< the band's width (distance along the edges)
     double seconds = 0.0;
     std::vector<Index> band; //!< those points' labels (this rank's, in label order)

@@ -3,11 +3,11 @@
 #include "meshmorph/morph/jump_smoothing_guard.h"
 
 #include <algorithm>
-#include <array>
 #include <cstdint>
-#include <functional>
+#include <optional>
 #include <vector>
 
+#include "meshmorph/mesh/coupled_patches.h"
 #include "meshmorph/mesh/processor_faces.h"
 #include "meshmorph/quality/face_orthogonality.h"
 
@@ -23,68 +23,39 @@ struct BandCells
     std::vector<Index> faces;    //!< faces with a band point
     std::vector<Index> cells;    //!< their owners and neighbours
     std::vector<Index> measured; //!< internal faces of those cells
-    //! -parallel: the processor faces beside such a cell on either side, and whether this
-    //! rank holds the pair's statistics (checkMesh counts a processor face once).
+    //! -parallel: the processor faces beside such a cell on either side.
     std::vector<Index> coupled;
-    std::vector<char> coupled_owner;
 };
 
-//! The processor patches of a -parallel run (none in a serial one).
-struct Coupling
+//! -parallel: what lies across the processor faces for the current points (a collective);
+//! nothing in a serial run.
+std::optional<ProcessorFaces> exchanged(const PolyMesh& mesh, const MeshGeometry& g,
+                                        const parallel::Communicator& comm)
 {
-    ProcessorFaces processors;
-    bool parallel = false;
-};
-
-Coupling coupling(const PolyMesh& mesh, const parallel::Communicator& comm)
-{
-    Coupling c;
-    c.parallel = comm.is_parallel();
-    if (!c.parallel)
-        return c;
-    c.processors.comm = &comm;
-    c.processors.patches = processor_patches(mesh, comm.rank());
-    return c;
+    if (!comm.is_parallel())
+        return std::nullopt;
+    return exchange_processor_faces(mesh, g, comm);
 }
 
-//! Per boundary face (face - nInternalFaces), its owner cell's `value` (0 off the patches
-//! of `c`), swapped with the rank across: the value of the cell on the other side.
-std::vector<double> across(const PolyMesh& mesh, const Coupling& c,
-                           const std::function<double(Index)>& value)
+//! The processor faces with a band cell on this side or across (a collective).
+std::vector<Index> processor_faces_beside(const PolyMesh& mesh, const ProcessorFaces& across,
+                                          const std::vector<char>& cell_seen)
 {
     const Index n_int = mesh.n_internal_faces();
     std::vector<double> mine(std::size_t(mesh.n_faces() - n_int), 0.0);
-    for (const ProcessorPatch& pp : c.processors.patches)
-    {
-        const Patch& p = mesh.patches[std::size_t(pp.patch)];
-        for (Index f = p.start_face; f < p.start_face + p.n_faces; ++f)
-            mine[std::size_t(f - n_int)] = value(mesh.owner[std::size_t(f)]);
-    }
-    return swap_processor_values(mesh, c.processors, mine);
-}
-
-//! The processor faces beside a cell of the band on either side (a collective).
-void coupled_faces(const PolyMesh& mesh, const Coupling& c, const std::vector<char>& cell_seen,
-                   BandCells& out)
-{
-    const Index n_int = mesh.n_internal_faces();
-    const std::vector<double> remote =
-        across(mesh, c, [&](Index cell) { return double(cell_seen[std::size_t(cell)]); });
-    for (const ProcessorPatch& pp : c.processors.patches)
-    {
-        const Patch& p = mesh.patches[std::size_t(pp.patch)];
-        for (Index f = p.start_face; f < p.start_face + p.n_faces; ++f)
-            if (cell_seen[std::size_t(mesh.owner[std::size_t(f)])] != 0 ||
-                remote[std::size_t(f - n_int)] != 0.0)
-            {
-                out.coupled.push_back(f);
-                out.coupled_owner.push_back(pp.owner ? 1 : 0);
-            }
-    }
+    for (Index f = n_int; f < mesh.n_faces(); ++f)
+        if (across.on_processor_patch[std::size_t(f - n_int)] != 0)
+            mine[std::size_t(f - n_int)] = cell_seen[std::size_t(mesh.owner[std::size_t(f)])];
+    const std::vector<double> theirs = swap_processor_values(mesh, across, mine);
+    std::vector<Index> out;
+    for (Index f = n_int; f < mesh.n_faces(); ++f)
+        if (mine[std::size_t(f - n_int)] != 0.0 || theirs[std::size_t(f - n_int)] != 0.0)
+            out.push_back(f);
+    return out;
 }
 
 BandCells band_cells(const PolyMesh& mesh, const CompactList& cell_faces,
-                     const std::vector<Index>& band, const Coupling& coupled)
+                     const std::vector<Index>& band, const ProcessorFaces* across)
 {
     std::vector<char> in_band(std::size_t(mesh.n_points()), 0);
     for (const Index p : band)
@@ -120,52 +91,38 @@ BandCells band_cells(const PolyMesh& mesh, const CompactList& cell_faces,
                 out.measured.push_back(f);
             }
     std::sort(out.measured.begin(), out.measured.end());
-    if (coupled.parallel)
-        coupled_faces(mesh, coupled, cell_seen, out);
+    if (across != nullptr)
+        out.coupled = processor_faces_beside(mesh, *across, cell_seen);
     return out;
 }
 
-//! The non-orthogonality of the processor faces of b, checkMesh's way: against the centre
-//! of the cell across (a collective).
-void coupled_quality(const PolyMesh& mesh, const MeshGeometry& g, const BandCells& b,
-                     const Coupling& c, BandQuality& q)
+//! The non-orthogonality of an angle cosine into q.
+void add_angle(double cosine, bool counted, BandQuality& q)
 {
-    const Index n_int = mesh.n_internal_faces();
-    std::array<std::vector<double>, 3> centre;
-    for (int k = 0; k < 3; ++k)
-        centre[std::size_t(k)] =
-            across(mesh, c, [&](Index cell) { return g.cell_centres(cell, k); });
-    for (std::size_t i = 0; i < b.coupled.size(); ++i)
-    {
-        const Index f = b.coupled[i];
-        const std::size_t at = std::size_t(f - n_int);
-        const Vector3 d = Vector3(centre[0][at], centre[1][at], centre[2][at]) -
-                          g.cell_centres.row(mesh.owner[std::size_t(f)]).transpose();
-        const Vector3 s = g.face_areas.row(f).transpose();
-        const double angle =
-            non_orthogonality_degrees(d.dot(s) / (d.norm() * s.norm() + constants::rootvsmall));
-        q.max_non_ortho = std::max(q.max_non_ortho, angle);
-        if (angle > 70.0 && b.coupled_owner[i] != 0)
-            ++q.faces_above_70;
-    }
+    const double angle = non_orthogonality_degrees(cosine);
+    q.max_non_ortho = std::max(q.max_non_ortho, angle);
+    if (angle > 70.0 && counted)
+        ++q.faces_above_70;
 }
 
+//! The band's cells' figures; processor faces measured against the cell across, as
+//! checkMesh -parallel does (counted once, on the owner side). A collective.
 BandQuality band_quality(const PolyMesh& mesh, const MeshGeometry& g, const BandCells& b,
-                         const Coupling& coupled, const parallel::Communicator& comm)
+                         const ProcessorFaces* across, const parallel::Communicator& comm)
 {
     BandQuality q;
     for (const Index c : b.cells)
         if (!(g.cell_volumes[c] > 0.0))
             ++q.invalid_cells;
     for (const Index f : b.measured)
+        add_angle(internal_face_orthogonality(mesh, g, f), true, q);
+    if (across != nullptr)
     {
-        const double angle = non_orthogonality_degrees(internal_face_orthogonality(mesh, g, f));
-        q.max_non_ortho = std::max(q.max_non_ortho, angle);
-        if (angle > 70.0)
-            ++q.faces_above_70;
+        const CoupledFaces coupled = coupled_faces(mesh, g, {}, across);
+        for (const Index f : b.coupled)
+            add_angle(coupled_face_orthogonality(mesh, g, coupled, f),
+                      coupled.master[std::size_t(f)] != 0, q);
     }
-    if (coupled.parallel)
-        coupled_quality(mesh, g, b, coupled, q);
     q.invalid_cells = Index(comm.sum(std::int64_t(q.invalid_cells)));
     q.faces_above_70 = Index(comm.sum(std::int64_t(q.faces_above_70)));
     q.max_non_ortho = comm.max(q.max_non_ortho);
@@ -205,14 +162,15 @@ JumpSmoothingChoice choose_jump_smoothing(PolyMesh& trial, const CompactList& ce
     if (comm.sum(std::int64_t(s.band.size())) == 0)
         return out;
     out.compared = true;
-    const Coupling coupled = coupling(trial, comm);
-    const BandCells b = band_cells(trial, cell_faces, s.band, coupled);
+    std::optional<ProcessorFaces> across = exchanged(trial, geometry, comm);
+    const BandCells b = band_cells(trial, cell_faces, s.band, across ? &*across : nullptr);
     Points smoothed(Eigen::Index(s.band.size()), 3);
     for (std::size_t i = 0; i < s.band.size(); ++i)
         smoothed.row(Eigen::Index(i)) = displacement.row(s.band[i]);
-    out.smoothed = band_quality(trial, geometry, b, coupled, comm);
+    out.smoothed = band_quality(trial, geometry, b, across ? &*across : nullptr, comm);
     move_band(trial, cell_faces, geometry, accepted, s.band, s.fitted, b);
-    out.fitted = band_quality(trial, geometry, b, coupled, comm);
+    across = exchanged(trial, geometry, comm);
+    out.fitted = band_quality(trial, geometry, b, across ? &*across : nullptr, comm);
     out.kept = better(out.smoothed, out.fitted);
     if (out.kept)
         move_band(trial, cell_faces, geometry, accepted, s.band, smoothed, b);

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "meshmorph/core/stopwatch.h"
+#include "meshmorph/morph/gathered_by_label.h"
 #include "meshmorph/morph/jump_band_graph.h"
 
 namespace meshmorph::morph
@@ -87,14 +88,7 @@ BandGraph merged_graph(const std::vector<std::vector<WireNode>>& nodes,
                        const std::vector<std::vector<WireEdge>>& edges,
                        const std::vector<Index>& constrained)
 {
-    std::vector<WireNode> all;
-    for (const std::vector<WireNode>& rank : nodes)
-        all.insert(all.end(), rank.begin(), rank.end());
-    std::stable_sort(all.begin(), all.end(),
-                     [](const WireNode& a, const WireNode& b) { return a.label < b.label; });
-    all.erase(std::unique(all.begin(), all.end(),
-                          [](const WireNode& a, const WireNode& b) { return a.label == b.label; }),
-              all.end());
+    const std::vector<WireNode> all = sorted_unique(nodes);
     BandGraph g;
     g.x.resize(Eigen::Index(all.size()), 3);
     g.d.resize(Eigen::Index(all.size()), 3);
@@ -164,7 +158,7 @@ JumpSmoothing smooth_jumps_distributed(const PolyMesh& mesh, const Points& x_eva
     const std::vector<char> none(std::size_t(mesh.n_points()), 0);
     const BandGraph local =
         detail::local_band_graph(mesh, detail::within_reach(x_eval, seed_positions, width), none,
-                                 displacement, d.global_point);
+                                 displacement, &d.global_point);
     const auto nodes = comm.gather_values(wire_nodes(local));
     const auto edges = comm.gather_values(wire_edges(local));
     std::vector<std::vector<WireValue>> answers;

@@ -3,6 +3,7 @@
 #include "meshmorph/morph/point_morph.h"
 
 #include "meshmorph/morph/cyclic_coupling.h"
+#include "meshmorph/morph/gathered_by_label.h"
 #include "meshmorph/morph/jump_smoothing_parallel.h"
 
 #include <algorithm>
@@ -223,21 +224,6 @@ std::vector<WirePoint> to_wire(const std::vector<Index>& points, const Points& x
             out[i].position[k] = x_eval(points[i], k);
         data_of(i, out[i].data);
     }
-    return out;
-}
-
-//! Every rank's points on the master, sorted by label, a shared point once.
-std::vector<WirePoint> sorted_unique(const std::vector<std::vector<WirePoint>>& all)
-{
-    std::vector<WirePoint> out;
-    for (const std::vector<WirePoint>& rank : all)
-        out.insert(out.end(), rank.begin(), rank.end());
-    std::stable_sort(out.begin(), out.end(),
-                     [](const WirePoint& a, const WirePoint& b) { return a.label < b.label; });
-    out.erase(std::unique(out.begin(), out.end(),
-                          [](const WirePoint& a, const WirePoint& b)
-                          { return a.label == b.label; }),
-              out.end());
     return out;
 }
 

@@ -49,10 +49,16 @@ Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& g,
     const Index n_int = mesh.n_internal_faces();
     for (Index f = n_int; f < mesh.n_faces(); ++f)
         if (coupled.coupled_boundary(mesh, f))
-            ortho[f] = orthogonality(row(g.cell_centres, mesh.owner[f]),
-                                     row(coupled.neighbour_cell_centres, f - n_int),
-                                     row(g.face_areas, f), eps);
+            ortho[f] = coupled_face_orthogonality(mesh, g, coupled, f, eps);
     return ortho;
+}
+
+double coupled_face_orthogonality(const PolyMesh& mesh, const MeshGeometry& g,
+                                  const CoupledFaces& coupled, Index f, double eps)
+{
+    return orthogonality(row(g.cell_centres, mesh.owner[f]),
+                         row(coupled.neighbour_cell_centres, f - mesh.n_internal_faces()),
+                         row(g.face_areas, f), eps);
 }
 
 double non_orthogonality_degrees(double cosine)

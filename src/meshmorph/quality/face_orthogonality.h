@@ -27,6 +27,11 @@ double internal_face_orthogonality(const PolyMesh& mesh, const MeshGeometry& geo
 Eigen::VectorXd face_orthogonality(const PolyMesh& mesh, const MeshGeometry& geometry,
                                    const CoupledFaces& coupled, double eps = constants::rootvsmall);
 
+//! \brief The value of the overload above for the coupled boundary face f alone.
+double coupled_face_orthogonality(const PolyMesh& mesh, const MeshGeometry& geometry,
+                                  const CoupledFaces& coupled, Index f,
+                                  double eps = constants::rootvsmall);
+
 //! \brief Per cell, the largest non-orthogonality [deg] of its faces: acos of the smallest
 //! face_orthogonality, clamped to [-1, 1] (0 for a cell without faces).
 //! \param orthogonality face_orthogonality(mesh, geometry). \return nCells values.
