@@ -386,6 +386,20 @@ PolyMesh annular_wedge(double degrees)
                                  {"patch", "patch", "wall", "wall", "wedge", "wedge"});
 }
 
+TEST(MorphMesh, jump_smoothing_yes_in_a_wedge_case_is_refused_naming_the_key)
+{
+    // The band's Laplacian would not keep the two wedge planes rotations of each other:
+    // `yes` is refused by name and nothing is written (`auto` leaves wedges unsmoothed).
+    const fs::path dir = make_case("wedge_jump_smoothing", annular_wedge(5.0),
+                                   "jumpSmoothing yes;\nboundary\n{\n"
+                                   "    yMax { type translate; vector (0.05 0 0); }\n}\n");
+    const RunResult r = run({"-case", dir.string()});
+    EXPECT_EQ(r.code, exit_input_error) << r.log;
+    EXPECT_NE(r.err.find("'jumpSmoothing yes;'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("wedge"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "1")) << "nothing written";
+}
+
 TEST(MorphMesh, a_wedge_case_keeps_its_symmetry_exactly)
 {
     // The greedy RBF and its IDW correction choose centres point by point, so the two
