@@ -33,6 +33,11 @@
 # bike and pull the floor up; morphMesh's default conflict rule `fixed` holds them. So the
 # lift study has a third row, morphMeshBikeWins: morphMesh with `conflicts first;` (the bike's
 # entry wins there), the boundary motion moveMesh makes (time and checkMesh only).
+# A fourth row, moveMeshSameMotion, gives moveMesh morphMesh's own boundary motion: the default
+# row's boundary points, point by point, as fixedValue (the floor held under the tyres), so
+# the default is also compared at equal motion; its note gives the largest difference of
+# the two results' boundary points (round-off when the motions are equal). It needs the
+# meshmorph Python module beside morphMesh (build/<preset>/python).
 # The cached mesh is never modified (checkMesh writes sets, so it only runs on copies).
 # Both tools run one at a time; morphMesh uses OpenMP (OMP_NUM_THREADS is honoured),
 # moveMesh is serial.
@@ -137,6 +142,7 @@ else
     morph_mesh=$(command -v "$morph_mesh" || echo "$morph_mesh")
 fi
 out=$(realpath -m "$out")
+python_dir=$(realpath -m "$(dirname "$morph_mesh")/../../python")   # the meshmorph module beside it
 
 # ---------------------------------------------------------------------------------------
 # Small helpers
@@ -538,6 +544,26 @@ run_tool() {
                 *) note+="morphMesh failed (exit $run_status), see $dir/log.morphMesh" ;;
             esac
             ;;
+        moveMeshSameMotion)
+            # moveMesh given morphMesh's own boundary motion (the default row's result, point
+            # by point, floor held where the tyres touch it): the two tools at equal motion.
+            local morphed=$run/morphMesh
+            if [[ ! -d $morphed/1/polyMesh ]]; then
+                note="no morphMesh result to take the motion from"
+                run_status=NA run_wall=NA run_cpu=NA run_rss_mb=NA
+            else
+                make_movemesh_case "$src" "$dir" "$lift"
+                PYTHONPATH=$python_dir "$python" "$script_dir/same_boundary_motion.py" write \
+                    "$dir" "$morphed" "$dir/0/pointDisplacement" ||
+                    step_failed "moveMeshSameMotion" "could not write $dir/0/pointDisplacement"
+                run_timed "$dir" moveMesh moveMesh
+                [[ $run_status -eq 0 ]] || note="moveMesh failed (exit $run_status), see $dir/log.moveMesh"
+                local mismatch
+                mismatch=$(PYTHONPATH=$python_dir "$python" "$script_dir/same_boundary_motion.py" \
+                    mismatch "$dir" "$dir" "$morphed" | tr '\n' ' ')
+                note+="boundary points differ from morphMesh's by at most ${mismatch%% *} m (${mismatch#* }x the largest displacement)"
+            fi
+            ;;
         morphMeshBikeWins)
             # The boundary motion moveMesh makes: the bike's prescription wins at the points
             # the tyres share with lowerWall (the first morphDict entry: conflicts first).
@@ -785,7 +811,15 @@ if ! $scaling; then
     csv=$out/results.csv
     echo "$csv_header" >"$csv"
     write_meta "$out/results.meta.json"
-    [[ ${#tools[@]} -eq 1 ]] || tools+=(morphMeshBikeWins)
+    if [[ ${#tools[@]} -gt 1 ]]; then
+        if [[ -d $python_dir/meshmorph ]]; then
+            tools+=(moveMeshSameMotion)
+        else
+            say "WARNING: no meshmorph Python module at $python_dir: the moveMeshSameMotion row is left out"
+            results_partial "no meshmorph Python module at $python_dir"
+        fi
+        tools+=(morphMeshBikeWins)
+    fi
     for fraction in $lifts; do
         run=$out/runs/lift$fraction
         fresh_run_dir "$run"

@@ -27,6 +27,7 @@
 #include "meshmorph/io/temp_file.h"
 #include "meshmorph/io/write_poly_mesh.h"
 #include "meshmorph/morph/jump_smoothing_guard.h"
+#include "meshmorph/morph/non_ortho_repair.h"
 #include "morph_run.h"
 #include "shipped_pipe.h"
 
@@ -465,11 +466,14 @@ TEST(MorphMesh, the_sensitivity_of_a_smoothed_morph_equals_central_differences)
     const std::string lid = "boundary { zMax { type translate; vector (0 0 LIFT); } }\n";
     const auto with_lift = [&](const char* lift)
     { return std::regex_replace(lid, std::regex("LIFT"), lift); };
-    const fs::path dir = make_case("smoothed_sensitivity", test::make_box_mesh(24, 24, 12),
-                                   "jumpSmoothing yes;\n" + with_lift("0.2"));
+    // The repair of faces above maxNonOrtho is not differentiated (the sensitivity warns):
+    // off, so that the morph is the smoothed field alone.
+    const std::string keys = "jumpSmoothing yes;\nmaxNonOrtho none;\n";
+    const fs::path dir =
+        make_case("smoothed_sensitivity", test::make_box_mesh(24, 24, 12), keys + with_lift("0.2"));
     for (const char* lift : {"0.202", "0.198"})
         write_text(dir / "system" / (std::string("morphDict.") + lift),
-                   std::string(dict_header) + "jumpSmoothing yes;\n" + with_lift(lift));
+                   std::string(dict_header) + keys + with_lift(lift));
     morph::MorphOptions options;
     options.case_dir = dir;
     app::MorphSession session(options);
@@ -539,6 +543,55 @@ TEST(MorphMesh, jump_smoothing_auto_keeps_the_smoothed_band_only_where_it_is_bet
     EXPECT_EQ(non_ortho("auto"), kept ? non_ortho("yes") : non_ortho("no"));
     EXPECT_LE(non_ortho("auto"), std::min(non_ortho("yes"), non_ortho("no")) + 1e-12);
     EXPECT_EQ(runs[""]["after"], runs["auto"]["after"]) << "auto is the default";
+}
+
+TEST(MorphMesh, faces_a_morph_takes_above_max_non_ortho_are_repaired_locally)
+{
+    // The lid lifted against fixed sides (conflicts fixed: its rim stays): the cells under
+    // the rim shear past 70 degrees. The default (maxNonOrtho 70) moves interior points near
+    // them until none of those faces is above 70 (aiming at 69), leaves every boundary point
+    // where the prescription puts it, and says so in the log and the JSON; `none` keeps the
+    // fitted field, faces above 70 and all.
+    const std::string lid = "boundary { zMax { type translate; vector (0 0 0.2); } }\n";
+    std::map<std::string, nlohmann::json> runs;
+    for (const std::string keys : {"maxNonOrtho none;\n", ""})
+    {
+        const fs::path dir = make_case(keys.empty() ? "non_ortho_default" : "non_ortho_none",
+                                       test::make_box_mesh(24, 24, 12), keys + lid);
+        const RunResult r = run({"-case", dir.string(), "-json", (dir / "morph.json").string()});
+        ASSERT_EQ(r.code, 0) << r.err;
+        runs[keys] = nlohmann::json::parse(read_text(dir / "morph.json"));
+        EXPECT_LE(runs[keys]["maxConstraintError"].get<double>(), 1e-9 * 0.2) << keys;
+        EXPECT_EQ(r.out.find("repaired non-orthogonality: ") != std::string::npos, keys.empty())
+            << r.out;
+    }
+    const nlohmann::json& fitted = runs["maxNonOrtho none;\n"];
+    const nlohmann::json& repaired = runs[""];
+    ASSERT_GT(fitted["after"]["maxNonOrthogonality"].get<double>(), 70.0)
+        << "the lift makes faces above 70 without the repair: " << fitted["after"].dump();
+    EXPECT_EQ(fitted["steps"].back()["nonOrthRepair"]["cells"].get<int>(), 0);
+    const nlohmann::json& step = repaired["steps"].back()["nonOrthRepair"];
+    EXPECT_GT(step["cells"].get<int>(), 0) << step.dump();
+    EXPECT_GT(step["pointsMoved"].get<int>(), 0) << step.dump();
+    EXPECT_EQ(step["stillAbove"].get<int>(), 0) << step.dump();
+    EXPECT_LT(repaired["after"]["maxNonOrthogonality"].get<double>(),
+              70.0 - 0.5 * morph::non_ortho_margin_degrees);
+    EXPECT_EQ(repaired["after"]["negativeVolumeCells"].get<int>(), 0);
+    EXPECT_EQ(repaired["after"]["incorrectlyOrientedFacePyramids"].get<int>(), 0);
+}
+
+TEST(MorphMesh, max_non_ortho_out_of_range_is_an_error_naming_the_entry)
+{
+    for (const char* value : {"95", "0", "off70"})
+    {
+        const fs::path dir = make_case("non_ortho_bad", test::make_box_mesh(3, 3, 3),
+                                       std::string("maxNonOrtho ") + value + ";\n" + lift_top);
+        const RunResult r = run({"-case", dir.string()});
+        EXPECT_EQ(r.code, exit_input_error) << value << r.log;
+        EXPECT_NE(r.err.find("maxNonOrtho"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("between 0 and 90"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir / "1")) << value;
+    }
 }
 
 TEST(MorphMesh, json_has_the_interface_keys)

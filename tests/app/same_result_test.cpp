@@ -85,8 +85,9 @@ nlohmann::json without_times(nlohmann::json steps)
     {
         for (const char* time : {"fit", "evaluate", "check", "write"})
             step.erase(time);
-        if (step.contains("untangle"))
-            step["untangle"].erase("seconds");
+        for (const char* repair : {"untangle", "nonOrthRepair"})
+            if (step.contains(repair))
+                step[repair].erase("seconds");
     }
     return steps;
 }

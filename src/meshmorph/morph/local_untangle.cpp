@@ -15,21 +15,10 @@ namespace meshmorph::morph
 namespace
 {
 
-//! Above this local quality (the smallest cosine of section (a)/(b) of the header) a point
-//! is left where the morph put it: cos 78 degrees, well inside what checkMesh accepts, so
-//! the repair changes no more of the mesh than it must.
-constexpr double good_enough = 0.2;
 //! A move must raise the local quality by this much to count (stops endless tiny moves).
 constexpr double min_gain = 1e-9;
-//! The repair works on a cell until its quality reaches this cosine (every face pyramid and
-//! internal face 0.06 degrees or more from the 90 degrees where checkMesh's verdict flips),
-//! not merely until checkMesh would pass it: a cell left at a cosine of 1e-12 passes or
-//! fails on the last bits of its points, which another BLAS kernel, compiler or thread
-//! count changes. A relative volume of 1e-3 is ten orders of magnitude above that
-//! round-off, so the verdict after the repair is the same on every machine.
-constexpr double repair_margin = 1e-3;
-//! The target of a cell invalid in the original mesh: below every quality, never worked on.
-constexpr double left_alone = -3.0;
+constexpr double repair_margin = repair_margin_cosine;
+constexpr double left_alone = repair_left_alone;
 //! Quality of a cell whose volume is not positive: below any cosine.
 constexpr double collapsed = -2.0;
 
@@ -72,9 +61,10 @@ bool cell_invalid(const PolyMesh& mesh, const CompactList& cell_faces, const Mes
     return false;
 }
 
-//! The smallest pyramid and orthogonality cosine over the faces of cell c.
-double cell_quality(const PolyMesh& mesh, const CompactList& cell_faces, const MeshGeometry& g,
-                    Index c)
+} // namespace
+
+double repair_quality(const PolyMesh& mesh, const CompactList& cell_faces, const MeshGeometry& g,
+                      Index c, double pyramid_weight)
 {
     if (g.cell_volumes[c] < constants::vsmall)
         return collapsed;
@@ -84,7 +74,7 @@ double cell_quality(const PolyMesh& mesh, const CompactList& cell_faces, const M
     {
         const Vector3 af = row3(g.face_areas, f);
         const double outward = mesh.owner[f] == c ? 1.0 : -1.0;
-        q = std::min(q, outward * cosine(af, row3(g.face_centres, f) - cc));
+        q = std::min(q, pyramid_weight * outward * cosine(af, row3(g.face_centres, f) - cc));
         if (f < mesh.n_internal_faces())
             q = std::min(q, cosine(af, row3(g.cell_centres, mesh.neighbour[f]) -
                                            row3(g.cell_centres, mesh.owner[f])));
@@ -92,12 +82,15 @@ double cell_quality(const PolyMesh& mesh, const CompactList& cell_faces, const M
     return q;
 }
 
+namespace
+{
+
 //! A cell the repair must raise: below its target (and not invalid from the start).
 bool below_target(const PolyMesh& mesh, const CompactList& cell_faces, const MeshGeometry& g,
-                  const std::vector<double>& targets, Index c)
+                  const std::vector<double>& targets, Index c, double pyramid_weight)
 {
     const double target = targets[static_cast<std::size_t>(c)];
-    return target > left_alone && cell_quality(mesh, cell_faces, g, c) < target;
+    return target > left_alone && repair_quality(mesh, cell_faces, g, c, pyramid_weight) < target;
 }
 
 //! Inverse of cell_points: the cells around each point.
@@ -123,9 +116,9 @@ class Untangler
 public:
     Untangler(PolyMesh& mesh, const CompactList& cell_faces, MeshGeometry& g,
               const Points& original, const std::vector<double>& targets,
-              const std::vector<char>& movable)
+              const std::vector<char>& movable, const RepairGoal& goal)
         : mesh_(mesh), cell_faces_(cell_faces), g_(g), original_(original), targets_(targets),
-          movable_(movable), cell_points_(cell_points(mesh, cell_faces)),
+          movable_(movable), goal_(goal), cell_points_(cell_points(mesh, cell_faces)),
           point_cells_(point_cells(mesh.n_points(), cell_points_)),
           in_region_(static_cast<std::size_t>(cell_faces.size()), 0),
           watched_(static_cast<std::size_t>(cell_faces.size()), 0),
@@ -188,7 +181,19 @@ public:
 private:
     bool below_target(Index c) const
     {
-        return morph::below_target(mesh_, cell_faces_, g_, targets_, c);
+        resolve_target(c);
+        return morph::below_target(mesh_, cell_faces_, g_, targets_, c, goal_.pyramid_weight);
+    }
+
+    //! A target given as NaN (repair_target_now) becomes the cell's quality now, capped at
+    //! good_enough: called before any point of the cell moves (relax() resolves a point's
+    //! cells first), so "now" is as the morph left it.
+    void resolve_target(Index c) const
+    {
+        double& t = targets_[static_cast<std::size_t>(c)];
+        if (std::isnan(t))
+            t = std::min(goal_.good_enough,
+                         repair_quality(mesh_, cell_faces_, g_, c, goal_.pyramid_weight));
     }
 
     //! How many watched cells satisfy `pred`: the region's and every cell a moved point
@@ -213,6 +218,7 @@ private:
     {
         if (in_region_[static_cast<std::size_t>(c)])
             return;
+        resolve_target(c);
         in_region_[static_cast<std::size_t>(c)] = 1;
         region_.push_back(c);
         watch(c);
@@ -268,7 +274,7 @@ private:
     {
         double q = 1.0;
         for (Index c : point_cells_[p])
-            q = std::min(q, cell_quality(mesh_, cell_faces_, g_, c));
+            q = std::min(q, repair_quality(mesh_, cell_faces_, g_, c, goal_.pyramid_weight));
         return q;
     }
 
@@ -344,8 +350,10 @@ private:
     bool relax(Index p)
     {
         const double now = quality_around(p);
-        if (now >= good_enough)
+        if (now >= goal_.good_enough)
             return false;
+        for (Index c : point_cells_[p])
+            resolve_target(c);
         const std::vector<Index> faces = faces_of(p);
         const Vector3 x = row3(mesh_.points, p);
         Vector3 best_x = x;
@@ -375,8 +383,9 @@ private:
     const CompactList& cell_faces_;
     MeshGeometry& g_;
     const Points& original_;
-    const std::vector<double>& targets_;
+    mutable std::vector<double> targets_; //!< a copy: NaN entries resolved on first use
     const std::vector<char>& movable_;
+    const RepairGoal goal_;
     CompactList cell_points_, point_cells_;
     std::vector<char> in_region_;
     std::vector<Index> region_;
@@ -398,11 +407,12 @@ template <class T, class F> std::vector<T> per_cell(Index n, F f)
 
 //! The cells below their repair target now (none that were invalid in the original mesh).
 std::vector<Index> cells_below_target(const PolyMesh& mesh, const CompactList& cell_faces,
-                                      const MeshGeometry& g, const std::vector<double>& targets)
+                                      const MeshGeometry& g, const std::vector<double>& targets,
+                                      double pyramid_weight)
 {
     std::vector<Index> cells;
     for (Index c = 0; c < cell_faces.size(); ++c)
-        if (below_target(mesh, cell_faces, g, targets, c))
+        if (below_target(mesh, cell_faces, g, targets, c, pyramid_weight))
             cells.push_back(c);
     return cells;
 }
@@ -410,12 +420,13 @@ std::vector<Index> cells_below_target(const PolyMesh& mesh, const CompactList& c
 } // namespace
 
 Index count_cells_below_target(const PolyMesh& mesh, const CompactList& cell_faces,
-                               const MeshGeometry& geometry, const std::vector<double>& targets)
+                               const MeshGeometry& geometry, const std::vector<double>& targets,
+                               double pyramid_weight)
 {
     Index count = 0;
 #pragma omp parallel for schedule(static) reduction(+ : count)
     for (Index c = 0; c < cell_faces.size(); ++c)
-        count += below_target(mesh, cell_faces, geometry, targets, c) ? 1 : 0;
+        count += below_target(mesh, cell_faces, geometry, targets, c, pyramid_weight) ? 1 : 0;
     return count;
 }
 
@@ -435,19 +446,23 @@ std::vector<double> repair_targets(const PolyMesh& original, const CompactList& 
                                 return cell_invalid(original, cell_faces, g, c)
                                            ? left_alone
                                            : std::min(repair_margin,
-                                                      cell_quality(original, cell_faces, g, c));
+                                                      repair_quality(original, cell_faces, g, c));
                             });
 }
 
 UntangleReport untangle_cells(PolyMesh& mesh, const CompactList& cell_faces, MeshGeometry& geometry,
                               const Points& original_points, const std::vector<double>& targets,
-                              const std::vector<char>& movable, const UntangleSettings& settings)
+                              const std::vector<char>& movable, const UntangleSettings& settings,
+                              const RepairGoal& goal, const std::vector<Index>* start)
 {
     UntangleReport report;
-    const std::vector<Index> poor = cells_below_target(mesh, cell_faces, geometry, targets);
+    const std::vector<Index> poor =
+        start != nullptr
+            ? *start
+            : cells_below_target(mesh, cell_faces, geometry, targets, goal.pyramid_weight);
     if (poor.empty())
         return report;
-    Untangler untangler(mesh, cell_faces, geometry, original_points, targets, movable);
+    Untangler untangler(mesh, cell_faces, geometry, original_points, targets, movable, goal);
     untangler.add_cells(poor);
     report.invalid_before = untangler.count_invalid();
     Index remaining = static_cast<Index>(poor.size());

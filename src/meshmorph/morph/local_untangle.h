@@ -29,6 +29,7 @@
 //! move that raises the worst cell around a point may lower another.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "meshmorph/core/poly_mesh.h"
@@ -37,10 +38,35 @@
 namespace meshmorph::morph
 {
 
+//! The repair works on a cell until its quality reaches this cosine (every face pyramid and
+//! internal face 0.06 degrees or more from the 90 degrees where checkMesh's verdict flips),
+//! not merely until checkMesh would pass it: a cell left at a cosine of 1e-12 passes or
+//! fails on the last bits of its points, which another BLAS kernel, compiler or thread
+//! count changes. A relative volume of 1e-3 is ten orders of magnitude above that
+//! round-off, so the verdict after the repair is the same on every machine.
+inline constexpr double repair_margin_cosine = 1e-3;
+
+//! The repair target of a cell invalid in the unmorphed mesh: below every quality, so the
+//! repair never works on it.
+inline constexpr double repair_left_alone = -3.0;
+
+//! A repair target meaning "the cell's quality as the morph left it" (untangle_cells).
+inline constexpr double repair_target_now = std::numeric_limits<double>::quiet_NaN();
+
 struct UntangleSettings
 {
     int max_layers = 8; //!< the widest neighbourhood, in layers of cells around the invalid ones
     int sweeps = 40;    //!< passes over the neighbourhood's points, per neighbourhood
+};
+
+//! What a repair raises its cells to. The default is the untangling's: the smallest
+//! cosine of (a) and (b) above, points left alone whose cells are all above 0.2 (78
+//! degrees). The repair of severely non-orthogonal faces (non_ortho_repair.h) weights the
+//! pyramids' cosines up so that the orthogonality's decides until a pyramid nears the margin.
+struct RepairGoal
+{
+    double pyramid_weight = 1.0; //!< the face pyramids' cosines are multiplied by this
+    double good_enough = 0.2;    //!< a point whose cells are all at least this stays
 };
 
 struct UntangleReport
@@ -54,6 +80,12 @@ struct UntangleReport
     //! Not tried (all else 0): the cells below their target, more than the caller's limit.
     Index skipped_cells = 0;
 };
+
+//! \brief The repair's quality of cell c: the smallest of its face pyramids' cosines (times
+//! `pyramid_weight`) and its internal faces' orthogonality cosines; below -1 when its volume
+//! is not positive.
+double repair_quality(const PolyMesh& mesh, const CompactList& cell_faces, const MeshGeometry& g,
+                      Index c, double pyramid_weight = 1.0);
 
 //! \brief Per cell: 1 when it has a volume below OpenFOAM's VSMALL, a wrongly oriented face
 //! pyramid or an internal face whose non-orthogonality reaches 90 degrees.
@@ -69,16 +101,22 @@ std::vector<double> repair_targets(const PolyMesh& original, const CompactList& 
 //! \brief The cells below their repair target in `mesh` (those untangle_cells() starts
 //! from), counted in one pass over the cells.
 Index count_cells_below_target(const PolyMesh& mesh, const CompactList& cell_faces,
-                               const MeshGeometry& geometry, const std::vector<double>& targets);
+                               const MeshGeometry& geometry, const std::vector<double>& targets,
+                               double pyramid_weight = 1.0);
 
 //! \brief Repair the cells that are below their target in `mesh`.
 //! \param mesh the morphed mesh; its interior points near those cells are moved.
 //! \param geometry compute_geometry(mesh, cell_faces) on entry; kept up to date.
 //! \param original_points the mesh before the morph (for the displacement candidate).
-//! \param targets repair_targets of the original mesh.
+//! \param targets repair_targets of the original mesh; an entry repair_target_now (NaN) is the
+//! cell's quality when the repair first looks at it, capped at goal.good_enough (only with
+//! `start`: the pass that finds the cells below their targets needs them all).
 //! \param movable per point, 1 when the repair may move it (interior points).
+//! \param start the cells below their target, when the caller knows them (else one pass).
 UntangleReport untangle_cells(PolyMesh& mesh, const CompactList& cell_faces, MeshGeometry& geometry,
                               const Points& original_points, const std::vector<double>& targets,
-                              const std::vector<char>& movable, const UntangleSettings& settings);
+                              const std::vector<char>& movable, const UntangleSettings& settings,
+                              const RepairGoal& goal = {},
+                              const std::vector<Index>* start = nullptr);
 
 } // namespace meshmorph::morph

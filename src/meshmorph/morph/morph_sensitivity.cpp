@@ -31,6 +31,11 @@ void require_one_field(const MorphResult& result)
                        << " interior points near " << repair.invalid_before
                        << " folded cells; dJ/dXs treats them as following the field (the "
                           "repair itself is not differentiated)";
+    if (const NonOrthoRepair& repair = result.steps.front().non_ortho; repair.points_moved > 0)
+        log::warning() << "sensitivity: the morph's repair of faces above maxNonOrtho moved "
+                       << repair.points_moved << " interior points near " << repair.cells
+                       << " cells; dJ/dXs treats them as following the field (the repair "
+                          "itself is not differentiated)";
 }
 
 } // namespace

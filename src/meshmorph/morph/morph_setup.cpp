@@ -266,7 +266,7 @@ MorphSetup read_morph_setup(const io::FoamDictionary& dict)
     // Other top-level entries are allowed when used as $variables (helper entries).
     dict.check_keywords({"method", "rbf", "dmffd", "ffd", "idw", "steps", "untangle",
                          "maxUntangleCells", "boundary", "handles", "conflicts", "designVariables",
-                         "newCheckFailures", "jumpSmoothing", "designBasis"},
+                         "newCheckFailures", "jumpSmoothing", "designBasis", "maxNonOrtho"},
                         "morphDict", dict.referenced_variables());
     if (const io::FoamEntry* e = dict.find("conflicts"))
         setup.conflicts = read_conflict_rule(*e);

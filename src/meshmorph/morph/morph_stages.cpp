@@ -63,6 +63,7 @@ SteppedMorph fit_in_steps(const MorphOptions& options, const MorphCase& in, cons
         result.timings.evaluate += s.evaluate_seconds;
         result.timings.check += s.check_seconds;
         result.timings.untangle += s.untangle_seconds;
+        result.timings.untangle += s.non_ortho.seconds;
     }
     result.morph = std::move(stepped.last);
     result.morph.displacement = std::move(stepped.displacement);

@@ -51,6 +51,19 @@ std::string format_fraction(double t)
     return o.str();
 }
 
+//! The repair of faces above maxNonOrtho, when it had work.
+void log_non_ortho_repair(const NonOrthoRepair& r)
+{
+    if (r.skipped_cells > 0)
+        log::info() << "    non-orthogonality not repaired: " << r.skipped_cells
+                    << " cells with a face above maxNonOrtho, more than maxUntangleCells";
+    else if (r.cells > 0)
+        log::info() << "    repaired non-orthogonality: " << r.cells
+                    << " cells with a face above maxNonOrtho, by moving " << r.points_moved
+                    << " interior points by up to " << r.max_move << "; " << r.cells_after
+                    << " still above [" << format_seconds(r.seconds) << " s]";
+}
+
 //! One line per step as it happens: the motion fractions, the fit, the checks and the verdict.
 void log_step(std::size_t number, const StepRecord& r, bool failed, bool redo, bool can_halve)
 {
@@ -76,6 +89,7 @@ void log_step(std::size_t number, const StepRecord& r, bool failed, bool redo, b
                                   " below the repair's margin"
                             : std::string())
                     << " [" << format_seconds(r.untangle_seconds) << " s]";
+    log_non_ortho_repair(r.non_ortho);
     log::info() << "Step " << number << ": motion " << format_fraction(r.from) << " -> "
                 << format_fraction(r.to) << ", " << r.centres << " centres, "
                 << r.invalid.negative_volume_cells << " negative-volume cells, "
@@ -131,6 +145,15 @@ public:
         if (working_)
             std::swap(working_->points, *aside_);
         return targets_;
+    }
+    //! The unmorphed quality of the cells beyond maxNonOrtho (non_ortho_repair.h).
+    void assess(NonOrthoCells& cells, double limit)
+    {
+        if (working_)
+            std::swap(working_->points, *aside_);
+        assess_non_orthogonal_cells(*mesh_, cell_faces_, limit, cells);
+        if (working_)
+            std::swap(working_->points, *aside_);
     }
     //! Interior points (in a -parallel run also not on processor patches: a point shared
     //! with another rank must move alike on both, so the repair leaves it).
@@ -199,6 +222,39 @@ void repair(PolyMesh& current, const CompactList& cell_faces, MeshGeometry& geom
     record.untangle_seconds = comm.max(clock.seconds());
 }
 
+//! Repair the cells with a face the valid step took above maxNonOrtho in place and recount
+//! the invalid cells, unless there are more than maxUntangleCells such cells (over every rank).
+void repair_non_ortho(PolyMesh& current, const CompactList& cell_faces, MeshGeometry& geometry,
+                      std::vector<char>& pyramid_errors, OriginalState& original,
+                      const StepSettings& settings, StepRecord& record,
+                      const parallel::Communicator& comm)
+{
+    const Stopwatch clock;
+    const double limit = settings.max_non_ortho;
+    NonOrthoCells cells;
+    cells.cells = cells_beyond_limit(current, geometry, limit);
+    // Most morphs make no such face: one pass over the faces, nothing of the unmorphed mesh.
+    if (comm.sum(std::int64_t(cells.cells.size())) == 0)
+        return;
+    cells.now = non_ortho_quality(current, cell_faces, geometry, cells.cells, limit);
+    original.assess(cells, limit);
+    NonOrthoRepair& r = record.non_ortho;
+    const Index to_repair = Index(comm.sum(std::int64_t(cells.repaired.size())));
+    if (to_repair > settings.max_untangle_cells)
+        r.skipped_cells = to_repair;
+    else if (to_repair > 0)
+    {
+        r = repair_non_orthogonality(current, cell_faces, geometry, original.points(), cells,
+                                     limit);
+        r.cells = to_repair;
+        r.cells_after = Index(comm.sum(std::int64_t(r.cells_after)));
+        r.points_moved = Index(comm.sum(std::int64_t(r.points_moved)));
+        r.max_move = comm.max(r.max_move);
+        record.invalid = global_invalid_cells(current, geometry, comm, pyramid_errors);
+    }
+    r.seconds = comm.max(clock.seconds());
+}
+
 } // namespace
 
 StepSettings read_step_settings(const io::FoamDictionary& dict)
@@ -211,6 +267,17 @@ StepSettings read_step_settings(const io::FoamDictionary& dict)
         if (t.size() != 1 || !t[0].is_label() || t[0].label < 0)
             throw e->error("expected a number of cells (0 or more; default 1000)");
         s.max_untangle_cells = Index(t[0].label);
+    }
+    if (const io::FoamEntry* e = dict.find("maxNonOrtho"))
+    {
+        const std::vector<io::FoamValueToken>& t = e->tokens();
+        if (t.size() == 1 && t[0].is_word("none"))
+            s.max_non_ortho = 0.0;
+        else if (t.size() == 1 && t[0].is_number() && t[0].scalar > 0.0 && t[0].scalar < 90.0)
+            s.max_non_ortho = t[0].scalar;
+        else
+            throw e->error("expected an angle in degrees between 0 and 90 (default 70, "
+                           "checkMesh's 'severely non-orthogonal') or none");
     }
     return s;
 }
@@ -324,6 +391,9 @@ void check_step(PolyMesh& current, const CompactList& cell_faces, const InvalidC
     if (settings.untangle && record.invalid.worse_than(before))
         repair(current, cell_faces, geometry, pyramid_errors, original, settings.max_untangle_cells,
                record, comm);
+    if (settings.untangle && settings.max_non_ortho > 0.0 && !record.invalid.worse_than(before))
+        repair_non_ortho(current, cell_faces, geometry, pyramid_errors, original, settings, record,
+                         comm);
 }
 
 //! The next length after a trial of `length` whose repair was skipped (too many cells to

@@ -25,6 +25,7 @@
 
 #include "meshmorph/morph/jump_smoothing_guard.h"
 #include "meshmorph/morph/local_untangle.h"
+#include "meshmorph/morph/non_ortho_repair.h"
 #include "meshmorph/morph/point_morph.h"
 #include "meshmorph/quality/cell_validity.h"
 
@@ -46,10 +47,14 @@ struct StepSettings
     //! cell, and on the channel395DFSEM tutorial no repair of more than ~200 cells (from
     //! 30,800 down to 784) made its step valid, in 774 s in all.
     Index max_untangle_cells = 1000;
+    //! morphDict `maxNonOrtho` (degrees; 0: `none`): a valid step's cells with a face it took
+    //! above this are repaired locally (non_ortho_repair.h), with `untangle`.
+    double max_non_ortho = 70.0;
 };
 
 //! \brief Read `steps auto;` or `steps N;` (absent: auto), `untangle yes|no;` (absent:
-//! yes) and `maxUntangleCells N;` (absent: 1000). \throw ParseError.
+//! yes), `maxUntangleCells N;` (absent: 1000) and `maxNonOrtho D | none;` (absent: 70).
+//! \throw ParseError.
 StepSettings read_step_settings(const io::FoamDictionary& dict);
 
 //! What one step (tried or kept) did.
@@ -67,6 +72,7 @@ struct StepRecord
     InvalidCells invalid;    //!< after the repair, if there was one
     UntangleReport untangle; //!< the repair (invalid_before 0: none was needed)
     double untangle_seconds = 0.0;
+    NonOrthoRepair non_ortho; //!< the repair of faces above maxNonOrtho (cells 0: none needed)
     bool accepted = false;
 };
 

@@ -37,6 +37,7 @@ set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/morph_sensitivity.cpp
     meshmorph/morph/morph_steps.cpp
     meshmorph/morph/local_untangle.cpp
+    meshmorph/morph/non_ortho_repair.cpp
     meshmorph/morph/deformation_dict.cpp
     meshmorph/morph/deformation_methods.cpp
     meshmorph/morph/fit_memory.cpp
