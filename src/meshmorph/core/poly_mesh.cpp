@@ -63,13 +63,17 @@ CompactList cell_faces(const PolyMesh& mesh)
     return result;
 }
 
-CompactList cell_points(const PolyMesh& mesh, const CompactList& cf)
+namespace
+{
+
+//! The distinct points of cells [begin, end), in order of first appearance.
+CompactList cell_points_of(const PolyMesh& mesh, const CompactList& cf, Index begin, Index end)
 {
     CompactList result;
-    result.offsets.reserve(cf.offsets.size());
-    result.values.reserve(cf.values.size() * 2);
+    result.offsets.reserve(std::size_t(end - begin) + 1);
+    result.values.reserve(std::size_t(cf.offsets[end] - cf.offsets[begin]) * 2);
     std::vector<Index> cell_points_buf;
-    for (Index c = 0; c < cf.size(); ++c)
+    for (Index c = begin; c < end; ++c)
     {
         cell_points_buf.clear();
         for (Index f : cf[c])
@@ -78,6 +82,33 @@ CompactList cell_points(const PolyMesh& mesh, const CompactList& cf)
                     cell_points_buf.end())
                     cell_points_buf.push_back(p);
         result.push_back(std::span<const Index>(cell_points_buf));
+    }
+    return result;
+}
+
+} // namespace
+
+CompactList cell_points(const PolyMesh& mesh, const CompactList& cf)
+{
+    // In a fixed number of pieces (the same result on any number of threads), concatenated.
+    constexpr Index pieces = 16;
+    const Index n = cf.size();
+    std::vector<CompactList> parts(static_cast<std::size_t>(pieces));
+#pragma omp parallel for schedule(dynamic, 1) if (n > 65536)
+    for (Index k = 0; k < pieces; ++k)
+        parts[std::size_t(k)] = cell_points_of(mesh, cf, n * k / pieces, n * (k + 1) / pieces);
+    CompactList result;
+    result.offsets.reserve(std::size_t(n) + 1);
+    std::size_t total = 0;
+    for (const CompactList& part : parts)
+        total += part.values.size();
+    result.values.reserve(total);
+    for (const CompactList& part : parts)
+    {
+        const Index shift = Index(result.values.size());
+        for (std::size_t i = 1; i < part.offsets.size(); ++i)
+            result.offsets.push_back(part.offsets[i] + shift);
+        result.values.insert(result.values.end(), part.values.begin(), part.values.end());
     }
     return result;
 }
