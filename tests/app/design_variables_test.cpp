@@ -323,6 +323,13 @@ TEST_F(DesignVariables, a_variant_failing_a_check_the_mesh_passed_is_said_and_re
     EXPECT_FALSE(j["written"].get<bool>());
     EXPECT_NE(j["refusal"].get<std::string>().find("aspectRatio"), std::string::npos) << j;
     EXPECT_FALSE(fs::exists(*dir_ / "1"));
+    // maxNonOrtho is read by a one-off morph only: editing it leaves the set-up current too.
+    test::write_text(*dir_ / "system/morphDict", dict + "maxNonOrtho 60;\n");
+    const test::MorphRun edited = test::run_morph_mesh(args);
+    test::write_text(*dir_ / "system/morphDict", dict);
+    EXPECT_EQ(edited.code, 0) << edited.log;
+    EXPECT_TRUE(fs::exists(*dir_ / "1"));
+    fs::remove_all(*dir_ / "1");
 }
 
 TEST_F(DesignVariables, a_step_search_finds_the_largest_valid_lift_and_the_check_confirms_it)

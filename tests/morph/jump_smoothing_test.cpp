@@ -95,6 +95,26 @@ TEST(JumpSmoothing, changes_only_free_points_in_the_band_and_keeps_every_constra
     }
 }
 
+TEST(JumpSmoothing, a_reach_beyond_the_cap_is_not_smoothed_and_says_how_far)
+{
+    // The smoothing is for a band: with more points within reach of the jumps than the cap
+    // (here a cap of 10 points), the field is left as fitted and the count reported.
+    const SteppedBox box;
+    const Points before = box.nearest_field();
+    Points after = before;
+    const JumpSmoothing s =
+        smooth_jumps(box.mesh, box.mesh.points, box.constrained, box.values, after, 10);
+    ASSERT_GT(s.jump_constraints, 0);
+    EXPECT_GT(s.skipped_reach, 10);
+    EXPECT_EQ(s.band_points, 0);
+    EXPECT_EQ(after, before);
+    Points uncapped = before;
+    const JumpSmoothing full =
+        smooth_jumps(box.mesh, box.mesh.points, box.constrained, box.values, uncapped);
+    EXPECT_EQ(full.skipped_reach, 0);
+    EXPECT_GT(full.band_points, 0);
+}
+
 TEST(JumpSmoothing, spreads_the_jump_within_the_range_of_its_data)
 {
     const SteppedBox box;

@@ -45,12 +45,12 @@ private:
 };
 
 //! morphDict keys that judge a variant after the fields are combined (untangle its new
-//! invalid cells and how many, refuse its new check failures): editing one leaves the set-up
-//! current.
+//! invalid cells and how many, refuse its new check failures) or that only a one-off morph
+//! reads (maxNonOrtho): editing one leaves the set-up current.
 bool judges_variants_only(const io::FoamEntry& e, int depth)
 {
     return depth == 0 && (e.keyword() == "untangle" || e.keyword() == "maxUntangleCells" ||
-                          e.keyword() == "newCheckFailures");
+                          e.keyword() == "newCheckFailures" || e.keyword() == "maxNonOrtho");
 }
 
 void add_dictionary(Fnv1a& f, const io::FoamDictionary& dict, int depth = 0)

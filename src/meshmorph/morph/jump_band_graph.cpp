@@ -168,6 +168,11 @@ std::vector<char> within_reach(const Points& x, const Points& seeds, double widt
     return out;
 }
 
+Index count_reached(const std::vector<char>& reached)
+{
+    return Index(std::count(reached.begin(), reached.end(), char(1)));
+}
+
 Index BandGraph::node(Index label) const
 {
     const auto at = std::lower_bound(labels.begin(), labels.end(), label);

@@ -37,6 +37,9 @@ JumpSeeds jump_seeds(const std::vector<Index>& labels, const Points& positions,
 //! \brief Per row of x, whether it lies within `width` (straight line) of a seed position.
 std::vector<char> within_reach(const Points& x, const Points& seeds, double width);
 
+//! \brief How many entries of a within_reach mask are set.
+Index count_reached(const std::vector<char>& reached);
+
 //! The graph: nodes sorted by label. Nodes within reach list their neighbours; the others
 //! are the border their edges reach.
 struct BandGraph

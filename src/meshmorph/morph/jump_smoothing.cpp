@@ -27,16 +27,15 @@ Points rows_of(const Points& x, const std::vector<Index>& rows)
     return out;
 }
 
-//! The graph of the mesh around the seeds, with the field d (serial: labels are points).
-BandGraph serial_graph(const PolyMesh& mesh, const Points& x_eval,
-                       const std::vector<Index>& constrained, const JumpSeeds& seeds,
-                       const Points& d)
+//! The graph of the mesh around the seeds (the points `reached`), with the field d (serial:
+//! labels are points).
+BandGraph serial_graph(const PolyMesh& mesh, const std::vector<char>& reached,
+                       const std::vector<Index>& constrained, const Points& d)
 {
     std::vector<char> is_constrained(std::size_t(mesh.n_points()), 0);
     for (const Index p : constrained)
         is_constrained[std::size_t(p)] = 1;
-    return detail::local_band_graph(
-        mesh, detail::within_reach(x_eval, seeds.positions, seeds.width), is_constrained, d);
+    return detail::local_band_graph(mesh, reached, is_constrained, d);
 }
 
 //! The band's solved values into `displacement` (the fitted ones kept in `out`).
@@ -72,7 +71,7 @@ std::string to_string(JumpSmoothingMode mode)
 
 JumpSmoothing smooth_jumps(const PolyMesh& mesh, const Points& x_eval,
                            const std::vector<Index>& constrained, const Points& values,
-                           Points& displacement)
+                           Points& displacement, Index max_reach)
 {
     const Stopwatch clock;
     JumpSmoothing out;
@@ -81,7 +80,14 @@ JumpSmoothing smooth_jumps(const PolyMesh& mesh, const Points& x_eval,
     out.width = seeds.width;
     if (seeds.labels.empty())
         return out;
-    const BandGraph g = serial_graph(mesh, x_eval, constrained, seeds, displacement);
+    const std::vector<char> reached = detail::within_reach(x_eval, seeds.positions, seeds.width);
+    if (const Index n = detail::count_reached(reached); n > max_reach)
+    {
+        out.skipped_reach = n;
+        out.seconds = clock.seconds();
+        return out;
+    }
+    const BandGraph g = serial_graph(mesh, reached, constrained, displacement);
     BandSystem s;
     detail::band_system(g, seeds, s);
     if (!s.band.empty())
@@ -97,7 +103,10 @@ void smooth_jumps_transpose(const PolyMesh& mesh, const Points& x_eval,
     const JumpSeeds seeds = detail::jump_seeds(constrained, rows_of(x_eval, constrained), values);
     if (seeds.labels.empty())
         return;
-    const BandGraph g = serial_graph(mesh, x_eval, constrained, seeds, weights);
+    const std::vector<char> reached = detail::within_reach(x_eval, seeds.positions, seeds.width);
+    if (detail::count_reached(reached) > max_jump_reach_points)
+        return; // not smoothed (smooth_jumps)
+    const BandGraph g = serial_graph(mesh, reached, constrained, weights);
     BandSystem s;
     detail::band_system(g, seeds, s);
     Eigen::MatrixXd w = g.d; // the weights at the graph's nodes

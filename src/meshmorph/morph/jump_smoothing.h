@@ -50,11 +50,20 @@ enum class JumpSmoothingMode
 std::string to_string(JumpSmoothingMode mode);
 
 //! What the smoothing did (for the log and the JSON report).
+//! The most points within reach of the jumps (over every rank) the smoothing takes on. The
+//! smoothing is for a band: the motorBike's holds 3,350 points; a wall scaled against fixed
+//! sides along its whole length (OpenFOAM's channel395DFSEM, 1.9M points) reaches most of
+//! the mesh, whose band Laplacian took over 5 GB and ten minutes to factor. Above this the
+//! step is not smoothed, and the log says so.
+inline constexpr Index max_jump_reach_points = 200000;
+
 struct JumpSmoothing
 {
     Index jump_constraints = 0; //!< constraints on a jump (the band's seeds)
     Index band_points = 0;      //!< free points whose displacement was replaced (every rank)
-    double width = 0.0;         //!< the band's width (distance along the edges)
+    //! Not smoothed: the points within reach of the jumps, more than the cap (0: none)
+    Index skipped_reach = 0;
+    double width = 0.0; //!< the band's width (distance along the edges)
     double seconds = 0.0;
     std::vector<Index> band; //!< those points' labels (this rank's, in label order)
     Points fitted;           //!< their displacement before the smoothing (one row each)
@@ -70,9 +79,10 @@ struct JumpSmoothing
 //! RBF's default slope and width).
 //! \throw SolverError if the band's system cannot be factored (it cannot happen for a band
 //! that touches a constrained point, which every band does).
+//! \param max_reach the cap on the points within reach (default max_jump_reach_points).
 JumpSmoothing smooth_jumps(const PolyMesh& mesh, const Points& x_eval,
                            const std::vector<Index>& constrained, const Points& values,
-                           Points& displacement);
+                           Points& displacement, Index max_reach = max_jump_reach_points);
 
 //! \brief The transpose of smooth_jumps as a linear map of the displacement (the band and its
 //! weights held, as they depend on the prescription's shape only): `weights` (dJ/dd per

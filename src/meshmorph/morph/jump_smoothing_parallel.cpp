@@ -156,9 +156,18 @@ JumpSmoothing smooth_jumps_distributed(const PolyMesh& mesh, const Points& x_eva
         return out;
     // Constrained flags are the master's (the merged prescription, slip points included).
     const std::vector<char> none(std::size_t(mesh.n_points()), 0);
+    const std::vector<char> reached = detail::within_reach(x_eval, seed_positions, width);
+    // Shared points count on each rank that has them: the cap is a size, not an exact count.
+    if (const Index n = Index(comm.sum(std::int64_t(detail::count_reached(reached))));
+        n > max_jump_reach_points)
+    {
+        out.skipped_reach = n;
+        out.jump_constraints = Index(seed_positions.rows());
+        out.seconds = comm.max(clock.seconds());
+        return out;
+    }
     const BandGraph local =
-        detail::local_band_graph(mesh, detail::within_reach(x_eval, seed_positions, width), none,
-                                 displacement, &d.global_point);
+        detail::local_band_graph(mesh, reached, none, displacement, &d.global_point);
     const auto nodes = comm.gather_values(wire_nodes(local));
     const auto edges = comm.gather_values(wire_edges(local));
     std::vector<std::vector<WireValue>> answers;

@@ -57,6 +57,10 @@ void log_non_ortho_repair(const NonOrthoRepair& r)
     if (r.skipped_cells > 0)
         log::info() << "    non-orthogonality not repaired: " << r.skipped_cells
                     << " cells with a face above maxNonOrtho, more than maxUntangleCells";
+    else if (r.cells > 0 && r.points_moved == 0)
+        log::info() << "    non-orthogonality not repaired: " << r.cells
+                    << " cells with a face above maxNonOrtho, and no interior point near them "
+                       "whose move improves them (in a 2D case every point is on the planes)";
     else if (r.cells > 0)
         log::info() << "    repaired non-orthogonality: " << r.cells
                     << " cells with a face above maxNonOrtho, by moving " << r.points_moved

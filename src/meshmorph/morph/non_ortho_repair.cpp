@@ -32,6 +32,20 @@ double pyramid_weight(double limit_degrees)
     return cos_degrees(limit_degrees - non_ortho_margin_degrees) / repair_margin_cosine;
 }
 
+//! The quality below which a cell of unmorphed quality `before` counts as taken beyond the
+//! limit: the limit's cosine, or for a cell already beyond it unmorphed, its own angle plus
+//! the margin (a snappyHexMesh mesh can have many such cells; a morph moves them all a
+//! little, and those it barely moves are not the morph's doing).
+double worse_than(double before, double limit_degrees)
+{
+    const double goal = cos_degrees(limit_degrees);
+    if (before >= goal)
+        return goal;
+    return before <= -1.0
+               ? -2.0
+               : std::cos(std::acos(before) + non_ortho_margin_degrees * std::numbers::pi / 180.0);
+}
+
 //! Interior points that are not points of a cell with a processor or cyclic face: the
 //! orthogonality of such a face is measured against a cell this rank (or this side) does
 //! not move with it, so the repair leaves those cells' points alone.
@@ -139,7 +153,7 @@ void assess_non_orthogonal_cells(const PolyMesh& original, const CompactList& ce
         const bool invalid = repair_quality(original, cell_faces, g, c) <= 0.0;
         cells.before[i] =
             invalid ? repair_left_alone : repair_quality(original, cell_faces, g, c, weight);
-        if (!invalid && cells.now[i] < cells.before[i])
+        if (!invalid && cells.now[i] < worse_than(cells.before[i], limit_degrees))
             cells.repaired.push_back(c);
     }
 }
@@ -162,10 +176,11 @@ NonOrthoRepair repair_non_orthogonality(PolyMesh& mesh, const CompactList& cell_
         non_ortho_quality(mesh, cell_faces, geometry, cells.cells, limit_degrees);
     const double goal = cos_degrees(limit_degrees);
     for (std::size_t i = 0; i < cells.cells.size(); ++i)
-        out.cells_after += cells.before[i] > repair_left_alone && cells.now[i] < cells.before[i] &&
-                                   after[i] < std::min(goal, cells.before[i])
-                               ? 1
-                               : 0;
+        out.cells_after +=
+            std::binary_search(cells.repaired.begin(), cells.repaired.end(), cells.cells[i]) &&
+                    after[i] < std::min(goal, cells.before[i])
+                ? 1
+                : 0;
     return out;
 }
 

@@ -7,9 +7,10 @@
 //! non-orthogonal"), whatever the smooth field (moveMesh's Laplacian gives 75 degrees there
 //! at the same boundary motion). Their boundary points are prescribed, so no field through
 //! them does better; moving the few interior points of those cells does. So after a step is
-//! valid, the cells with a face it took above `maxNonOrtho` (and above the face's angle in
-//! the unmorphed mesh) get the untangling's smart Laplacian smoothing (local_untangle.h)
-//! with another goal: the orthogonality cosine of their internal faces raised to cos(limit
+//! valid, the cells with a face it took above `maxNonOrtho` (a cell already beyond it in
+//! the unmorphed mesh: more than 1 degree worse) get the untangling's smart Laplacian smoothing
+//! (local_untangle.h) with another goal: the orthogonality cosine of their internal faces raised to
+//! cos(limit
 //! - 1 degree), or to the cell's own in the unmorphed mesh if lower, while every face
 //! pyramid keeps the untangling's margin (the pyramids' cosines weighted so that they only
 //! bind near it). Boundary points never move, so the morph stays exact. The 1 degree margin

@@ -91,6 +91,11 @@ bool smooths_jumps(const Constraints& c)
 //! The jump smoothing's log line.
 JumpSmoothing log_jump_smoothing(JumpSmoothing s)
 {
+    if (s.skipped_reach > 0)
+        log::info() << "    jump smoothing skipped: " << s.skipped_reach << " points within "
+                    << s.width << " of " << s.jump_constraints
+                    << " constraints on jumps, more than " << max_jump_reach_points
+                    << " (the smoothing is for a band along the jumps, not the mesh)";
     if (s.band_points > 0)
         log::info() << "    jump smoothing: " << s.band_points << " points within " << s.width
                     << " of " << s.jump_constraints << " constraints on jumps (Laplacian, "
@@ -134,7 +139,7 @@ FitHandles merge_coincident(const FitHandles& h, double same)
     // Cell keys relative to the lower corner stay far below the integer range.
     const Points local = h.positions.rowwise() - h.positions.colwise().minCoeff();
     // Cells much larger than `same`: a position's box nearly always lies in one.
-    const detail::UniformGrid grid(local, 1000.0 * same);
+    const meshmorph::detail::UniformGrid grid(local, 1000.0 * same);
     std::vector<Eigen::Index> representative(static_cast<std::size_t>(h.positions.rows()), -1);
     Points sums = Points::Zero(h.values.rows(), 3);
     std::vector<int> counts(static_cast<std::size_t>(h.positions.rows()), 0);
