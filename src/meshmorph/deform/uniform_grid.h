@@ -54,6 +54,24 @@ public:
                     for_each_in_cell({kx, ky, kz}, f);
     }
 
+    //! Whether pred(index) holds for a point in the 27 cells around x, stopping at the first.
+    template <class P> bool any_near(double x, double y, double z, P&& pred) const
+    {
+        const Key c = key(x, y, z);
+        for (std::int64_t dz = -1; dz <= 1; ++dz)
+            for (std::int64_t dy = -1; dy <= 1; ++dy)
+                for (std::int64_t dx = -1; dx <= 1; ++dx)
+                {
+                    const Key k{c[0] + dx, c[1] + dy, c[2] + dz};
+                    auto it = std::lower_bound(entries_.begin(), entries_.end(),
+                                               Entry{k, std::int64_t(-1)});
+                    for (; it != entries_.end() && it->first == k; ++it)
+                        if (pred(static_cast<Eigen::Index>(it->second)))
+                            return true;
+                }
+        return false;
+    }
+
 private:
     using Key = std::array<std::int64_t, 3>;
     using Entry = std::pair<Key, std::int64_t>;

@@ -3,6 +3,7 @@
 #include "meshmorph/morph/jump_band_graph.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -145,7 +146,7 @@ JumpSeeds jump_seeds(const std::vector<Index>& labels, const Points& positions,
     return out;
 }
 
-std::vector<char> within_reach(const Points& x, const Points& seeds, double width)
+std::vector<char> within_reach(const Points& x, const Points& seeds, double width, Index stop_above)
 {
     std::vector<char> out(std::size_t(x.rows()), 0);
     if (seeds.rows() == 0 || !(width > 0.0))
@@ -156,15 +157,21 @@ std::vector<char> within_reach(const Points& x, const Points& seeds, double widt
     const Eigen::RowVector3d low = seeds.colwise().minCoeff().array() - width;
     const Eigen::RowVector3d high = seeds.colwise().maxCoeff().array() + width;
     const std::int64_t n = x.rows();
+    std::atomic<Index> reached{0};
 #pragma omp parallel for schedule(static) if (n > 4096)
     for (std::int64_t p = 0; p < n; ++p)
-        if ((x.row(p).array() >= low.array()).all() && (x.row(p).array() <= high.array()).all())
-            grid.for_each_near(x(p, 0), x(p, 1), x(p, 2),
-                               [&](std::int64_t s)
-                               {
-                                   if ((x.row(p) - seeds.row(s)).squaredNorm() <= width2)
-                                       out[std::size_t(p)] = 1;
-                               });
+    {
+        if (stop_above >= 0 && reached.load(std::memory_order_relaxed) > stop_above)
+            continue; // past the caller's cap: only "more than that" matters now
+        if ((x.row(p).array() >= low.array()).all() && (x.row(p).array() <= high.array()).all() &&
+            grid.any_near(x(p, 0), x(p, 1), x(p, 2),
+                          [&](std::int64_t s)
+                          { return (x.row(p) - seeds.row(s)).squaredNorm() <= width2; }))
+        {
+            out[std::size_t(p)] = 1;
+            reached.fetch_add(1, std::memory_order_relaxed);
+        }
+    }
     return out;
 }
 

@@ -35,7 +35,10 @@ JumpSeeds jump_seeds(const std::vector<Index>& labels, const Points& positions,
                      const Points& values);
 
 //! \brief Per row of x, whether it lies within `width` (straight line) of a seed position.
-std::vector<char> within_reach(const Points& x, const Points& seeds, double width);
+//! \param stop_above when >= 0, the search stops once more points than this are reached
+//! (the mask then holds more than stop_above, not all of them: enough for a cap's verdict).
+std::vector<char> within_reach(const Points& x, const Points& seeds, double width,
+                               Index stop_above = -1);
 
 //! \brief How many entries of a within_reach mask are set.
 Index count_reached(const std::vector<char>& reached);

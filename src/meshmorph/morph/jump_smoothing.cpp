@@ -80,7 +80,8 @@ JumpSmoothing smooth_jumps(const PolyMesh& mesh, const Points& x_eval,
     out.width = seeds.width;
     if (seeds.labels.empty())
         return out;
-    const std::vector<char> reached = detail::within_reach(x_eval, seeds.positions, seeds.width);
+    const std::vector<char> reached =
+        detail::within_reach(x_eval, seeds.positions, seeds.width, max_reach);
     if (const Index n = detail::count_reached(reached); n > max_reach)
     {
         out.skipped_reach = n;
@@ -103,7 +104,8 @@ void smooth_jumps_transpose(const PolyMesh& mesh, const Points& x_eval,
     const JumpSeeds seeds = detail::jump_seeds(constrained, rows_of(x_eval, constrained), values);
     if (seeds.labels.empty())
         return;
-    const std::vector<char> reached = detail::within_reach(x_eval, seeds.positions, seeds.width);
+    const std::vector<char> reached =
+        detail::within_reach(x_eval, seeds.positions, seeds.width, max_jump_reach_points);
     if (detail::count_reached(reached) > max_jump_reach_points)
         return; // not smoothed (smooth_jumps)
     const BandGraph g = serial_graph(mesh, reached, constrained, weights);

@@ -61,7 +61,7 @@ struct JumpSmoothing
 {
     Index jump_constraints = 0; //!< constraints on a jump (the band's seeds)
     Index band_points = 0;      //!< free points whose displacement was replaced (every rank)
-    //! Not smoothed: the points within reach of the jumps, more than the cap (0: none)
+    //! Not smoothed: more points within reach of the jumps than the cap (a count above it; 0: none)
     Index skipped_reach = 0;
     double width = 0.0; //!< the band's width (distance along the edges)
     double seconds = 0.0;

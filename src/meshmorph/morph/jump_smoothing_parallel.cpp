@@ -156,7 +156,8 @@ JumpSmoothing smooth_jumps_distributed(const PolyMesh& mesh, const Points& x_eva
         return out;
     // Constrained flags are the master's (the merged prescription, slip points included).
     const std::vector<char> none(std::size_t(mesh.n_points()), 0);
-    const std::vector<char> reached = detail::within_reach(x_eval, seed_positions, width);
+    const std::vector<char> reached =
+        detail::within_reach(x_eval, seed_positions, width, max_jump_reach_points);
     // Shared points count on each rank that has them: the cap is a size, not an exact count.
     if (const Index n = Index(comm.sum(std::int64_t(detail::count_reached(reached))));
         n > max_jump_reach_points)

@@ -92,10 +92,10 @@ bool smooths_jumps(const Constraints& c)
 JumpSmoothing log_jump_smoothing(JumpSmoothing s)
 {
     if (s.skipped_reach > 0)
-        log::info() << "    jump smoothing skipped: " << s.skipped_reach << " points within "
-                    << s.width << " of " << s.jump_constraints
-                    << " constraints on jumps, more than " << max_jump_reach_points
-                    << " (the smoothing is for a band along the jumps, not the mesh)";
+        log::info() << "    jump smoothing skipped: more than " << max_jump_reach_points
+                    << " points within " << s.width << " of " << s.jump_constraints
+                    << " constraints on jumps (the smoothing is for a band along the jumps, "
+                       "not the mesh)";
     if (s.band_points > 0)
         log::info() << "    jump smoothing: " << s.band_points << " points within " << s.width
                     << " of " << s.jump_constraints << " constraints on jumps (Laplacian, "
