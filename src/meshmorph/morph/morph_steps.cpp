@@ -140,24 +140,19 @@ public:
     const Points& points() const { return aside_ ? *aside_ : mesh_->points; }
     const std::vector<double>& repair_targets()
     {
-        if (!targets_.empty())
-            return targets_;
-        if (working_)
-            std::swap(working_->points, *aside_);
-        targets_ =
-            morph::repair_targets(*mesh_, cell_faces_, compute_geometry(*mesh_, cell_faces_));
-        if (working_)
-            std::swap(working_->points, *aside_);
+        if (targets_.empty())
+            with_original_points(
+                [&] {
+                    targets_ = morph::repair_targets(*mesh_, cell_faces_,
+                                                     compute_geometry(*mesh_, cell_faces_));
+                });
         return targets_;
     }
     //! The unmorphed quality of the cells beyond maxNonOrtho (non_ortho_repair.h).
     void assess(NonOrthoCells& cells, double limit)
     {
-        if (working_)
-            std::swap(working_->points, *aside_);
-        assess_non_orthogonal_cells(*mesh_, cell_faces_, limit, cells);
-        if (working_)
-            std::swap(working_->points, *aside_);
+        with_original_points([&]
+                             { assess_non_orthogonal_cells(*mesh_, cell_faces_, limit, cells); });
     }
     //! Interior points (in a -parallel run also not on processor patches: a point shared
     //! with another rank must move alike on both, so the repair leaves it).
@@ -173,6 +168,16 @@ public:
     }
 
 private:
+    //! f() with mesh_ holding the unmorphed points (in place: swapped in for the moment).
+    template <class F> void with_original_points(F f)
+    {
+        if (working_)
+            std::swap(working_->points, *aside_);
+        f();
+        if (working_)
+            std::swap(working_->points, *aside_);
+    }
+
     const PolyMesh* mesh_;        //!< the topology, with the original points but in place
     PolyMesh* working_ = nullptr; //!< in place: the same mesh, to swap points in and out
     Points* aside_ = nullptr;     //!< in place: the original points
