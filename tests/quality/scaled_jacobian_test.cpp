@@ -165,6 +165,44 @@ TEST(ScaledJacobian, threaded_path_equals_per_cell_formula)
     }
 }
 
+TEST(ScaledJacobian,
+     hexahedra_taken_eight_at_once_keep_the_per_cell_bits_when_degenerate_or_inverted)
+{
+    // 7 x 5 x 3 = 105 hexahedra: thirteen passes of eight and one left over, serial. Some
+    // cells get a zero-length edge (a point moved onto its neighbour: value 0), some are
+    // inverted (a point pushed through the opposite face), the rest are jittered.
+    PolyMesh mesh = test::make_box_mesh(7, 5, 3);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-0.02, 0.02);
+    const std::vector<char> boundary = boundary_point_mask(mesh);
+    std::vector<Index> interior;
+    for (Index p = 0; p < mesh.n_points(); ++p)
+        if (!boundary[p])
+        {
+            interior.push_back(p);
+            mesh.points.row(p) += Eigen::RowVector3d(u(rng), u(rng), u(rng));
+        }
+    ASSERT_GE(interior.size(), 4u);
+    mesh.points.row(interior[0]) = mesh.points.row(interior[1]);       // a zero-length edge
+    mesh.points.row(interior[3]) += Eigen::RowVector3d(0.0, 0.0, 0.9); // inverted cells
+    const CompactList cf = cell_faces(mesh);
+    const std::vector<CellShape> shapes = classify_cells(mesh, cf);
+    const Eigen::VectorXd sj = scaled_jacobian(mesh, cf, shapes);
+    Index zero = 0, negative = 0;
+    for (Index c = 0; c < mesh.n_cells; ++c)
+    {
+        const VtkCell cell = vtk_cell(mesh, cf, c, shapes[c]);
+        std::array<Vector3, 8> p;
+        for (int i = 0; i < 8; ++i)
+            p[i] = mesh.points.row(cell.points[i]).transpose();
+        ASSERT_EQ(sj[c], hex_scaled_jacobian(p)) << "cell " << c; // bit-identical
+        zero += sj[c] == 0.0;
+        negative += sj[c] < 0.0;
+    }
+    EXPECT_GT(zero, 0);     // the collapsed edge's cells
+    EXPECT_GT(negative, 0); // the inverted ones
+}
+
 TEST(ScaledJacobian, a_check_after_the_points_moved_reuses_the_corners_and_matches_a_fresh_one)
 {
     PolyMesh mesh = jittered_block(5, 0.2, 3);

@@ -40,7 +40,9 @@ inline void store8(double* p, const double8& v)
 inline double8 sqrt8(const double8& v)
 {
 #if defined(__AVX512F__)
-    return reinterpret_cast<double8>(_mm512_sqrt_pd(reinterpret_cast<__m512d>(v)));
+    // The zero-masked form: GCC 12 warns (-Wmaybe-uninitialized) about the unmasked one's
+    // undefined pass-through operand where it inlines it into some loops.
+    return reinterpret_cast<double8>(_mm512_maskz_sqrt_pd(0xFF, reinterpret_cast<__m512d>(v)));
 #else
     double8 r;
     for (int l = 0; l < lanes8; ++l)

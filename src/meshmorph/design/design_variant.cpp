@@ -90,11 +90,14 @@ DesignStudy::DesignStudy(const morph::MorphOptions& options) : options_(options)
     x0_ = case_.foam.mesh.points;
     if (header().shared)
         load_shared_fit();
+    reserve_row_buffers();
     // Checked once here, not in the first variant: the topology part of every variant's
     // check (check_variant), and the set-up mesh's own failures, which a variant's are
     // compared with. The mesh holds the set-up's points until the first variant.
-    setup_report_ = check_variant(compute_geometry(case_.foam.mesh, cell_faces_));
-    setup_report_->cell_scaled_jacobian = Eigen::VectorXd(); // its corners are what is reused
+    // Its corners and topology are what is reused; its per-cell fields are freed for the
+    // variants' own.
+    setup_report_ =
+        without_cell_fields(check_variant(compute_geometry(case_.foam.mesh, cell_faces_)));
     read_seconds_ = clock.seconds();
     log::info() << "Reusing the design set-up " << basis_file().string() << " (" << names().size()
                 << " variables, method " << header().method
@@ -158,29 +161,45 @@ void DesignStudy::check_amplitudes(const std::vector<double>& a) const
 
 Points DesignStudy::combine(const std::vector<double>& a, ConstraintMisfit* misfit)
 {
+    Points sum;
+    combine_into(a, sum, misfit);
+    return sum;
+}
+
+namespace
+{
+
+//! `misfit` zeroed for n points, its storage kept when it has the size.
+void clear_misfit(ConstraintMisfit& misfit, Index n)
+{
+    misfit.error.setZero(n, 3);
+    misfit.constrained.assign(std::size_t(n), 0);
+}
+
+} // namespace
+
+void DesignStudy::combine_into(const std::vector<double>& a, Points& sum, ConstraintMisfit* misfit)
+{
+    const Index n = header().n_points;
+    if (misfit != nullptr)
+        clear_misfit(*misfit, n);
     if (shared_)
     {
         const Points p = shared_->prescription(a);
-        Points d = apply_shared(p);
-        if (misfit != nullptr)
+        sum = apply_shared(p);
+        if (misfit == nullptr)
+            return;
+        const std::vector<Index>& points = shared_->constraints().points;
+        for (std::size_t i = 0; i < points.size(); ++i)
         {
-            *misfit = {Points::Zero(header().n_points, 3),
-                       std::vector<char>(std::size_t(header().n_points), 0)};
-            const std::vector<Index>& points = shared_->constraints().points;
-            for (std::size_t i = 0; i < points.size(); ++i)
-            {
-                misfit->error.row(points[i]) = d.row(points[i]) - p.row(Eigen::Index(i));
-                misfit->constrained[std::size_t(points[i])] = 1;
-            }
+            misfit->error.row(points[i]) = sum.row(points[i]) - p.row(Eigen::Index(i));
+            misfit->constrained[std::size_t(points[i])] = 1;
         }
-        return d;
+        return;
     }
-    Points sum = Points::Zero(header().n_points, 3);
-    if (misfit != nullptr)
-        *misfit = {Points::Zero(header().n_points, 3),
-                   std::vector<char>(std::size_t(header().n_points), 0)};
+    sum.setZero(n, 3);
     reader_->rewind();
-    VariableBlock block;
+    VariableBlock& block = row_buffers_.block;
     for (double aj : a)
     {
         if (aj == 0.0)
@@ -199,7 +218,15 @@ Points DesignStudy::combine(const std::vector<double>& a, ConstraintMisfit* misf
             misfit->constrained[std::size_t(i)] = 1;
         }
     }
-    return sum;
+}
+
+void DesignStudy::reserve_row_buffers()
+{
+    const Index n = header().n_points;
+    row_buffers_.sum.setZero(n, 3);
+    clear_misfit(row_buffers_.misfit, n);
+    if (!shared_)
+        row_buffers_.block.field.setZero(header().field_rows(), 3);
 }
 
 std::vector<double> DesignStudy::transpose_product(const Points& g)
@@ -428,9 +455,9 @@ VariantResult DesignStudy::evaluate(const std::vector<double>& amplitudes, bool 
     VariantResult r;
     r.amplitudes = amplitudes;
     Stopwatch stage;
-    ConstraintMisfit misfit;
-    const Points d = combine(amplitudes, &misfit);
-    measure_misfit(d, misfit, r);
+    Points& d = row_buffers_.sum;
+    combine_into(amplitudes, d, &row_buffers_.misfit);
+    measure_misfit(d, row_buffers_.misfit, r);
     // The study's mesh carries the variant's points until the next variant (no copy of the
     // topology per design).
     PolyMesh& moved = case_.foam.mesh;
@@ -493,7 +520,8 @@ bool DesignStudy::is_valid(const std::vector<double>& amplitudes)
 {
     check_amplitudes(amplitudes);
     PolyMesh& moved = case_.foam.mesh;
-    moved.points = x0_ + combine(amplitudes);
+    combine_into(amplitudes, row_buffers_.sum);
+    moved.points = x0_ + row_buffers_.sum;
     InvalidCells now = count_invalid_cells(moved, compute_geometry(moved, cell_faces_));
     const parallel::Communicator& comm = parallel::Communicator::world();
     now.negative_volume_cells =

@@ -80,15 +80,16 @@ inline double8 mag(const Vector8& a)
 //! Rows rows[0..7] of a 3-column array.
 inline Vector8 gather8(const Points& p, const Index* rows)
 {
-    Vector8 v;
-    for (int l = 0; l < lanes8; ++l)
+    // Through arrays: GCC 12 takes lane stores into an unset vector for reads of it.
+    std::array<double, lanes8> x, y, z;
+    for (std::size_t l = 0; l < x.size(); ++l)
     {
         const double* d = p.data() + 3 * std::ptrdiff_t(rows[l]);
-        v.x[l] = d[0];
-        v.y[l] = d[1];
-        v.z[l] = d[2];
+        x[l] = d[0];
+        y[l] = d[1];
+        z[l] = d[2];
     }
-    return v;
+    return {load8(x.data()), load8(y.data()), load8(z.data())};
 }
 
 //! Vertex k of each of the eight faces `faces` (each with more than k vertices).

@@ -10,21 +10,6 @@
 
 namespace meshmorph::morph
 {
-namespace
-{
-
-//! The report without its per-cell fields (a morph prints and judges the summary; the
-//! check after has its own fields): ~40 bytes a cell the rest of the morph can reuse.
-QualityReport without_cell_fields(QualityReport r)
-{
-    for (Eigen::VectorXd* field :
-         {&r.cell_non_orthogonality, &r.cell_skewness, &r.cell_aspect_ratio, &r.cell_determinant,
-          &r.cell_scaled_jacobian})
-        *field = Eigen::VectorXd();
-    return r;
-}
-
-} // namespace
 
 BeforeCheck::BeforeCheck(const PolyMesh& mesh, const CompactList& cell_faces,
                          const CheckMeshSettings& settings, const Decomposition& decomposition,

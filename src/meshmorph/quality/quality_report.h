@@ -105,4 +105,8 @@ struct QualityReport
 //! \brief From r.checks: the failed checks, the offender sets and the headline numbers.
 void summarise_checks(QualityReport& r);
 
+//! The report without its per-cell fields (the summary, the checks and the topology stay):
+//! for a report kept to compare with, ~40 bytes a cell that later work can reuse.
+QualityReport without_cell_fields(QualityReport r);
+
 } // namespace meshmorph

@@ -11,6 +11,7 @@
 
 #include "meshmorph/core/exceptions.h"
 #include "meshmorph/mesh/foam_vector.h"
+#include "meshmorph/mesh/foam_vector8.h"
 
 namespace meshmorph
 {
@@ -19,6 +20,10 @@ namespace
 
 // Verdict's degeneracy threshold on squared edge lengths (VERDICT_DBL_MIN).
 constexpr double verdict_dbl_min = 1.0e-30;
+
+// A hexahedron's corner i and its neighbours along xi, eta and zeta, in Verdict's order.
+constexpr int hex_corner_edges[8][4] = {{0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7},
+                                        {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}};
 
 // det(a, b, c) / (|a||b||c|); 0 when an edge has (numerically) zero length.
 double normalized_det(const Vector3& a, const Vector3& b, const Vector3& c)
@@ -29,6 +34,57 @@ double normalized_det(const Vector3& a, const Vector3& b, const Vector3& c)
     if (la <= verdict_dbl_min || lb <= verdict_dbl_min || lc <= verdict_dbl_min)
         return 0.0;
     return a.dot(b.cross(c)) / std::sqrt(la * lb * lc);
+}
+
+using detail::double8;
+using detail::Vector8;
+
+// normalized_det on eight lanes, each by the same operations in the same order (Eigen's
+// squaredNorm, dot and cross sum x, y, z left to right), so each lane has its bits.
+double8 normalized_det8(const Vector8& a, const Vector8& b, const Vector8& c)
+{
+    const double8 la = detail::dot(a, a);
+    const double8 lb = detail::dot(b, b);
+    const double8 lc = detail::dot(c, c);
+    const double8 value = detail::dot(a, detail::cross(b, c)) / detail::sqrt8(la * lb * lc);
+    const auto degenerate = la <= verdict_dbl_min || lb <= verdict_dbl_min || lc <= verdict_dbl_min;
+    return degenerate ? double8{} : value;
+}
+
+//! std::min's choice lane by lane: b where b < a, else a.
+double8 lane_min(const double8& a, const double8& b)
+{
+    return b < a ? b : a;
+}
+
+//! hex_scaled_jacobian of eight hexahedra at once (p[i]: corner i of each).
+double8 hex_scaled_jacobian8(const std::array<Vector8, 8>& p)
+{
+    const Vector8 xxi = (p[1] + p[2] + p[5] + p[6]) - (p[0] + p[3] + p[4] + p[7]);
+    const Vector8 xet = (p[2] + p[3] + p[6] + p[7]) - (p[0] + p[1] + p[4] + p[5]);
+    const Vector8 xze = (p[4] + p[5] + p[6] + p[7]) - (p[0] + p[1] + p[2] + p[3]);
+    double8 result = normalized_det8(xxi, xet, xze);
+    for (const auto& c : hex_corner_edges)
+        result = lane_min(result,
+                          normalized_det8(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]], p[c[3]] - p[c[0]]));
+    return result;
+}
+
+//! The scaled Jacobian of the eight hexahedra `cells` into result.
+void hexes_scaled_jacobian(const PolyMesh& mesh, const JacobianCorners& corners, const Index* cells,
+                           Eigen::VectorXd& result)
+{
+    std::array<Vector8, 8> p;
+    for (std::size_t i = 0; i < 8; ++i)
+    {
+        std::array<Index, detail::lanes8> labels;
+        for (std::size_t l = 0; l < labels.size(); ++l)
+            labels[l] = corners.points[std::size_t(cells[l])][i];
+        p[i] = detail::gather8(mesh.points, labels.data());
+    }
+    const double8 value = hex_scaled_jacobian8(p);
+    for (int l = 0; l < detail::lanes8; ++l)
+        result[cells[l]] = value[l];
 }
 
 //! The value of one cell from its corners (VTK order); NaN for a polyhedron.
@@ -66,10 +122,7 @@ double hex_scaled_jacobian(const std::array<Vector3, 8>& p)
     const Vector3 xet = (p[2] + p[3] + p[6] + p[7]) - (p[0] + p[1] + p[4] + p[5]);
     const Vector3 xze = (p[4] + p[5] + p[6] + p[7]) - (p[0] + p[1] + p[2] + p[3]);
     double result = normalized_det(xxi, xet, xze);
-    // Corner i: edges to its xi, eta and zeta neighbours, in Verdict's order.
-    static constexpr int corners[8][4] = {{0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7},
-                                          {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}};
-    for (const auto& c : corners)
+    for (const auto& c : hex_corner_edges)
         result = std::min(result,
                           normalized_det(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]], p[c[3]] - p[c[0]]));
     return result;
@@ -164,11 +217,17 @@ Eigen::VectorXd scaled_jacobian(const PolyMesh& mesh, const JacobianCorners& cor
         throw InvalidInput("scaled_jacobian: corners of " + std::to_string(n_cells) +
                            " cells for a mesh of " + std::to_string(mesh.n_cells));
     Eigen::VectorXd result(n_cells);
-    // Every cell is independent: the result does not depend on the thread count.
-#pragma omp parallel for schedule(dynamic, detail::loop_piece) if (n_cells > 20000)
-    for (Index c = 0; c < n_cells; ++c)
-        result[c] = cell_scaled_jacobian(mesh, corners.types[std::size_t(c)],
-                                         corners.points[std::size_t(c)]);
+    // Every cell is independent, and eight hexahedra at once give each its own bits: the
+    // result depends neither on the thread count nor on which hexahedra share a pass.
+    detail::for_quads(
+        n_cells, 20000,
+        [&](Index c) { return corners.types[std::size_t(c)] == VtkCellType::hexahedron; },
+        [&](const Index* hexes) { hexes_scaled_jacobian(mesh, corners, hexes, result); },
+        [&](Index c)
+        {
+            result[c] = cell_scaled_jacobian(mesh, corners.types[std::size_t(c)],
+                                             corners.points[std::size_t(c)]);
+        });
     return result;
 }
 
