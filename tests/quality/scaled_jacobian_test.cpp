@@ -45,6 +45,17 @@ std::array<Vector3, 4> regular_tet(double a)
             Vector3(a / 2, a * std::sqrt(3.0) / 6, a * std::sqrt(2.0 / 3.0))};
 }
 
+//! The corners of hexahedron c in VTK order, for the per-cell formula.
+std::array<Vector3, 8> hex_corners(const PolyMesh& mesh, const CompactList& cf,
+                                   const std::vector<CellShape>& shapes, Index c)
+{
+    const VtkCell cell = vtk_cell(mesh, cf, c, shapes[c]);
+    std::array<Vector3, 8> p;
+    for (int i = 0; i < 8; ++i)
+        p[i] = mesh.points.row(cell.points[i]).transpose();
+    return p;
+}
+
 } // namespace
 
 TEST(ScaledJacobian, boxes_are_one_at_any_scale_and_aspect)
@@ -157,11 +168,8 @@ TEST(ScaledJacobian, threaded_path_equals_per_cell_formula)
     ASSERT_EQ(sj.size(), mesh.n_cells);
     for (Index c = 0; c < mesh.n_cells; ++c)
     {
-        const VtkCell cell = vtk_cell(mesh, cf, c, shapes[c]);
-        std::array<Vector3, 8> p;
-        for (int i = 0; i < 8; ++i)
-            p[i] = mesh.points.row(cell.points[i]).transpose();
-        ASSERT_EQ(sj[c], hex_scaled_jacobian(p)) << "cell " << c; // bit-identical
+        ASSERT_EQ(sj[c], hex_scaled_jacobian(hex_corners(mesh, cf, shapes, c)))
+            << "cell " << c; // bit-identical
     }
 }
 
@@ -191,11 +199,8 @@ TEST(ScaledJacobian,
     Index zero = 0, negative = 0;
     for (Index c = 0; c < mesh.n_cells; ++c)
     {
-        const VtkCell cell = vtk_cell(mesh, cf, c, shapes[c]);
-        std::array<Vector3, 8> p;
-        for (int i = 0; i < 8; ++i)
-            p[i] = mesh.points.row(cell.points[i]).transpose();
-        ASSERT_EQ(sj[c], hex_scaled_jacobian(p)) << "cell " << c; // bit-identical
+        ASSERT_EQ(sj[c], hex_scaled_jacobian(hex_corners(mesh, cf, shapes, c)))
+            << "cell " << c; // bit-identical
         zero += sj[c] == 0.0;
         negative += sj[c] < 0.0;
     }

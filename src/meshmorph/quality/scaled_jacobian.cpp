@@ -41,7 +41,7 @@ using detail::Vector8;
 
 // normalized_det on eight lanes, each by the same operations in the same order (Eigen's
 // squaredNorm, dot and cross sum x, y, z left to right), so each lane has its bits.
-double8 normalized_det8(const Vector8& a, const Vector8& b, const Vector8& c)
+double8 normalized_det(const Vector8& a, const Vector8& b, const Vector8& c)
 {
     const double8 la = detail::dot(a, a);
     const double8 lb = detail::dot(b, b);
@@ -51,22 +51,28 @@ double8 normalized_det8(const Vector8& a, const Vector8& b, const Vector8& c)
     return degenerate ? double8{} : value;
 }
 
-//! std::min's choice lane by lane: b where b < a, else a.
+//! std::min's choice, for one value and lane by lane: b where b < a, else a.
+double lane_min(double a, double b)
+{
+    return std::min(a, b);
+}
 double8 lane_min(const double8& a, const double8& b)
 {
     return b < a ? b : a;
 }
 
-//! hex_scaled_jacobian of eight hexahedra at once (p[i]: corner i of each).
-double8 hex_scaled_jacobian8(const std::array<Vector8, 8>& p)
+//! The scaled Jacobian of a hexahedron (V = Vector3) or of eight at once (V = Vector8):
+//! one sequence of operations, so each lane has the single cell's bits.
+template <class V> auto hex_scaled_jacobian_of(const std::array<V, 8>& p)
 {
-    const Vector8 xxi = (p[1] + p[2] + p[5] + p[6]) - (p[0] + p[3] + p[4] + p[7]);
-    const Vector8 xet = (p[2] + p[3] + p[6] + p[7]) - (p[0] + p[1] + p[4] + p[5]);
-    const Vector8 xze = (p[4] + p[5] + p[6] + p[7]) - (p[0] + p[1] + p[2] + p[3]);
-    double8 result = normalized_det8(xxi, xet, xze);
+    // Principal axes at the centre (verdict calc_hex_efg 1, 2, 3).
+    const V xxi = (p[1] + p[2] + p[5] + p[6]) - (p[0] + p[3] + p[4] + p[7]);
+    const V xet = (p[2] + p[3] + p[6] + p[7]) - (p[0] + p[1] + p[4] + p[5]);
+    const V xze = (p[4] + p[5] + p[6] + p[7]) - (p[0] + p[1] + p[2] + p[3]);
+    auto result = normalized_det(xxi, xet, xze);
     for (const auto& c : hex_corner_edges)
         result = lane_min(result,
-                          normalized_det8(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]], p[c[3]] - p[c[0]]));
+                          normalized_det(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]], p[c[3]] - p[c[0]]));
     return result;
 }
 
@@ -82,7 +88,7 @@ void hexes_scaled_jacobian(const PolyMesh& mesh, const JacobianCorners& corners,
             labels[l] = corners.points[std::size_t(cells[l])][i];
         p[i] = detail::gather8(mesh.points, labels.data());
     }
-    const double8 value = hex_scaled_jacobian8(p);
+    const double8 value = hex_scaled_jacobian_of(p);
     for (int l = 0; l < detail::lanes8; ++l)
         result[cells[l]] = value[l];
 }
@@ -117,15 +123,7 @@ double cell_scaled_jacobian(const PolyMesh& mesh, VtkCellType type,
 
 double hex_scaled_jacobian(const std::array<Vector3, 8>& p)
 {
-    // Principal axes at the centre (verdict calc_hex_efg 1, 2, 3).
-    const Vector3 xxi = (p[1] + p[2] + p[5] + p[6]) - (p[0] + p[3] + p[4] + p[7]);
-    const Vector3 xet = (p[2] + p[3] + p[6] + p[7]) - (p[0] + p[1] + p[4] + p[5]);
-    const Vector3 xze = (p[4] + p[5] + p[6] + p[7]) - (p[0] + p[1] + p[2] + p[3]);
-    double result = normalized_det(xxi, xet, xze);
-    for (const auto& c : hex_corner_edges)
-        result = std::min(result,
-                          normalized_det(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]], p[c[3]] - p[c[0]]));
-    return result;
+    return hex_scaled_jacobian_of(p);
 }
 
 double tet_scaled_jacobian(const std::array<Vector3, 4>& p)
