@@ -37,18 +37,51 @@ double normalized_det(const Vector3& a, const Vector3& b, const Vector3& c)
 }
 
 using detail::double8;
+using detail::FoamVector;
 using detail::Vector8;
 
-// normalized_det on eight lanes, each by the same operations in the same order (Eigen's
-// squaredNorm, dot and cross sum x, y, z left to right), so each lane has its bits.
-double8 normalized_det(const Vector8& a, const Vector8& b, const Vector8& c)
+// The hexahedron's kernel below runs on one cell (FoamVector, double) or on eight at once
+// (Vector8, double8) by one sequence of operations, so each lane has the single cell's bits.
+// Its dot and cross products are this file's own (internal linkage): an inline function of
+// a header can be taken, where a build does not inline (-O0), from another component's copy
+// compiled with contracted multiply-adds, and the two paths would then differ in the last
+// bits.
+template <class V> auto dot3(const V& a, const V& b)
 {
-    const double8 la = detail::dot(a, a);
-    const double8 lb = detail::dot(b, b);
-    const double8 lc = detail::dot(c, c);
-    const double8 value = detail::dot(a, detail::cross(b, c)) / detail::sqrt8(la * lb * lc);
-    const auto degenerate = la <= verdict_dbl_min || lb <= verdict_dbl_min || lc <= verdict_dbl_min;
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class V> V cross3(const V& a, const V& b)
+{
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double square_root(double v)
+{
+    return std::sqrt(v);
+}
+double8 square_root(const double8& v)
+{
+    return detail::sqrt8(v);
+}
+double zero_where(bool degenerate, double value)
+{
+    return degenerate ? 0.0 : value;
+}
+template <class Mask> double8 zero_where(const Mask& degenerate, const double8& value)
+{
     return degenerate ? double8{} : value;
+}
+
+// normalized_det for one cell (FoamVector) or eight lanes (Vector8): each by the same
+// operations in the same order as Eigen's squaredNorm, dot and cross (x, y, z left to
+// right).
+template <class V> auto normalized_det_of(const V& a, const V& b, const V& c)
+{
+    const auto la = dot3(a, a);
+    const auto lb = dot3(b, b);
+    const auto lc = dot3(c, c);
+    const auto value = dot3(a, cross3(b, c)) / square_root(la * lb * lc);
+    return zero_where(la <= verdict_dbl_min || lb <= verdict_dbl_min || lc <= verdict_dbl_min,
+                      value);
 }
 
 //! std::min's choice, for one value and lane by lane: b where b < a, else a.
@@ -61,18 +94,17 @@ double8 lane_min(const double8& a, const double8& b)
     return b < a ? b : a;
 }
 
-//! The scaled Jacobian of a hexahedron (V = Vector3) or of eight at once (V = Vector8):
-//! one sequence of operations, so each lane has the single cell's bits.
+//! The scaled Jacobian of a hexahedron (V = FoamVector) or of eight at once (V = Vector8).
 template <class V> auto hex_scaled_jacobian_of(const std::array<V, 8>& p)
 {
     // Principal axes at the centre (verdict calc_hex_efg 1, 2, 3).
     const V xxi = (p[1] + p[2] + p[5] + p[6]) - (p[0] + p[3] + p[4] + p[7]);
     const V xet = (p[2] + p[3] + p[6] + p[7]) - (p[0] + p[1] + p[4] + p[5]);
     const V xze = (p[4] + p[5] + p[6] + p[7]) - (p[0] + p[1] + p[2] + p[3]);
-    auto result = normalized_det(xxi, xet, xze);
+    auto result = normalized_det_of(xxi, xet, xze);
     for (const auto& c : hex_corner_edges)
-        result = lane_min(result,
-                          normalized_det(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]], p[c[3]] - p[c[0]]));
+        result = lane_min(
+            result, normalized_det_of(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]], p[c[3]] - p[c[0]]));
     return result;
 }
 
@@ -123,7 +155,10 @@ double cell_scaled_jacobian(const PolyMesh& mesh, VtkCellType type,
 
 double hex_scaled_jacobian(const std::array<Vector3, 8>& p)
 {
-    return hex_scaled_jacobian_of(p);
+    std::array<FoamVector, 8> corners;
+    for (std::size_t i = 0; i < p.size(); ++i)
+        corners[i] = {p[i].x(), p[i].y(), p[i].z()};
+    return hex_scaled_jacobian_of(corners);
 }
 
 double tet_scaled_jacobian(const std::array<Vector3, 4>& p)
