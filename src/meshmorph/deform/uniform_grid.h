@@ -32,11 +32,12 @@ public:
     //! within `cell` of x), in a fixed order: cells by offset, points by index.
     template <class F> void for_each_near(double x, double y, double z, F&& f) const
     {
-        const Key c = key(x, y, z);
-        for (std::int64_t dz = -1; dz <= 1; ++dz)
-            for (std::int64_t dy = -1; dy <= 1; ++dy)
-                for (std::int64_t dx = -1; dx <= 1; ++dx)
-                    for_each_in_cell({c[0] + dx, c[1] + dy, c[2] + dz}, f);
+        any_near(x, y, z,
+                 [&](Eigen::Index i)
+                 {
+                     f(i);
+                     return false;
+                 });
     }
 
     //! Calls f(index) for every point in the cells that the box of half-width `radius`
@@ -54,21 +55,16 @@ public:
                     for_each_in_cell({kx, ky, kz}, f);
     }
 
-    //! Whether pred(index) holds for a point in the 27 cells around x, stopping at the first.
+    //! Whether pred(index) holds for a point in the 27 cells around x, trying them in
+    //! for_each_near's order and stopping at the first.
     template <class P> bool any_near(double x, double y, double z, P&& pred) const
     {
         const Key c = key(x, y, z);
         for (std::int64_t dz = -1; dz <= 1; ++dz)
             for (std::int64_t dy = -1; dy <= 1; ++dy)
                 for (std::int64_t dx = -1; dx <= 1; ++dx)
-                {
-                    const Key k{c[0] + dx, c[1] + dy, c[2] + dz};
-                    auto it = std::lower_bound(entries_.begin(), entries_.end(),
-                                               Entry{k, std::int64_t(-1)});
-                    for (; it != entries_.end() && it->first == k; ++it)
-                        if (pred(static_cast<Eigen::Index>(it->second)))
-                            return true;
-                }
+                    if (any_in_cell({c[0] + dx, c[1] + dy, c[2] + dz}, pred))
+                        return true;
         return false;
     }
 
@@ -76,12 +72,25 @@ private:
     using Key = std::array<std::int64_t, 3>;
     using Entry = std::pair<Key, std::int64_t>;
 
-    //! Calls f(index) for the points of cell k, by index.
-    template <class F> void for_each_in_cell(const Key& k, F& f) const
+    //! Whether pred(index) holds for a point of cell k, trying them by index and stopping
+    //! at the first.
+    template <class P> bool any_in_cell(const Key& k, P& pred) const
     {
         auto it = std::lower_bound(entries_.begin(), entries_.end(), Entry{k, std::int64_t(-1)});
         for (; it != entries_.end() && it->first == k; ++it)
-            f(static_cast<Eigen::Index>(it->second));
+            if (pred(static_cast<Eigen::Index>(it->second)))
+                return true;
+        return false;
+    }
+    //! Calls f(index) for the points of cell k, by index.
+    template <class F> void for_each_in_cell(const Key& k, F& f) const
+    {
+        auto every = [&](Eigen::Index i)
+        {
+            f(i);
+            return false;
+        };
+        any_in_cell(k, every);
     }
     Key key(double x, double y, double z) const
     {

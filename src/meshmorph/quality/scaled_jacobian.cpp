@@ -25,23 +25,13 @@ constexpr double verdict_dbl_min = 1.0e-30;
 constexpr int hex_corner_edges[8][4] = {{0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7},
                                         {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}};
 
-// det(a, b, c) / (|a||b||c|); 0 when an edge has (numerically) zero length.
-double normalized_det(const Vector3& a, const Vector3& b, const Vector3& c)
-{
-    const double la = a.squaredNorm();
-    const double lb = b.squaredNorm();
-    const double lc = c.squaredNorm();
-    if (la <= verdict_dbl_min || lb <= verdict_dbl_min || lc <= verdict_dbl_min)
-        return 0.0;
-    return a.dot(b.cross(c)) / std::sqrt(la * lb * lc);
-}
-
 using detail::double8;
 using detail::FoamVector;
 using detail::Vector8;
 
-// The hexahedron's kernel below runs on one cell (FoamVector, double) or on eight at once
-// (Vector8, double8) by one sequence of operations, so each lane has the single cell's bits.
+// The corner kernels below run on one cell (FoamVector, double), and the hexahedron's also
+// on eight at once (Vector8, double8) by the same operations, so each lane has the single
+// cell's bits.
 // Its dot and cross products are this file's own (internal linkage): an inline function of
 // a header can be taken, where a build does not inline (-O0), from another component's copy
 // compiled with contracted multiply-adds, and the two paths would then differ in the last
@@ -71,9 +61,8 @@ template <class Mask> double8 zero_where(const Mask& degenerate, const double8& 
     return degenerate ? double8{} : value;
 }
 
-// normalized_det for one cell (FoamVector) or eight lanes (Vector8): each by the same
-// operations in the same order as Eigen's squaredNorm, dot and cross (x, y, z left to
-// right).
+// det(a, b, c) / (|a||b||c|); 0 when an edge has (numerically) zero length. For one cell
+// (FoamVector) or eight lanes (Vector8), x, y, z summed left to right (as Eigen's dot).
 template <class V> auto normalized_det_of(const V& a, const V& b, const V& c)
 {
     const auto la = dot3(a, a);
@@ -92,6 +81,15 @@ double lane_min(double a, double b)
 double8 lane_min(const double8& a, const double8& b)
 {
     return b < a ? b : a;
+}
+
+//! A cell's corners as FoamVector, for the kernels.
+template <std::size_t N> std::array<FoamVector, N> foam_corners(const std::array<Vector3, N>& p)
+{
+    std::array<FoamVector, N> out;
+    for (std::size_t i = 0; i < N; ++i)
+        out[i] = {p[i].x(), p[i].y(), p[i].z()};
+    return out;
 }
 
 //! The scaled Jacobian of a hexahedron (V = FoamVector) or of eight at once (V = Vector8).
@@ -155,10 +153,7 @@ double cell_scaled_jacobian(const PolyMesh& mesh, VtkCellType type,
 
 double hex_scaled_jacobian(const std::array<Vector3, 8>& p)
 {
-    std::array<FoamVector, 8> corners;
-    for (std::size_t i = 0; i < p.size(); ++i)
-        corners[i] = {p[i].x(), p[i].y(), p[i].z()};
-    return hex_scaled_jacobian_of(corners);
+    return hex_scaled_jacobian_of(foam_corners(p));
 }
 
 double tet_scaled_jacobian(const std::array<Vector3, 4>& p)
@@ -185,8 +180,9 @@ double tet_scaled_jacobian(const std::array<Vector3, 4>& p)
     return std::sqrt(2.0) * jacobian / length_product;
 }
 
-double prism_scaled_jacobian(const std::array<Vector3, 6>& p)
+double prism_scaled_jacobian(const std::array<Vector3, 6>& corners)
 {
+    const std::array<FoamVector, 6> p = foam_corners(corners);
     double result = std::numeric_limits<double>::max();
     for (int i = 0; i < 3; ++i)
     {
@@ -194,21 +190,23 @@ double prism_scaled_jacobian(const std::array<Vector3, 6>& p)
         const int prev = (i + 2) % 3;
         // VTK winds the first triangle away from the second, so (prev, next, up) is
         // right-handed at a bottom corner and (next, prev, down) at a top corner.
-        result = std::min(result, normalized_det(p[prev] - p[i], p[next] - p[i], p[i + 3] - p[i]));
-        result = std::min(result, normalized_det(p[next + 3] - p[i + 3], p[prev + 3] - p[i + 3],
-                                                 p[i] - p[i + 3]));
+        result =
+            std::min(result, normalized_det_of(p[prev] - p[i], p[next] - p[i], p[i + 3] - p[i]));
+        result = std::min(result, normalized_det_of(p[next + 3] - p[i + 3], p[prev + 3] - p[i + 3],
+                                                    p[i] - p[i + 3]));
     }
     return result * 2.0 / std::sqrt(3.0);
 }
 
-double pyramid_scaled_jacobian(const std::array<Vector3, 5>& p)
+double pyramid_scaled_jacobian(const std::array<Vector3, 5>& corners)
 {
+    const std::array<FoamVector, 5> p = foam_corners(corners);
     double result = std::numeric_limits<double>::max();
     for (int i = 0; i < 4; ++i)
     {
         const int next = (i + 1) % 4;
         const int prev = (i + 3) % 4;
-        result = std::min(result, normalized_det(p[next] - p[i], p[prev] - p[i], p[4] - p[i]));
+        result = std::min(result, normalized_det_of(p[next] - p[i], p[prev] - p[i], p[4] - p[i]));
     }
     return result * std::sqrt(2.0);
 }
