@@ -143,6 +143,8 @@ inline const std::map<std::string, std::string>& openfoam_case_scripts()
         // nacaAirfoil, a 2D STAR-CD mesh with empty planes normal to z.
         {"biconic", "converted-tutorial.sh {dir} biconic"},
         {"naca-airfoil", "converted-tutorial.sh {dir} naca"},
+        // rivuletPanel's blockMesh (43200 cells): a film panel one cell thick at its walls.
+        {"rivulet-panel", "blockmesh-tutorial.sh {dir} lagrangian/reactingParcelFoam/rivuletPanel"},
         // Cyclic tutorials: 4096 cells periodic in x, y, z; an 80-cell periodic column.
         {"cyclic-box", "blockmesh-tutorial.sh {dir} DNS/dnsFoam/boxTurb16"},
         {"cyclic-column",

@@ -159,6 +159,33 @@ TEST(TutorialMeshes, naca_airfoil_wall_moved_normal_to_its_planes_is_refused_nam
     EXPECT_FALSE(m.report["written"].get<bool>());
 }
 
+TEST(TutorialMeshes, a_wall_scaled_against_its_fixed_neighbours_that_folds_faces_is_refused_at_once)
+{
+    // rivuletPanel (issue 43's sweep: the smallest wall scaled by 1%, every other patch
+    // fixed): filmWalls' edge faces turn over where its scaled points meet the points it
+    // shares with the fixed inlet, outlet and sides. moveMesh given the same boundary motion
+    // leaves 360 wrongly oriented face pyramids; morphMesh used to halve its step six times
+    // before refusing with a count of invalid cells.
+    if (!test::openfoam_available())
+        GTEST_SKIP() << "OpenFOAM not installed: no rivuletPanel mesh (blockMesh)";
+    const fs::path dir = generated_case(
+        "rivulet-panel", "rivulet_fold",
+        "    filmWalls { type scale; origin (0.375 0.5 1); factor (1.01 1.01 1.01); }");
+    const ReportedRun m = morph_with_report(dir);
+    EXPECT_EQ(m.run.code, 3) << m.run.log;
+    const Index folded = m.report["foldedFaces"].get<Index>();
+    EXPECT_GT(folded, 0) << m.run.log;
+    EXPECT_EQ(m.report["foldedFacesByPatch"].value("filmWalls", Index(0)), folded)
+        << m.report["foldedFacesByPatch"];
+    EXPECT_EQ(m.report["steps"].size(), 1u) << "refused without halving its steps\n" << m.run.log;
+    const std::string refusal = m.report["refusal"].get<std::string>();
+    EXPECT_NE(refusal.find("the prescription itself folds"), std::string::npos) << refusal;
+    EXPECT_NE(refusal.find("They meet outlet"), std::string::npos) << refusal;
+    EXPECT_NE(m.run.err.find("Error: the prescription itself folds"), std::string::npos)
+        << m.run.err;
+    EXPECT_FALSE(m.report["written"].get<bool>());
+}
+
 TEST(TutorialMeshes, a_rerun_on_a_case_without_zero_and_starting_from_latest_time_is_the_same)
 {
     // nacaAirfoil as the windAroundBuildings tutorial leaves its case: fields in 0.orig, no

@@ -42,6 +42,15 @@ nlohmann::json jump_choice_json(const morph::JumpSmoothingChoice& c)
     return {{"kept", c.kept}, {"smoothed", quality(c.smoothed)}, {"fitted", quality(c.fitted)}};
 }
 
+//! {"walls": 95}: the faces the prescription folds, per patch.
+nlohmann::json folded_faces_json(const std::vector<morph::PatchFaces>& counts)
+{
+    nlohmann::json j = nlohmann::json::object();
+    for (const morph::PatchFaces& p : counts)
+        j[p.patch] = p.faces;
+    return j;
+}
+
 } // namespace
 
 std::string morph_json(const morph::MorphResult& result, int exit_status)
@@ -110,6 +119,8 @@ std::string morph_json(const morph::MorphResult& result, int exit_status)
     j["outputInstance"] = result.output_instance;
     j["newFailedChecks"] = failed_checks_json(result.new_failed_checks);
     j["invalidCellsByPatch"] = invalid_cells_json(result.invalid_cells_by_patch);
+    j["foldedFaces"] = result.folded.faces;
+    j["foldedFacesByPatch"] = folded_faces_json(result.folded.by_patch);
     j["written"] = result.written;
     j["refused"] = result.refused;
     if (result.refused)
@@ -172,7 +183,10 @@ int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostr
     if (result.refused)
     {
         log::error() << result.refusal
-                     << ". Nothing written: reduce the motion, change the method or use -force.";
+                     << (result.folded.faces > 0
+                             ? ". Nothing written (-force writes it folded)."
+                             : ". Nothing written: reduce the motion, change the method or use "
+                               "-force.");
         return exit_refused;
     }
     out << (result.after.mesh_ok()

@@ -10,6 +10,7 @@
 
 #include "meshmorph/io/case_instance.h"
 #include "meshmorph/morph/constraint_set.h"
+#include "meshmorph/morph/folded_faces.h"
 #include "meshmorph/morph/invalid_cells_location.h"
 #include "meshmorph/morph/morph_steps.h"
 #include "meshmorph/morph/point_morph.h"
@@ -73,6 +74,9 @@ struct MorphResult
     std::vector<std::pair<std::string, Index>> new_failed_checks;
     //! With new invalid cells: the patches they touch (invalid_cells_location.h).
     std::vector<PatchCells> invalid_cells_by_patch;
+    //! Faces the prescription itself folds over (folded_faces.h): refused at once, unless
+    //! -force.
+    FoldedFaces folded;
     bool written = false;
     std::filesystem::path points_file; //!< the written points file
     std::filesystem::path vtk_file;    //!< the written .vtu (if vtk)

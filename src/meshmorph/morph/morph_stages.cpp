@@ -20,6 +20,7 @@
 #include "meshmorph/morph/deformation_methods.h"
 #include "meshmorph/morph/distributed_case.h"
 #include "meshmorph/morph/duplicate_points.h"
+#include "meshmorph/morph/folded_faces.h"
 #include "meshmorph/morph/invalid_cells_location.h"
 #include "meshmorph/morph/morph_log.h"
 #include "meshmorph/morph/morph_output.h"
@@ -39,8 +40,9 @@ namespace
 {
 
 //! The motion in steps (morph_steps.h), with its timings and the constraint error.
-SteppedMorph fit_in_steps(const MorphOptions& options, const MorphCase& in, const CompactList& cf,
-                          BeforeCheck& before, MorphResult& result, PolyMesh* in_place)
+SteppedMorph fit_in_steps(const MorphOptions& options, const MorphCase& in,
+                          const StepSettings& steps, const CompactList& cf, BeforeCheck& before,
+                          MorphResult& result, PolyMesh* in_place)
 {
     const PolyMesh& mesh = in.foam.mesh;
     const Constraints& c = result.constraints;
@@ -48,14 +50,14 @@ SteppedMorph fit_in_steps(const MorphOptions& options, const MorphCase& in, cons
     const Index n_fit = c.n_prescribed_points + c.n_slip_points;
     log::info() << "Method: " << describe(settings, n_fit);
     log::info() << "Steps: "
-                << (needs_fit(settings) ? describe(in.step_settings)
+                << (needs_fit(settings) ? describe(steps)
                                         : "1 (ffd moves its control points once)");
     const DeformationMaker make = [&](const Points& points)
     { return make_deformation(settings, points, n_fit); };
     const Decomposition* parts = options.parallel ? &in.decomposition : nullptr;
     SteppedMorph stepped = morph_in_steps(
-        mesh, cf, c, in.step_settings, make, needs_fit(settings),
-        [&before] { return before.invalid(); }, parts, in_place);
+        mesh, cf, c, steps, make, needs_fit(settings), [&before] { return before.invalid(); },
+        parts, in_place);
     result.steps = stepped.steps;
     for (const StepRecord& s : stepped.steps)
     {
@@ -73,6 +75,24 @@ SteppedMorph fit_in_steps(const MorphOptions& options, const MorphCase& in, cons
     log_fit(result, settings, global_count(in.decomposition, mesh.n_points(), true));
     result.valid_fraction = stepped.valid_fraction;
     return stepped;
+}
+
+//! The steps of the morph: the morphDict's, or, when the prescription folds faces over (the
+//! morph will be refused whatever its steps), one step without repair, so that the refusal
+//! costs one morph (-force: the morphDict's, as asked).
+StepSettings steps_for(const MorphOptions& options, const StepSettings& asked,
+                       const FoldedFaces& folded)
+{
+    if (folded.faces == 0)
+        return asked;
+    log::warning() << describe(folded);
+    if (options.force)
+        return asked;
+    log::info() << "The morph will be refused (-force morphs anyway): one step, no repair";
+    StepSettings once = asked;
+    once.steps = 1;
+    once.untangle = false;
+    return once;
 }
 
 void warn_if_partly_valid(const SteppedMorph& stepped, const StepSettings& step_settings)
@@ -129,16 +149,19 @@ bool judge(const MorphOptions& options, const MorphCase& in, MorphResult& result
     }
     const std::vector<std::string> reasons = refusal_reasons(result.before, result.after);
     const std::string new_failures = judge_new_failures(in, result);
-    if (reasons.empty() && new_failures.empty())
+    if (reasons.empty() && new_failures.empty() && result.folded.faces == 0)
         return false;
-    result.refusal =
-        reasons.empty()
-            ? new_failures
-            : "the morphed mesh has " + reasons.front() +
-                  (reasons.size() > 1 ? " and " + reasons.back() : std::string()) +
-                  (result.invalid_cells_by_patch.empty()
-                       ? std::string()
-                       : ", in cells touching " + describe(result.invalid_cells_by_patch));
+    if (result.folded.faces > 0) // the cause: what the morph did inside is beside the point
+        result.refusal = describe(result.folded);
+    else
+        result.refusal =
+            reasons.empty()
+                ? new_failures
+                : "the morphed mesh has " + reasons.front() +
+                      (reasons.size() > 1 ? " and " + reasons.back() : std::string()) +
+                      (result.invalid_cells_by_patch.empty()
+                           ? std::string()
+                           : ", in cells touching " + describe(result.invalid_cells_by_patch));
     if (!options.force)
     {
         result.refused = true; // the caller reports it (morphMesh: exit status 3)
@@ -306,11 +329,17 @@ void morph_resolved(const MorphOptions& options, const MorphCase& in, const Comp
                     BeforeCheck& before, MorphResult& result, std::optional<PolyMesh>& moved,
                     PolyMesh* spent)
 {
-    SteppedMorph stepped = fit_in_steps(options, in, cf, before, result, spent);
+    const parallel::Communicator& comm = options.parallel && in.decomposition.comm != nullptr
+                                             ? *in.decomposition.comm
+                                             : parallel::Communicator::world();
+    result.folded = faces_folded_by_prescription(in.foam.mesh, result.constraints, comm);
+    const StepSettings steps = steps_for(options, in.step_settings, result.folded);
+    SteppedMorph stepped = fit_in_steps(options, in, steps, cf, before, result, spent);
     result.before = before.take_report();
     result.timings.check += before.waited_seconds();
     const Stopwatch stage;
-    warn_if_partly_valid(stepped, in.step_settings);
+    if (result.folded.faces == 0)
+        warn_if_partly_valid(stepped, steps);
     if (!moved && spent != nullptr)
         moved.emplace(std::move(*spent)); // its points are replaced below: nothing is copied
     else if (!moved)
@@ -323,10 +352,7 @@ void morph_resolved(const MorphOptions& options, const MorphCase& in, const Comp
     check_settings.face_pyramid_errors = &stepped.pyramid_errors; // counted after the last step
     result.after = check_morph_mesh(*moved, cf, stepped.geometry, check_settings, in.decomposition);
     if (!refusal_reasons(result.before, result.after).empty()) // the counts are every rank's
-        result.invalid_cells_by_patch = invalid_cells_by_patch(
-            *moved, cf, stepped.geometry,
-            options.parallel && in.decomposition.comm != nullptr ? *in.decomposition.comm
-                                                                 : parallel::Communicator::world());
+        result.invalid_cells_by_patch = invalid_cells_by_patch(*moved, cf, stepped.geometry, comm);
     result.timings.check += stage.seconds();
     judge(options, in, result);
 }

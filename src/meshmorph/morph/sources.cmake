@@ -2,9 +2,10 @@
 # morph_setup) -> which entry moves each patch (patch_assignment) -> claims per point
 # (claims, handle_selection; refused when they cannot be done: prescription_checks) -> one
 # prescription per point (conflict_resolution) -> the
-# constraint set (constraints); one fit and evaluation (point_morph), the step loop
-# (morph_steps) and the repair of cells a step inverts (local_untangle). 2D cases keep
-# their empty planes (empty_planes); slip and wedge patches their plane (patch_plane).
+# constraint set (constraints; refused at once when it folds faces over: folded_faces); one
+# fit and evaluation (point_morph), the step loop (morph_steps) and the repair of cells a
+# step inverts (local_untangle). 2D cases keep their empty planes (empty_planes); slip and
+# wedge patches their plane (patch_plane).
 # A -parallel run resolves the constraints on the master (distributed_constraints). The
 # deformation methods, one row each (deformation_methods; settings read by deformation_dict,
 # memory by fit_memory), and the whole morph of a case as one call (morph_case: its stages'
@@ -14,6 +15,7 @@ set(MESHMORPH_MORPH_SOURCES
     meshmorph/morph/motion.cpp
     meshmorph/morph/new_check_failures.cpp
     meshmorph/morph/invalid_cells_location.cpp
+    meshmorph/morph/folded_faces.cpp
     meshmorph/morph/morph_setup.cpp
     meshmorph/morph/patch_assignment.cpp
     meshmorph/morph/empty_planes.cpp
