@@ -334,6 +334,57 @@ TEST(MorphMesh, motion_normal_to_a_2d_case_planes_is_an_error_naming_the_entry)
     }
 }
 
+TEST(MorphMesh, a_morph_that_bends_a_symmetry_plane_is_refused_naming_the_patch)
+{
+    // OpenFOAM refuses to read a mesh whose symmetryPlane patch is not planar ("Symmetry
+    // plane 'zMin' is not planar"), so a morph that bends one must not be written as fit:
+    // with `conflicts last` the scaled xMax takes the points it shares with zMin off z = 0.
+    PolyMesh mesh = test::make_box_mesh(4, 4, 4);
+    for (Patch& p : mesh.patches)
+        if (p.name == "zMin")
+            p.type = "symmetryPlane";
+    const std::string scale_x_max = R"(
+boundary
+{
+    xMax { type scale; origin (0.5 0.5 0.5); factor (1.1 1.1 1.1); }
+}
+)";
+    const fs::path bent = make_case("bent_symmetry", mesh, "conflicts last;\n" + scale_x_max);
+    const RunResult r = run({"-case", bent.string(), "-json", (bent / "r.json").string()});
+    EXPECT_EQ(r.code, exit_refused) << r.log;
+    // OpenFOAM compares each face's normal with the patch's average normal: the 4 faces
+    // beside xMax tilt, and the average tilts with them, so all 16 faces are off it.
+    EXPECT_NE(r.err.find("the morph bends symmetryPlane 'zMin' (16 faces"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("conflicts fixed;"), std::string::npos) << r.err;
+    EXPECT_TRUE(times(bent).empty()) << "nothing written";
+    const nlohmann::json j = nlohmann::json::parse(read_text(bent / "r.json"));
+    EXPECT_EQ(j["bentSymmetryPlanes"], nlohmann::json({{"zMin", 16}})) << j.dump();
+    if (test::openfoam_available()) // the oracle: OpenFOAM cannot read what -force writes
+    {
+        ASSERT_EQ(run({"-case", bent.string(), "-force"}).code, 0);
+        const std::string cmd =
+            "cd '" + bent.string() + "' && checkMesh -latestTime > log.checkMesh 2>&1";
+        EXPECT_NE(std::system(cmd.c_str()), 0);
+        EXPECT_NE(read_text(bent / "log.checkMesh").find("Symmetry plane 'zMin' is not planar"),
+                  std::string::npos)
+            << read_text(bent / "log.checkMesh");
+    }
+
+    // The default rule holds the shared points still: the plane stays a plane.
+    const fs::path kept = make_case("kept_symmetry", mesh, scale_x_max);
+    const RunResult k = run({"-case", kept.string(), "-json", (kept / "r.json").string()});
+    ASSERT_EQ(k.code, 0) << k.log;
+    EXPECT_EQ(nlohmann::json::parse(read_text(kept / "r.json"))["bentSymmetryPlanes"],
+              nlohmann::json::object());
+    if (test::openfoam_available())
+    {
+        const std::string cmd =
+            "cd '" + kept.string() + "' && checkMesh -latestTime > log.checkMesh 2>&1";
+        EXPECT_EQ(std::system(cmd.c_str()), 0) << read_text(kept / "log.checkMesh");
+    }
+}
+
 TEST(MorphMesh, a_check_the_morph_makes_fail_is_a_warning_or_on_request_an_error)
 {
     // The whole box flattened 2000 times (an affine map, which the RBF's linear part

@@ -121,6 +121,9 @@ std::string morph_json(const morph::MorphResult& result, int exit_status)
     j["invalidCellsByPatch"] = invalid_cells_json(result.invalid_cells_by_patch);
     j["foldedFaces"] = result.folded.faces;
     j["foldedFacesByPatch"] = folded_faces_json(result.folded.by_patch);
+    j["bentSymmetryPlanes"] = nlohmann::json::object();
+    for (const NonPlanarSymmetryPlane& b : result.bent_symmetry_planes)
+        j["bentSymmetryPlanes"][b.patch] = b.faces;
     j["written"] = result.written;
     j["refused"] = result.refused;
     if (result.refused)
@@ -184,7 +187,7 @@ int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostr
     {
         log::error() << result.refusal
                      << (result.folded.faces > 0
-                             ? ". Nothing written (-force writes it folded)."
+                             ? ". Nothing written (-force writes it anyway)."
                              : ". Nothing written: reduce the motion, change the method or use "
                                "-force.");
         return exit_refused;

@@ -298,7 +298,7 @@ std::string describe(const FoldedFaces& folded)
          << ", the one moved most at (" << folded.example.x() << " " << folded.example.y() << " "
          << folded.example.z()
          << "). Every point of them is prescribed, so no method, step or repair of the interior "
-            "can unfold them";
+            "can unfold them (the boundary overlaps itself there)";
     if (!folded.meeting.empty())
         text << ". They meet " << describe_counts(folded.meeting)
              << ", where points held by another prescription or by the conflict rule sit beside "

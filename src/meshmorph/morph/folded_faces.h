@@ -2,15 +2,20 @@
 //! \file Faces the prescription alone folds over.
 //!
 //! A face whose every point is prescribed ends where the prescription puts it, whatever the
-//! morph does inside the mesh. If the prescription turns it over, no method, step length or
-//! repair can make its cells valid, and the morph is refused at once, saying where and why,
-//! instead of after every halved step has failed.
+//! morph does inside the mesh. If the prescription turns it over, the boundary overlaps
+//! itself there, and no method, step length or repair can unfold it. The morph says so up
+//! front (a warning naming the patches) and, when its cells come out invalid, refuses with
+//! the folded faces as the reason: the cause to change, where a count of invalid cells
+//! only says where they are. The cell of a folded face can still come out valid (turned
+//! over with it; checkMesh passes it, and halving the step found such cells on
+//! oscillatingInletPeriodicAMI2D), so a fold alone is a warning, and the steps go on as
+//! asked.
 //!
 //! Seen on OpenFOAM's windshield tutorials: a 0.5 mm glass pane 45 cells thick between the
 //! cabin's walls and a fixed exterior. Scaling `walls` by 1% moves the pane's edge strips by
 //! up to 8 mm, while the points the strips share with `exterior` stay put (conflict rule
-//! `fixed`), 11 micrometres away: 95 strip faces fold over. The morph used to halve the
-//! step six times and untangle for 30 s before refusing with a count of invalid cells.
+//! `fixed`), 11 micrometres away: 95 strip faces fold over, and the morph was refused with
+//! a count of invalid cells that did not say why.
 #pragma once
 
 #include <optional>

@@ -15,6 +15,7 @@
 #include "meshmorph/morph/morph_steps.h"
 #include "meshmorph/morph/point_morph.h"
 #include "meshmorph/quality/quality_report.h"
+#include "meshmorph/quality/symmetry_plane_planarity.h"
 
 namespace meshmorph::morph
 {
@@ -77,6 +78,9 @@ struct MorphResult
     //! Faces the prescription itself folds over (folded_faces.h): refused at once, unless
     //! -force.
     FoldedFaces folded;
+    //! symmetryPlane patches the morph took off their plane (OpenFOAM cannot read the mesh
+    //! then: symmetry_plane_planarity.h): refused, unless -force.
+    std::vector<NonPlanarSymmetryPlane> bent_symmetry_planes;
     bool written = false;
     std::filesystem::path points_file; //!< the written points file
     std::filesystem::path vtk_file;    //!< the written .vtu (if vtk)

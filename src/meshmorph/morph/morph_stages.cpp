@@ -30,6 +30,7 @@
 #include "meshmorph/parallel/collective.h"
 #include "meshmorph/quality/cell_validity.h"
 #include "meshmorph/quality/quality_summary.h"
+#include "meshmorph/quality/symmetry_plane_planarity.h"
 
 namespace meshmorph::morph
 {
@@ -40,9 +41,8 @@ namespace
 {
 
 //! The motion in steps (morph_steps.h), with its timings and the constraint error.
-SteppedMorph fit_in_steps(const MorphOptions& options, const MorphCase& in,
-                          const StepSettings& steps, const CompactList& cf, BeforeCheck& before,
-                          MorphResult& result, PolyMesh* in_place)
+SteppedMorph fit_in_steps(const MorphOptions& options, const MorphCase& in, const CompactList& cf,
+                          BeforeCheck& before, MorphResult& result, PolyMesh* in_place)
 {
     const PolyMesh& mesh = in.foam.mesh;
     const Constraints& c = result.constraints;
@@ -50,14 +50,14 @@ SteppedMorph fit_in_steps(const MorphOptions& options, const MorphCase& in,
     const Index n_fit = c.n_prescribed_points + c.n_slip_points;
     log::info() << "Method: " << describe(settings, n_fit);
     log::info() << "Steps: "
-                << (needs_fit(settings) ? describe(steps)
+                << (needs_fit(settings) ? describe(in.step_settings)
                                         : "1 (ffd moves its control points once)");
     const DeformationMaker make = [&](const Points& points)
     { return make_deformation(settings, points, n_fit); };
     const Decomposition* parts = options.parallel ? &in.decomposition : nullptr;
     SteppedMorph stepped = morph_in_steps(
-        mesh, cf, c, steps, make, needs_fit(settings), [&before] { return before.invalid(); },
-        parts, in_place);
+        mesh, cf, c, in.step_settings, make, needs_fit(settings),
+        [&before] { return before.invalid(); }, parts, in_place);
     result.steps = stepped.steps;
     for (const StepRecord& s : stepped.steps)
     {
@@ -75,24 +75,6 @@ SteppedMorph fit_in_steps(const MorphOptions& options, const MorphCase& in,
     log_fit(result, settings, global_count(in.decomposition, mesh.n_points(), true));
     result.valid_fraction = stepped.valid_fraction;
     return stepped;
-}
-
-//! The steps of the morph: the morphDict's, or, when the prescription folds faces over (the
-//! morph will be refused whatever its steps), one step without repair, so that the refusal
-//! costs one morph (-force: the morphDict's, as asked).
-StepSettings steps_for(const MorphOptions& options, const StepSettings& asked,
-                       const FoldedFaces& folded)
-{
-    if (folded.faces == 0)
-        return asked;
-    log::warning() << describe(folded);
-    if (options.force)
-        return asked;
-    log::info() << "The morph will be refused (-force morphs anyway): one step, no repair";
-    StepSettings once = asked;
-    once.steps = 1;
-    once.untangle = false;
-    return once;
 }
 
 void warn_if_partly_valid(const SteppedMorph& stepped, const StepSettings& step_settings)
@@ -138,6 +120,35 @@ std::string judge_new_failures(const MorphCase& in, MorphResult& result)
     return comm.broadcast(refusal);
 }
 
+//! The symmetryPlane patches of `after` OpenFOAM would refuse that it read in `before`.
+std::vector<NonPlanarSymmetryPlane>
+bent_symmetry_planes(const std::vector<NonPlanarSymmetryPlane>& before, const PolyMesh& after,
+                     const parallel::Communicator& comm)
+{
+    std::vector<NonPlanarSymmetryPlane> bent = non_planar_symmetry_planes(after, comm);
+    std::erase_if(bent,
+                  [&](const NonPlanarSymmetryPlane& b)
+                  {
+                      return std::any_of(before.begin(), before.end(),
+                                         [&](const NonPlanarSymmetryPlane& a)
+                                         { return a.patch == b.patch; });
+                  });
+    return bent;
+}
+
+//! Why a bent symmetry plane refuses the morph: OpenFOAM's own error, and the remedy.
+std::string bent_symmetry_planes_reason(const std::vector<NonPlanarSymmetryPlane>& bent)
+{
+    std::string names;
+    for (const NonPlanarSymmetryPlane& b : bent)
+        names += (names.empty() ? "'" : ", '") + b.patch + "' (" + std::to_string(b.faces) +
+                 " faces off its average normal beyond OpenFOAM's tolerance)";
+    return std::string("the morph bends symmetryPlane ") + names +
+           ", and OpenFOAM refuses to read such a mesh (\"Symmetry plane ... is not planar\"): "
+           "keep the points it shares with moving patches still (conflicts fixed;) or give the "
+           "patch type symmetry";
+}
+
 //! The before/after table; then whether the result is refused (true: write nothing).
 bool judge(const MorphOptions& options, const MorphCase& in, MorphResult& result)
 {
@@ -149,19 +160,21 @@ bool judge(const MorphOptions& options, const MorphCase& in, MorphResult& result
     }
     const std::vector<std::string> reasons = refusal_reasons(result.before, result.after);
     const std::string new_failures = judge_new_failures(in, result);
-    if (reasons.empty() && new_failures.empty() && result.folded.faces == 0)
+    if (reasons.empty() && new_failures.empty() && result.bent_symmetry_planes.empty())
         return false;
-    if (result.folded.faces > 0) // the cause: what the morph did inside is beside the point
-        result.refusal = describe(result.folded);
-    else
-        result.refusal =
-            reasons.empty()
-                ? new_failures
-                : "the morphed mesh has " + reasons.front() +
-                      (reasons.size() > 1 ? " and " + reasons.back() : std::string()) +
-                      (result.invalid_cells_by_patch.empty()
-                           ? std::string()
-                           : ", in cells touching " + describe(result.invalid_cells_by_patch));
+    result.refusal =
+        reasons.empty()
+            ? new_failures
+            : "the morphed mesh has " + reasons.front() +
+                  (reasons.size() > 1 ? " and " + reasons.back() : std::string()) +
+                  (result.invalid_cells_by_patch.empty()
+                       ? std::string()
+                       : ", in cells touching " + describe(result.invalid_cells_by_patch));
+    if (!reasons.empty() && result.folded.faces > 0) // the cause first
+        result.refusal = describe(result.folded) + "; " + result.refusal;
+    if (!result.bent_symmetry_planes.empty())
+        result.refusal = bent_symmetry_planes_reason(result.bent_symmetry_planes) +
+                         (result.refusal.empty() ? "" : "; " + result.refusal);
     if (!options.force)
     {
         result.refused = true; // the caller reports it (morphMesh: exit status 3)
@@ -332,14 +345,19 @@ void morph_resolved(const MorphOptions& options, const MorphCase& in, const Comp
     const parallel::Communicator& comm = options.parallel && in.decomposition.comm != nullptr
                                              ? *in.decomposition.comm
                                              : parallel::Communicator::world();
+    // Said before the steps: halving may still find valid cells around a folded face (the
+    // cell turns over with it), so the morph goes on as asked; a refusal names the fold first.
     result.folded = faces_folded_by_prescription(in.foam.mesh, result.constraints, comm);
-    const StepSettings steps = steps_for(options, in.step_settings, result.folded);
-    SteppedMorph stepped = fit_in_steps(options, in, steps, cf, before, result, spent);
+    if (result.folded.faces > 0)
+        log::warning() << describe(result.folded);
+    // Before the steps: with `spent` they move in.foam.mesh's own points.
+    const std::vector<NonPlanarSymmetryPlane> bent_before =
+        non_planar_symmetry_planes(in.foam.mesh, comm);
+    SteppedMorph stepped = fit_in_steps(options, in, cf, before, result, spent);
     result.before = before.take_report();
     result.timings.check += before.waited_seconds();
     const Stopwatch stage;
-    if (result.folded.faces == 0)
-        warn_if_partly_valid(stepped, steps);
+    warn_if_partly_valid(stepped, in.step_settings);
     if (!moved && spent != nullptr)
         moved.emplace(std::move(*spent)); // its points are replaced below: nothing is copied
     else if (!moved)
@@ -353,6 +371,7 @@ void morph_resolved(const MorphOptions& options, const MorphCase& in, const Comp
     result.after = check_morph_mesh(*moved, cf, stepped.geometry, check_settings, in.decomposition);
     if (!refusal_reasons(result.before, result.after).empty()) // the counts are every rank's
         result.invalid_cells_by_patch = invalid_cells_by_patch(*moved, cf, stepped.geometry, comm);
+    result.bent_symmetry_planes = bent_symmetry_planes(bent_before, *moved, comm);
     result.timings.check += stage.seconds();
     judge(options, in, result);
 }

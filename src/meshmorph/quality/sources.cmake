@@ -13,6 +13,7 @@ set(MESHMORPH_QUALITY_SOURCES
     meshmorph/quality/cell_edge_usage.cpp
     meshmorph/quality/cell_regions.cpp
     meshmorph/quality/cell_validity.cpp
+    meshmorph/quality/symmetry_plane_planarity.cpp
     meshmorph/quality/edge_alignment.cpp
     meshmorph/quality/edge_lengths.cpp
     meshmorph/quality/face_concavity.cpp
