@@ -96,7 +96,7 @@ if [[ $with_asan == 1 ]]; then
 
     step "Testing under ASan + UBSan (preset asan, 2 jobs, OMP_NUM_THREADS=1; OpenFOAM oracle and tutorial tests excluded)"
     # Any sanitizer report aborts its test (-fno-sanitize-recover, LeakSanitizer's exit code).
-    OMP_NUM_THREADS=1 ctest --preset asan -j2 --timeout 900 -LE 'openfoam|tutorial' --output-junit ctest-junit.xml \
+    OMP_NUM_THREADS=1 ctest --preset asan -j2 --timeout 900 -LE 'openfoam|tutorial|foam_cases' --output-junit ctest-junit.xml \
         2>&1 | tee build/asan/ctest.log || asan_status=$?
 
     step "Fuzzing (each target 5 s over its seeds, build/asan)"
