@@ -185,8 +185,11 @@ int morph_mesh_main(const Options& options, const fs::path& json_path, std::ostr
         << format_seconds(result.timings.write) << "\n";
     if (result.refused)
     {
+        // A fold or a bent plane is the prescription's or the conflict rule's: the refusal
+        // names the remedy, and a shorter motion or another method would not help.
+        const bool remedy_named = result.folded.faces > 0 || !result.bent_symmetry_planes.empty();
         log::error() << result.refusal
-                     << (result.folded.faces > 0
+                     << (remedy_named
                              ? ". Nothing written (-force writes it anyway)."
                              : ". Nothing written: reduce the motion, change the method or use "
                                "-force.");
